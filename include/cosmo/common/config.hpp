@@ -1,0 +1,36 @@
+#pragma once
+// Reading parameters from YAML config files (config/*.yaml). A missing key keeps the default; a key of the
+// wrong type throws std::runtime_error naming the file and the key, e.g. "config/loam.yaml: odometry.max_icf_iterations:
+// expected int".
+#include <yaml-cpp/yaml.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace cosmo {
+
+/// A YAML node plus the place it came from, for error messages.
+struct ConfigNode {
+  YAML::Node node;
+  std::string where;  ///< "file.yaml: section.sub"
+
+  /// Load a file; throws naming the file when it is missing or malformed.
+  static ConfigNode load(const std::string& path);
+  /// Child section (an absent section is an empty node: every read keeps its default).
+  ConfigNode operator[](const std::string& key) const;
+  bool has(const std::string& key) const { return node && node.IsMap() && node[key]; }
+
+  /// Overwrite `value` with the key's value when present.
+  template <typename T>
+  void read(const std::string& key, T& value) const {
+    if (!has(key)) return;
+    try {
+      value = node[key].as<T>();
+    } catch (const YAML::Exception&) {
+      throw std::runtime_error(where + (where.empty() || where.back() == ' ' ? "" : ".") + key + ": cannot read value '" +
+                               YAML::Dump(node[key]) + "' as the expected type");
+    }
+  }
+};
+
+}  // namespace cosmo

@@ -1,0 +1,24 @@
+#pragma once
+// sensor_msgs/PointCloud2 <-> cosmo::Scan.
+//
+// Reading: fields x y z (float32 or float64) are required; intensity, ring (any integer type) and a per-point
+// time are used when present. The per-point time is taken from `t` (uint32 ns, Ouster), `time` or
+// `timestamp` (float seconds, Velodyne/Hesai); it is converted to seconds relative to the message stamp:
+// with `stamp_at_end` (the Ouster/MCD convention) the latest point is at the stamp, otherwise the stamp is the
+// sweep start. Errors throw std::runtime_error naming the topic (`source`) and field.
+#include <sensor_msgs/PointCloud2.h>
+
+#include <string>
+
+#include "cosmo/common/scan.hpp"
+
+namespace cosmo::ros_glue {
+
+Scan fromPointCloud2(const sensor_msgs::PointCloud2& msg, bool stamp_at_end = true,
+                     const std::string& source = "PointCloud2");
+
+/// x y z intensity t ring (t: uint32 ns since the sweep start, stamped at the sweep end when the scan has
+/// times), only the fields the scan has; frame and stamp from the arguments.
+sensor_msgs::PointCloud2 toPointCloud2(const Scan& scan, const std::string& frame_id);
+
+}  // namespace cosmo::ros_glue

@@ -1,0 +1,16 @@
+#!/bin/bash
+# Set up (scripts/setup.sh), build every test and run all gtest and rostest tests.
+# Prints one line per failing test case and ends with "N passed, N failed"; exits non-zero on any failure,
+# crash, hang (ctest / rostest time limits) or when no test ran.
+set -eo pipefail
+cd "$(dirname "$0")/.."
+COSMO_BUILD_TESTS=1 scripts/setup.sh
+export PATH=/usr/bin:$PATH
+B=${COSMO_BUILD_DIR:-_build}
+J=${JOBS:-$(nproc)}
+export ROS_HOSTNAME=localhost ROS_HOME=$PWD/$B/ros_home ROS_LOG_DIR=$PWD/$B/ros_log
+set +e
+rm -rf "$B/test_results"
+(cd "$B" && ctest --output-on-failure -j"$J" --timeout 900); rc_ctest=$?
+/usr/bin/python3 scripts/test_summary.py "$B/test_results"; rc_sum=$?
+[ $rc_ctest -eq 0 ] && [ $rc_sum -eq 0 ]

@@ -1,0 +1,134 @@
+#include "cosmo/ros/point_cloud.hpp"
+
+#include <sensor_msgs/point_cloud2_iterator.h>
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+namespace cosmo::ros_glue {
+
+namespace {
+const sensor_msgs::PointField* findField(const sensor_msgs::PointCloud2& msg, const std::string& name) {
+  for (const auto& f : msg.fields)
+    if (f.name == name) return &f;
+  return nullptr;
+}
+
+double readAs(const uint8_t* p, uint8_t datatype) {
+  switch (datatype) {
+    case sensor_msgs::PointField::INT8: { int8_t v; std::memcpy(&v, p, 1); return v; }
+    case sensor_msgs::PointField::UINT8: return *p;
+    case sensor_msgs::PointField::INT16: { int16_t v; std::memcpy(&v, p, 2); return v; }
+    case sensor_msgs::PointField::UINT16: { uint16_t v; std::memcpy(&v, p, 2); return v; }
+    case sensor_msgs::PointField::INT32: { int32_t v; std::memcpy(&v, p, 4); return v; }
+    case sensor_msgs::PointField::UINT32: { uint32_t v; std::memcpy(&v, p, 4); return v; }
+    case sensor_msgs::PointField::FLOAT32: { float v; std::memcpy(&v, p, 4); return v; }
+    case sensor_msgs::PointField::FLOAT64: { double v; std::memcpy(&v, p, 8); return v; }
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+std::size_t sizeOf(uint8_t datatype) {
+  switch (datatype) {
+    case sensor_msgs::PointField::INT8: case sensor_msgs::PointField::UINT8: return 1;
+    case sensor_msgs::PointField::INT16: case sensor_msgs::PointField::UINT16: return 2;
+    case sensor_msgs::PointField::FLOAT64: return 8;
+    default: return 4;
+  }
+}
+}  // namespace
+
+Scan fromPointCloud2(const sensor_msgs::PointCloud2& msg, bool stamp_at_end, const std::string& source) {
+  const auto* fx = findField(msg, "x");
+  const auto* fy = findField(msg, "y");
+  const auto* fz = findField(msg, "z");
+  if (!fx || !fy || !fz) throw std::runtime_error(source + ": PointCloud2 has no x/y/z fields");
+  const std::size_t n = static_cast<std::size_t>(msg.width) * msg.height;
+  if (msg.point_step == 0 || msg.data.size() < n * msg.point_step)
+    throw std::runtime_error(source + ": PointCloud2 data holds " + std::to_string(msg.data.size()) +
+                             " bytes, expected " + std::to_string(n * msg.point_step) + " (width*height*point_step)");
+  for (const auto* f : {fx, fy, fz})
+    if (f->offset + sizeOf(f->datatype) > msg.point_step)
+      throw std::runtime_error(source + ": field '" + f->name + "' lies outside point_step");
+  const auto* fi = findField(msg, "intensity");
+  const auto* fr = findField(msg, "ring");
+  const auto* ft = findField(msg, "t");
+  double t_scale = 1e-9;  // Ouster `t`: ns
+  if (!ft) {
+    ft = findField(msg, "time");
+    if (!ft) ft = findField(msg, "timestamp");
+    t_scale = 1.0;
+  }
+  Scan scan;
+  scan.stamp = static_cast<StampNs>(msg.header.stamp.sec) * 1000000000ULL + msg.header.stamp.nsec;
+  scan.reserve(n);
+  if (!fi) scan.intensity.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    const uint8_t* p = msg.data.data() + i * msg.point_step;
+    scan.points.emplace_back(static_cast<float>(readAs(p + fx->offset, fx->datatype)),
+                             static_cast<float>(readAs(p + fy->offset, fy->datatype)),
+                             static_cast<float>(readAs(p + fz->offset, fz->datatype)));
+    if (fi) scan.intensity.push_back(static_cast<float>(readAs(p + fi->offset, fi->datatype)));
+    if (fr) scan.ring.push_back(static_cast<uint16_t>(readAs(p + fr->offset, fr->datatype)));
+    if (ft) scan.time.push_back(static_cast<float>(readAs(p + ft->offset, ft->datatype) * t_scale));
+  }
+  if (ft && n > 0) {
+    // Times relative to the stamp: with the stamp at the sweep end the latest point sits at 0.
+    double t_max = -std::numeric_limits<double>::infinity(), t_min = -t_max;
+    for (float t : scan.time) {
+      if (std::isfinite(t)) { t_max = std::max<double>(t_max, t); t_min = std::min<double>(t_min, t); }
+    }
+    // Absolute stamps (Velodyne `time` in epoch seconds) are made relative to the message stamp.
+    const bool absolute = t_min > 1e6;
+    const double ref = absolute ? toSeconds(scan.stamp) : (stamp_at_end ? t_max : 0.0);
+    for (float& t : scan.time) t = static_cast<float>(t - ref);
+  }
+  return scan;
+}
+
+sensor_msgs::PointCloud2 toPointCloud2(const Scan& scan, const std::string& frame_id) {
+  sensor_msgs::PointCloud2 msg;
+  msg.header.frame_id = frame_id;
+  msg.header.stamp.sec = static_cast<uint32_t>(scan.stamp / 1000000000ULL);
+  msg.header.stamp.nsec = static_cast<uint32_t>(scan.stamp % 1000000000ULL);
+  msg.height = 1;
+  msg.width = static_cast<uint32_t>(scan.size());
+  msg.is_dense = false;
+  msg.is_bigendian = false;
+  auto add = [&msg](const std::string& name, uint8_t type, uint32_t size) {
+    sensor_msgs::PointField f;
+    f.name = name;
+    f.offset = msg.point_step;
+    f.datatype = type;
+    f.count = 1;
+    msg.fields.push_back(f);
+    msg.point_step += size;
+  };
+  add("x", sensor_msgs::PointField::FLOAT32, 4);
+  add("y", sensor_msgs::PointField::FLOAT32, 4);
+  add("z", sensor_msgs::PointField::FLOAT32, 4);
+  if (scan.hasIntensity()) add("intensity", sensor_msgs::PointField::FLOAT32, 4);
+  if (scan.hasTime()) add("t", sensor_msgs::PointField::UINT32, 4);
+  if (scan.hasRing()) add("ring", sensor_msgs::PointField::UINT16, 2);
+  msg.row_step = msg.point_step * msg.width;
+  msg.data.resize(static_cast<std::size_t>(msg.row_step));
+  float t_min = 0.0f;
+  if (scan.hasTime()) t_min = *std::min_element(scan.time.begin(), scan.time.end());
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    uint8_t* p = msg.data.data() + i * msg.point_step;
+    std::memcpy(p, scan.points[i].data(), 12);
+    std::size_t off = 12;
+    if (scan.hasIntensity()) { std::memcpy(p + off, &scan.intensity[i], 4); off += 4; }
+    if (scan.hasTime()) {
+      const auto t = static_cast<uint32_t>(std::llround((scan.time[i] - t_min) * 1e9));
+      std::memcpy(p + off, &t, 4);
+      off += 4;
+    }
+    if (scan.hasRing()) { std::memcpy(p + off, &scan.ring[i], 2); }
+  }
+  return msg;
+}
+
+}  // namespace cosmo::ros_glue
