@@ -1,0 +1,245 @@
+#include "cosmo/comm/radio_simulator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "cosmo/comm/radio_random.hpp"
+
+namespace cosmo {
+
+namespace {
+std::string robotName(char id) { return std::string("'") + id + "'"; }
+}  // namespace
+
+std::string toString(Transfer::Outcome outcome) {
+  return outcome == Transfer::Outcome::Delivered ? "delivered" : "timed_out";
+}
+
+RadioSimulator::RadioSimulator(const RadioParams& p, std::vector<char> robots, std::uint64_t seed)
+    : params_(p), seed_(seed), rng_(seed) {
+  params_.validate();
+  std::sort(robots.begin(), robots.end());
+  robots.erase(std::unique(robots.begin(), robots.end()), robots.end());
+  if (robots.empty()) throw std::invalid_argument("RadioSimulator: the team has no robots");
+  robot_ids_ = robots;
+  for (char r : robot_ids_) robots_[r] = Robot{};
+}
+
+RadioSimulator::Robot& RadioSimulator::robot(char id, const char* what) {
+  auto it = robots_.find(id);
+  if (it == robots_.end()) throw std::invalid_argument(std::string("RadioSimulator::") + what + ": unknown robot " + robotName(id));
+  return it->second;
+}
+
+const RadioSimulator::Robot& RadioSimulator::robot(char id, const char* what) const {
+  auto it = robots_.find(id);
+  if (it == robots_.end()) throw std::invalid_argument(std::string("RadioSimulator::") + what + ": unknown robot " + robotName(id));
+  return it->second;
+}
+
+void RadioSimulator::setRobotState(char id, const Eigen::Vector3d& position, bool on) {
+  Robot& r = robot(id, "setRobotState");
+  if (!position.allFinite())
+    throw std::invalid_argument("RadioSimulator::setRobotState: non-finite position of robot " + robotName(id));
+  r.position = position;
+  r.on = on;
+}
+
+void RadioSimulator::offerKeyframe(char id, std::size_t keyframe, std::size_t payload_bytes, std::size_t raw_bytes) {
+  Robot& r = robot(id, "offerKeyframe");
+  Offer offer;
+  if (params_.size_model == RadioParams::SizeModel::RealCompressed) {
+    offer.payload_bytes = payload_bytes;
+  } else {
+    const double s = raw_bytes > 0 ? static_cast<double>(raw_bytes)
+                                    : static_cast<double>(payload_bytes) / params_.size_factor_mean;
+    std::mt19937_64 size_rng(radio_random::mixSeed(seed_, static_cast<unsigned char>(id), keyframe));
+    const double f =
+        std::max(0.01, radio_random::normal(size_rng, params_.size_factor_mean, params_.size_factor_stddev));
+    offer.payload_bytes = static_cast<std::size_t>(std::llround(f * s));
+  }
+  if (r.offers.count(keyframe) == 0) ++stats_.keyframes_offered;
+  r.offers[keyframe] = offer;
+}
+
+void RadioSimulator::setStartTime(double t) {
+  start_time_ = t;
+  next_index_ = 0;
+}
+
+bool RadioSimulator::wasDelivered(char sender, char receiver, std::size_t keyframe) const {
+  const Robot& s = robot(sender, "wasDelivered");
+  auto it = s.delivered_to.find(receiver);
+  return it != s.delivered_to.end() && it->second.count(keyframe) > 0;
+}
+
+std::size_t RadioSimulator::undeliveredCount(char sender, char receiver) const {
+  const Robot& s = robot(sender, "undeliveredCount");
+  auto it = s.delivered_to.find(receiver);
+  return s.offers.size() - (it == s.delivered_to.end() ? 0 : it->second.size());
+}
+
+std::size_t RadioSimulator::payloadSize(char id, std::size_t keyframe) const {
+  const Robot& r = robot(id, "payloadSize");
+  auto it = r.offers.find(keyframe);
+  return it == r.offers.end() ? 0 : it->second.payload_bytes;
+}
+
+bool RadioSimulator::isOn(char id) const { return robot(id, "isOn").on; }
+Eigen::Vector3d RadioSimulator::position(char id) const { return robot(id, "position").position; }
+
+std::size_t RadioSimulator::pickKeyframe(const Robot& sender, char receiver) {
+  const auto it = sender.delivered_to.find(receiver);
+  const std::set<std::size_t>* done = it == sender.delivered_to.end() ? nullptr : &it->second;
+  const std::size_t n = sender.offers.size() - (done ? done->size() : 0);
+  std::size_t k = radio_random::index(rng_, n);
+  for (const auto& [kf, offer] : sender.offers) {
+    if (done && done->count(kf)) continue;
+    if (k == 0) return kf;
+    --k;
+  }
+  throw std::logic_error("RadioSimulator::pickKeyframe: no undelivered keyframe");
+}
+
+std::vector<Transfer> RadioSimulator::step(double t) {
+  if (!std::isfinite(t)) throw std::invalid_argument("RadioSimulator::step: non-finite time");
+  if (stepped_ && !(t > last_time_))
+    throw std::invalid_argument("RadioSimulator::step: time " + std::to_string(t) +
+                                " s is not after the previous step " + std::to_string(last_time_) + " s");
+  if (std::abs(t - nextStepTime()) > 1e-6 * params_.step) setStartTime(t);
+  ++next_index_;
+  stepped_ = true;
+  last_time_ = t;
+  ++stats_.steps;
+
+  initializeNewCommunications(t);
+  updateActiveCommunications(t);
+  return terminateCommunications(t);
+}
+
+void RadioSimulator::initializeNewCommunications(double t) {
+  // Candidate pairs (sorted order), then a seeded random order so that no robot id is favoured.
+  std::vector<std::pair<char, char>> candidates;
+  for (std::size_t i = 0; i < robot_ids_.size(); ++i) {
+    const Robot& a = robots_.at(robot_ids_[i]);
+    if (!a.on || a.busy) continue;
+    for (std::size_t j = i + 1; j < robot_ids_.size(); ++j) {
+      const Robot& b = robots_.at(robot_ids_[j]);
+      if (!b.on || b.busy) continue;
+      if ((a.position - b.position).norm() > params_.d_init) continue;
+      if (undeliveredCount(robot_ids_[i], robot_ids_[j]) == 0 && undeliveredCount(robot_ids_[j], robot_ids_[i]) == 0)
+        continue;
+      candidates.emplace_back(robot_ids_[i], robot_ids_[j]);
+    }
+  }
+  for (std::size_t i = candidates.size(); i > 1; --i) std::swap(candidates[i - 1], candidates[radio_random::index(rng_, i)]);
+
+  for (const auto& [ia, ib] : candidates) {
+    Robot& a = robots_.at(ia);
+    Robot& b = robots_.at(ib);
+    if (a.busy || b.busy) continue;
+    const double d = (a.position - b.position).norm();
+    ++stats_.init_attempts;
+    if (!radio_random::bernoulli(rng_, params_.phi(d))) continue;
+    const std::size_t na = undeliveredCount(ia, ib), nb = undeliveredCount(ib, ia);
+    const bool a_sends = na > nb || (na == nb && radio_random::bernoulli(rng_, 0.5));
+    const char s = a_sends ? ia : ib, r = a_sends ? ib : ia;
+    Robot& sender = a_sends ? a : b;
+    ActiveCommunication c;
+    c.sender = s;
+    c.receiver = r;
+    c.keyframe = pickKeyframe(sender, r);
+    c.start = t;
+    c.bytes = sender.offers.at(c.keyframe).payload_bytes;
+    c.last_progress = t;
+    c.distance = d;
+    a.busy = b.busy = true;
+    active_.push_back(c);
+    new_this_step_.push_back(true);
+    ++stats_.initiated;
+  }
+}
+
+void RadioSimulator::updateActiveCommunications(double t) {
+  // Interference over the set active now (same set for every communication of this step).
+  const double r2 = params_.d_intf * params_.d_intf;
+  std::vector<int> interference(active_.size(), 1);
+  for (std::size_t i = 0; i < active_.size(); ++i) {
+    const Eigen::Vector3d& a = robots_.at(active_[i].sender).position;
+    const Eigen::Vector3d& b = robots_.at(active_[i].receiver).position;
+    for (std::size_t j = 0; j < active_.size(); ++j) {
+      if (i == j) continue;
+      const Eigen::Vector3d& c = robots_.at(active_[j].sender).position;
+      const Eigen::Vector3d& d = robots_.at(active_[j].receiver).position;
+      if ((a - c).squaredNorm() <= r2 || (a - d).squaredNorm() <= r2 || (b - c).squaredNorm() <= r2 ||
+          (b - d).squaredNorm() <= r2)
+        ++interference[i];
+    }
+  }
+  for (std::size_t i = 0; i < active_.size(); ++i) {
+    ActiveCommunication& c = active_[i];
+    const Robot& s = robots_.at(c.sender);
+    const Robot& r = robots_.at(c.receiver);
+    c.distance = (s.position - r.position).norm();
+    c.interference = interference[i];
+    bool connected;
+    if (new_this_step_[i]) {
+      connected = true;  // the initialization sample is this step's sample
+    } else {
+      connected = s.on && r.on && radio_random::bernoulli(rng_, params_.phi(c.distance));
+      ++stats_.link_samples;
+      if (connected) ++stats_.link_successes;
+    }
+    const double rate = connected ? params_.bandwidthBps() / c.interference : 0.0;
+    const double before = c.bytes_delivered;
+    c.bytes_delivered = std::min(static_cast<double>(c.bytes), c.bytes_delivered + rate * params_.step);
+    stats_.bytes_transmitted += c.bytes_delivered - before;
+    c.throughput_Bps = rate;
+    if (connected) c.last_progress = t;
+    new_this_step_[i] = false;
+  }
+}
+
+std::vector<Transfer> RadioSimulator::terminateCommunications(double t) {
+  std::vector<Transfer> ended;
+  std::vector<ActiveCommunication> keep;
+  const double eps = 1e-9 * std::max(1.0, std::abs(t));
+  for (const ActiveCommunication& c : active_) {
+    Transfer x;
+    x.sender = c.sender;
+    x.receiver = c.receiver;
+    x.keyframe = c.keyframe;
+    x.start = c.start;
+    x.end = t;
+    x.bytes = c.bytes;
+    x.bytes_delivered = c.bytes_delivered;
+    if (c.bytes_delivered >= static_cast<double>(c.bytes)) {
+      x.outcome = Transfer::Outcome::Delivered;
+      robots_.at(c.sender).delivered_to[c.receiver].insert(c.keyframe);
+      ++stats_.delivered;
+      stats_.bytes_delivered += static_cast<double>(c.bytes);
+    } else {
+      const double since = params_.timeout_mode == RadioParams::TimeoutMode::NoProgress ? c.last_progress : c.start;
+      if (t - since < params_.timeout - eps) {
+        keep.push_back(c);
+        continue;
+      }
+      x.outcome = Transfer::Outcome::TimedOut;
+      ++stats_.timed_out;
+    }
+    robots_.at(c.sender).busy = false;
+    robots_.at(c.receiver).busy = false;
+    ended.push_back(x);
+  }
+  active_ = std::move(keep);
+  new_this_step_.assign(active_.size(), false);
+  std::sort(ended.begin(), ended.end(), [](const Transfer& a, const Transfer& b) {
+    return a.sender != b.sender ? a.sender < b.sender : a.receiver < b.receiver;
+  });
+  log_.insert(log_.end(), ended.begin(), ended.end());
+  return ended;
+}
+
+}  // namespace cosmo
