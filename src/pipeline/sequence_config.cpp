@@ -1,0 +1,97 @@
+#include "cosmo/pipeline/sequence_config.hpp"
+
+#include <filesystem>
+#include <set>
+#include <stdexcept>
+
+#include "cosmo/common/config.hpp"
+#include "cosmo/common/pose_io.hpp"
+
+namespace cosmo::pipeline {
+
+std::string resolvePath(const std::string& base_dir, const std::string& path) {
+  if (path.empty()) return path;
+  std::filesystem::path p(path);
+  if (p.is_absolute() || base_dir.empty()) return p.lexically_normal().string();
+  return (std::filesystem::path(base_dir) / p).lexically_normal().string();
+}
+
+namespace {
+
+char readRobotId(const ConfigNode& node, const std::string& key) {
+  std::string id;
+  node.read(key, id);
+  if (id.size() != 1 || id[0] < 'a' || id[0] > 'z')
+    throw std::runtime_error(node.where + "." + key + ": robot id must be one lower-case letter, got '" + id + "'");
+  return id[0];
+}
+
+}  // namespace
+
+SequenceConfig SequenceConfig::load(const std::string& path) {
+  const ConfigNode root = ConfigNode::load(path);
+  if (!root.node.IsMap()) throw std::runtime_error(path + ": expected a map with name, seed, anchor, trials");
+  SequenceConfig cfg;
+  cfg.path = path;
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  if (!root.has("name")) throw std::runtime_error(path + ": name: missing");
+  root.read("name", cfg.name);
+  if (cfg.name.empty()) throw std::runtime_error(path + ": name: empty");
+  root.read("source", cfg.source);
+  root.read("seed", cfg.seed);
+  root.read("time_offset_sigma", cfg.time_offset_sigma);
+  if (!(cfg.time_offset_sigma >= 0.0)) throw std::runtime_error(path + ": time_offset_sigma: must be >= 0");
+
+  if (!root.has("trials") || !root.node["trials"].IsSequence() || root.node["trials"].size() == 0)
+    throw std::runtime_error(path + ": trials: missing or not a non-empty list");
+  std::set<char> seen;
+  const YAML::Node trials = root.node["trials"];
+  for (std::size_t i = 0; i < trials.size(); ++i) {
+    ConfigNode t{trials[i], path + ": trials[" + std::to_string(i) + "]"};
+    if (!t.node.IsMap()) throw std::runtime_error(t.where + ": expected a map");
+    TrialConfig trial;
+    if (!t.has("robot")) throw std::runtime_error(t.where + ".robot: missing");
+    trial.robot = readRobotId(t, "robot");
+    if (!seen.insert(trial.robot).second)
+      throw std::runtime_error(t.where + ".robot: robot '" + std::string(1, trial.robot) + "' listed twice");
+    t.read("name", trial.name);
+    if (trial.name.empty()) trial.name = std::string("robot_") + trial.robot;
+    if (!t.has("bag")) throw std::runtime_error(t.where + ".bag: missing");
+    std::string bag, reference;
+    t.read("bag", bag);
+    t.read("topic", trial.topic);
+    t.read("reference", reference);
+    t.read("stamp_at_end", trial.stamp_at_end);
+    trial.bag = resolvePath(dir, bag);
+    trial.reference = resolvePath(dir, reference);
+    if (t.has("extrinsic")) {
+      std::vector<double> v;
+      t.read("extrinsic", v);
+      trial.extrinsic = parsePoseNumbers(v, t.where + ".extrinsic");
+    }
+    cfg.trials.push_back(trial);
+  }
+  if (root.has("anchor")) {
+    cfg.anchor = readRobotId(root, "anchor");
+  } else {
+    cfg.anchor = cfg.trials.front().robot;
+  }
+  if (!seen.count(cfg.anchor))
+    throw std::runtime_error(path + ": anchor: robot '" + std::string(1, cfg.anchor) + "' has no trial");
+  return cfg;
+}
+
+std::vector<char> SequenceConfig::robots() const {
+  std::vector<char> r;
+  for (const auto& t : trials) r.push_back(t.robot);
+  return r;
+}
+
+const TrialConfig& SequenceConfig::trial(char robot) const {
+  for (const auto& t : trials)
+    if (t.robot == robot) return t;
+  throw std::runtime_error((path.empty() ? std::string("sequence ") + name : path) + ": no trial for robot '" +
+                           std::string(1, robot) + "'");
+}
+
+}  // namespace cosmo::pipeline
