@@ -1,0 +1,286 @@
+#include "cosmo/dataset/dataset_recorder.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "cosmo/dataset/atomic_file.hpp"
+#include "cosmo/jrl/io.hpp"
+
+namespace cosmo {
+namespace {
+
+bool finitePose(const Pose3& T) { return T.matrix().allFinite(); }
+
+// A loop closure placed in an entry of its owner.
+struct Placed {
+  std::size_t entry = 0;  // index into the owner's keyframes, or n + k for the k-th closure after the last
+  const LoopClosureMeasurement* lc = nullptr;
+  std::size_t arrival = 0;
+};
+
+bool placedBefore(const Placed& a, const Placed& b) {
+  return std::tie(a.entry, a.lc->computed_at, a.lc->key1, a.lc->key2, a.arrival) <
+         std::tie(b.entry, b.lc->computed_at, b.lc->key1, b.lc->key2, b.arrival);
+}
+
+}  // namespace
+
+Matrix6 priorCovariance() {
+  Matrix6 c = Matrix6::Zero();
+  c.diagonal() << 1e-8, 1e-8, 1e-8, 1e-6, 1e-6, 1e-6;
+  return c;
+}
+
+DatasetRecorder::DatasetRecorder(std::string name, std::vector<char> robots, NoiseModels noise, OutlierRule rule)
+    : name_(std::move(name)), robots_(std::move(robots)), noise_(std::move(noise)), rule_(rule) {
+  std::set<char> seen;
+  for (const char r : robots_) {
+    if (!seen.insert(r).second) throw std::invalid_argument("recorder: robot '" + std::string(1, r) + "' listed twice");
+    if (static_cast<unsigned char>(r) >= 128 || r <= ' ')
+      throw std::invalid_argument("recorder: robot ids must be printable 7-bit ASCII characters");
+    counts_.keyframes[r] = 0;
+  }
+  checkCovariance(noise_.odometry, "recorder: odometry noise model");
+  checkCovariance(noise_.loop_closure, "recorder: loop-closure noise model");
+}
+
+bool DatasetRecorder::knows(char robot) const {
+  return std::find(robots_.begin(), robots_.end(), robot) != robots_.end();
+}
+
+void DatasetRecorder::addKeyframe(char robot, std::size_t index, StampNs stamp, const Pose3& odometry_from_previous,
+                                  const std::optional<Pose3>& reference_pose) {
+  const std::string what = "keyframe " + std::string(1, robot) + std::to_string(index);
+  auto refuse = [&](const std::string& why) {
+    ++counts_.rejected;
+    throw std::invalid_argument(what + ": " + why);
+  };
+  if (!knows(robot)) refuse("robot '" + std::string(1, robot) + "' is not in the recorder's robot list");
+  if (index > jrl::kIndexMask) refuse("index too large for a JRL key");
+  if (index > 0 && !finitePose(odometry_from_previous)) refuse("odometry is not finite");
+  auto& frames = keyframes_[robot];
+  if (frames.count(index)) refuse("duplicate keyframe index");
+  const auto next = frames.lower_bound(index);
+  if (next != frames.end() && next->second.stamp <= stamp)
+    refuse("stamp " + std::to_string(stamp) + " not before keyframe " + std::to_string(next->first) + "'s " +
+           std::to_string(next->second.stamp));
+  if (next != frames.begin() && std::prev(next)->second.stamp >= stamp)
+    refuse("stamp " + std::to_string(stamp) + " not after keyframe " + std::to_string(std::prev(next)->first) +
+           "'s " + std::to_string(std::prev(next)->second.stamp));
+  Keyframe k;
+  k.stamp = stamp;
+  k.odometry = index == 0 ? Pose3::Identity() : odometry_from_previous;
+  if (reference_pose && finitePose(*reference_pose)) k.reference = *reference_pose;
+  frames.emplace(index, k);
+  ++counts_.keyframes[robot];
+}
+
+void DatasetRecorder::addLoopClosure(const LoopClosureMeasurement& input) {
+  LoopClosureMeasurement lc = input;
+  const std::string what = "loop closure " + jrl::keyName(lc.key1) + " -> " + jrl::keyName(lc.key2) + " of robot " +
+                           std::string(1, lc.owner);
+  auto refuse = [&](const std::string& why) {
+    ++counts_.rejected;
+    throw std::invalid_argument(what + ": " + why);
+  };
+  if (!knows(lc.owner)) refuse("owner is not in the recorder's robot list");
+  if (!knows(jrl::robotOf(lc.key1)) || !knows(jrl::robotOf(lc.key2))) refuse("key of an unknown robot");
+  if (lc.key1 == lc.key2) refuse("key1 == key2");
+  if (!finitePose(lc.measurement)) refuse("measurement is not finite");
+  const bool own1 = jrl::robotOf(lc.key1) == lc.owner, own2 = jrl::robotOf(lc.key2) == lc.owner;
+  if (!own1 && !own2) refuse("neither key belongs to the owner");
+  // Normalise: key1 is the owner's pose; for an intra-robot closure the newer one.
+  if (!own1 || (own2 && jrl::indexOf(lc.key2) > jrl::indexOf(lc.key1))) {
+    std::swap(lc.key1, lc.key2);
+    lc.measurement = lc.measurement.inverse(Eigen::Isometry);
+  }
+  if (!loop_closure_ids_.emplace(lc.owner, lc.key1, lc.key2, lc.computed_at).second)
+    refuse("received twice (same owner, keys and computed_at)");
+  loop_closures_.push_back(lc);
+  ++counts_.loop_closures;
+  ++(own1 && own2 ? counts_.intra : counts_.inter);
+}
+
+jrl::Dataset DatasetRecorder::build(BuildReport* report_out) const {
+  BuildReport report;
+  // Contiguous keyframes 0..n-1 per robot.
+  std::map<char, std::vector<const Keyframe*>> chain;
+  for (const char r : robots_) {
+    auto& c = chain[r];
+    const auto it = keyframes_.find(r);
+    if (it == keyframes_.end()) continue;
+    for (const auto& [index, frame] : it->second) {
+      if (index != c.size()) break;
+      c.push_back(&frame);
+    }
+    report.keyframes_pending += it->second.size() - c.size();
+  }
+  auto written = [&](std::uint64_t key) { return jrl::indexOf(key) < chain[jrl::robotOf(key)].size(); };
+
+  // Place each loop closure in an entry of its owner.
+  std::map<char, std::vector<Placed>> placed;
+  for (std::size_t i = 0; i < loop_closures_.size(); ++i) {
+    const LoopClosureMeasurement& lc = loop_closures_[i];
+    if (!written(lc.key1) || !written(lc.key2)) {
+      ++report.loop_closures_pending;
+      continue;
+    }
+    const auto& own = chain[lc.owner];
+    Placed p{0, &lc, i};
+    if (lc.computed_at > own.back()->stamp) {
+      p.entry = own.size();  // after the last keyframe; split into one entry each below
+    } else {
+      // Last keyframe with stamp <= computed_at (keyframe 0 when computed before it).
+      const auto after = std::upper_bound(own.begin(), own.end(), lc.computed_at,
+                                          [](StampNs t, const Keyframe* k) { return t < k->stamp; });
+      const std::size_t at = after == own.begin() ? 0 : static_cast<std::size_t>(after - own.begin()) - 1;
+      std::size_t earliest = jrl::indexOf(lc.key1);
+      if (jrl::robotOf(lc.key2) == lc.owner) earliest = std::max<std::size_t>(earliest, jrl::indexOf(lc.key2));
+      p.entry = std::max(at, earliest);
+    }
+    placed[lc.owner].push_back(p);
+  }
+
+  // Labels need a reference pose for every written keyframe.
+  std::size_t without_reference = 0;
+  for (const auto& [r, c] : chain)
+    for (const Keyframe* k : c) without_reference += k->reference ? 0 : 1;
+  report.labelled = without_reference == 0;
+  if (!report.labelled)
+    report.labels_note = std::to_string(without_reference) +
+                         " keyframe(s) have no reference pose: no groundtruth and no outlier labels (all loop "
+                         "closures are listed as potential outliers)";
+
+  jrl::Dataset ds;
+  ds.name = name_;
+  ds.groundtruth.emplace();
+  ds.initialization.emplace();
+  ds.potential_outliers.emplace();
+  ds.outliers.emplace();
+  const Matrix6 prior_cov = priorCovariance();
+  for (const char r : robots_) {
+    const auto& own = chain[r];
+    if (own.empty()) {
+      report.robots_without_keyframes.push_back(r);
+      continue;
+    }
+    ds.robots.push_back(r);
+    auto& closures = placed[r];
+    std::sort(closures.begin(), closures.end(), placedBefore);
+
+    std::vector<jrl::Entry> entries(own.size());
+    std::vector<Pose3> init(own.size());
+    init[0] = own[0]->reference.value_or(Pose3::Identity());
+    entries[0].stamp = own[0]->stamp;
+    entries[0].factors.push_back(jrl::Factor::priorPose3(jrl::symbol(r, 0), init[0], prior_cov));
+    for (std::size_t i = 1; i < own.size(); ++i) {
+      entries[i].stamp = own[i]->stamp;
+      entries[i].factors.push_back(
+          jrl::Factor::betweenPose3(jrl::symbol(r, i - 1), jrl::symbol(r, i), own[i]->odometry, noise_.odometry));
+      init[i] = init[i - 1] * own[i]->odometry;
+      ++report.odometry;
+    }
+
+    auto& potential = (*ds.potential_outliers)[r];
+    auto& outliers = (*ds.outliers)[r];
+    jrl::Values& gt = (*ds.groundtruth)[r];
+    jrl::Values& in = (*ds.initialization)[r];
+    for (std::size_t i = 0; i < own.size(); ++i) {
+      jrl::insertPose3(in, jrl::symbol(r, i), init[i]);
+      if (report.labelled) jrl::insertPose3(gt, jrl::symbol(r, i), *own[i]->reference);
+    }
+    auto referenceOf = [&](std::uint64_t key) -> const std::optional<Pose3>& {
+      return chain[jrl::robotOf(key)][jrl::indexOf(key)]->reference;
+    };
+    for (const Placed& p : closures) {
+      const LoopClosureMeasurement& lc = *p.lc;
+      if (p.entry >= own.size()) {  // after the last keyframe: an entry of its own
+        jrl::Entry e;
+        e.stamp = std::max(lc.computed_at, entries.back().stamp + 1);
+        entries.push_back(std::move(e));
+      }
+      const std::size_t entry = p.entry >= own.size() ? entries.size() - 1 : p.entry;
+      const jrl::FactorId id{entry, entries[entry].factors.size()};
+      entries[entry].factors.push_back(jrl::Factor::betweenPose3(lc.key1, lc.key2, lc.measurement, noise_.loop_closure));
+      potential.insert(id);
+      const bool intra = jrl::robotOf(lc.key2) == r;
+      ++(intra ? report.intra : report.inter);
+      if (!intra && !in.count(lc.key2)) {
+        jrl::insertPose3(in, lc.key2, init[jrl::indexOf(lc.key1)] * lc.measurement);
+        if (report.labelled) jrl::insertPose3(gt, lc.key2, *referenceOf(lc.key2));
+      }
+      if (report.labelled) {
+        const Pose3 truth = referenceOf(lc.key1)->inverse(Eigen::Isometry) * *referenceOf(lc.key2);
+        if (isOutlier(lc.measurement, truth, noise_.loop_closure, rule_, critical_value_)) {
+          outliers.insert(id);
+          ++report.outliers;
+        }
+      }
+    }
+    report.entries += entries.size();
+    ds.measurements[r] = std::move(entries);
+  }
+  if (!report.labelled) {
+    ds.groundtruth.reset();
+    ds.outliers.reset();
+  }
+  if (report_out) *report_out = report;
+  return ds;
+}
+
+std::string DatasetRecorder::metadataPath(const std::string& jrl_path) {
+  const std::string ext = ".jrl";
+  if (jrl_path.size() >= ext.size() && jrl_path.compare(jrl_path.size() - ext.size(), ext.size(), ext) == 0)
+    return jrl_path.substr(0, jrl_path.size() - ext.size()) + ".recorder.yaml";
+  return jrl_path + ".recorder.yaml";
+}
+
+std::string DatasetRecorder::metadataYaml(const BuildReport& report) const {
+  std::ostringstream out;
+  out << "# Written by the cosmo recorder next to " << name_ << ".jrl (see include/cosmo/dataset/dataset_recorder.hpp)\n";
+  out << "name: \"" << name_ << "\"\n";
+  out << "robots: [";
+  for (std::size_t i = 0; i < robots_.size(); ++i) out << (i ? ", " : "") << robots_[i];
+  out << "]\n";
+  out << "robots_without_keyframes: [";
+  for (std::size_t i = 0; i < report.robots_without_keyframes.size(); ++i)
+    out << (i ? ", " : "") << report.robots_without_keyframes[i];
+  out << "]\n";
+  out << "outlier_labels: " << (report.labelled ? "true" : "false") << "\n";
+  if (!report.labelled) out << "outlier_labels_note: \"" << report.labels_note << "\"\n";
+  out << "outlier_rule: " << outlierRuleName(rule_) << "  # fidelity: sqrt(r^T Q^-1 r) > critical; squared: r^T Q^-1 r > critical\n";
+  out << "critical_value: " << critical_value_ << "  # 95 % chi^2, 6 dof\n";
+  out << "noise_models: \"" << noise_.environment << "\"\n";
+  out << "entries: " << report.entries << "\n";
+  out << "odometry_factors: " << report.odometry << "\n";
+  out << "intra_robot_loop_closures: " << report.intra << "\n";
+  out << "inter_robot_loop_closures: " << report.inter << "\n";
+  out << "outliers: " << report.outliers << "\n";
+  out << "keyframes_pending: " << report.keyframes_pending << "  # after a gap in a robot's indices, not written\n";
+  out << "loop_closures_pending: " << report.loop_closures_pending << "  # touching keys not written\n";
+  out << "inputs_rejected: " << counts_.rejected << "\n";
+  return out.str();
+}
+
+BuildReport DatasetRecorder::write(const std::string& path) const {
+  BuildReport report;
+  const jrl::Dataset ds = build(&report);
+  jrl::writeJrl(path, ds);
+  writeFileAtomically(metadataPath(path), metadataYaml(report));
+  return report;
+}
+
+std::string DatasetRecorder::progressLine() const {
+  std::ostringstream out;
+  out << "keyframes";
+  for (const char r : robots_) out << ' ' << r << ' ' << counts_.keyframes.at(r);
+  out << " | loop closures " << counts_.loop_closures << " (intra " << counts_.intra << ", inter " << counts_.inter
+      << ")";
+  if (counts_.rejected) out << " | rejected " << counts_.rejected;
+  return out.str();
+}
+
+}  // namespace cosmo
