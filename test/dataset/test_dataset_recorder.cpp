@@ -11,6 +11,7 @@
 #include "cosmo/common/shared_data.hpp"
 #include "cosmo/dataset/dataset_recorder.hpp"
 #include "cosmo/jrl/io.hpp"
+#include "cosmo/jrl/validate.hpp"
 #include "synthetic_team.hpp"
 
 using namespace cosmo;
@@ -49,6 +50,7 @@ class RecorderTest : public ::testing::Test {
 }  // namespace
 
 TEST_F(RecorderTest, PriorAndOdometryEntries) {
+  for (const auto& v : jrl::validate(ds)) ADD_FAILURE() << v.str();
   ASSERT_EQ(ds.robots, (std::vector<char>{'a', 'b'}));
   EXPECT_EQ(ds.name, "synthetic_team");
   for (const char r : {'a', 'b'}) {
@@ -278,6 +280,7 @@ TEST(Recorder, GapsAndDanglingClosuresWaitForTheirKeyframes) {
   EXPECT_EQ(report.keyframes_pending, 0u);
   EXPECT_EQ(report.loop_closures_pending, 0u);
   EXPECT_EQ(ds.measurements.at('b').size(), 33u);
+  EXPECT_TRUE(jrl::validate(ds).empty());
 }
 
 TEST(Recorder, RefusesBadInputWithoutLosingState) {
