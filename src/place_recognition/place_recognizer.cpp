@@ -19,6 +19,7 @@ PlaceRecognitionParams PlaceRecognitionParams::fromConfig(const ConfigNode& root
   node.read("exclude_recent_seconds", p.exclude_recent_seconds);
   node.read("max_matches_per_database", p.max_matches_per_database);
   node.read("rebuild_every", p.rebuild_every);
+  node.read("rebuild_fraction", p.rebuild_fraction);
   try {
     p.validate();
   } catch (const std::invalid_argument& e) {
@@ -35,12 +36,14 @@ void PlaceRecognitionParams::validate() const {
   if (!(exclude_recent_seconds >= 0.0)) throw std::invalid_argument("exclude_recent_seconds must be >= 0");
   if (max_matches_per_database < 1) throw std::invalid_argument("max_matches_per_database must be >= 1");
   if (rebuild_every < 1) throw std::invalid_argument("rebuild_every must be >= 1");
+  if (!(rebuild_fraction >= 0.0)) throw std::invalid_argument("rebuild_fraction must be >= 0");
 }
 
 ScanContextDatabaseParams PlaceRecognitionParams::databaseParams() const {
   ScanContextDatabaseParams d;
   d.num_candidates = num_candidates;
   d.rebuild_every = rebuild_every;
+  d.rebuild_fraction = rebuild_fraction;
   d.empty_columns = sc.empty_columns;
   d.coarse_search_radius = sc.coarse_search_radius;
   return d;

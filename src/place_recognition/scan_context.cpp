@@ -6,6 +6,24 @@
 #include <string>
 
 namespace cosmo {
+namespace {
+
+/// atan2 in [0, 2*pi) from a minimax polynomial for atan on [-1, 1] (max error about 1e-5 rad, far below the
+/// 0.1 rad sector width); about 4x faster than std::atan2, which dominated the descriptor time.
+inline float azimuthOf(float y, float x) {
+  const float ax = std::abs(x), ay = std::abs(y);
+  const float hi = std::max(ax, ay), lo = std::min(ax, ay);
+  if (hi == 0.0f) return 0.0f;
+  const float a = lo / hi, s = a * a;
+  float r = a * (0.99997726f +
+                 s * (-0.33262347f + s * (0.19354346f + s * (-0.11643287f + s * (0.05265332f + s * -0.01172120f)))));
+  if (ay > ax) r = 1.57079637f - r;
+  if (x < 0.0f) r = 3.14159274f - r;
+  if (y < 0.0f) r = 6.28318548f - r;
+  return r;
+}
+
+}  // namespace
 
 ScanContextParams ScanContextParams::fromConfig(const ConfigNode& root) {
   ConfigNode node = root;
@@ -58,7 +76,6 @@ ScanContext makeScanContext(const Scan& scan, const ScanContextParams& p) {
   const float rings_per_metre = static_cast<float>(p.rings / p.max_range);
   const float sectors_per_radian = static_cast<float>(p.sectors / (2.0 * M_PI));
   const float height_offset = static_cast<float>(p.sensor_height);
-  const float two_pi = static_cast<float>(2.0 * M_PI);
   float* bins = sc.descriptor.data();  // column-major: bins[sector * rings + ring]
   const std::size_t stride = static_cast<std::size_t>(p.point_stride);
   for (std::size_t i = 0; i < scan.points.size(); i += stride) {
@@ -67,8 +84,7 @@ ScanContext makeScanContext(const Scan& scan, const ScanContextParams& p) {
     if (!(r2 < max_r2) || r2 < min_r2 || !std::isfinite(pt.z())) continue;  // also drops NaN x/y
     const float height = pt.z() + height_offset;
     if (!(height > 0.0f)) continue;
-    float azimuth = std::atan2(pt.y(), pt.x());
-    if (azimuth < 0.0f) azimuth += two_pi;
+    const float azimuth = azimuthOf(pt.y(), pt.x());
     const int ring = std::min(p.rings - 1, static_cast<int>(std::sqrt(r2) * rings_per_metre));
     const int sector = std::min(p.sectors - 1, static_cast<int>(azimuth * sectors_per_radian));
     float& bin = bins[static_cast<std::size_t>(sector) * p.rings + ring];

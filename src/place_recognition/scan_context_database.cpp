@@ -41,6 +41,8 @@ struct ScanContextDatabase::Impl {
 ScanContextDatabase::ScanContextDatabase(const ScanContextDatabaseParams& params) : impl_(std::make_unique<Impl>()) {
   if (params.num_candidates < 1) throw std::invalid_argument("ScanContextDatabase: num_candidates must be >= 1");
   if (params.rebuild_every < 1) throw std::invalid_argument("ScanContextDatabase: rebuild_every must be >= 1");
+  if (!(params.rebuild_fraction >= 0.0))
+    throw std::invalid_argument("ScanContextDatabase: rebuild_fraction must be >= 0");
   impl_->params = params;
   impl_->cloud.keys = &impl_->keys;
 }
@@ -67,7 +69,10 @@ void ScanContextDatabase::insert(std::size_t id, ScanContext descriptor, StampNs
   m.dims = dims;
   m.keys.insert(m.keys.end(), descriptor.ring_key.data(), descriptor.ring_key.data() + dims);
   m.entries.push_back(DatabaseEntry{id, stamp, std::move(descriptor)});
-  if (m.entries.size() - indexedSize() >= static_cast<std::size_t>(m.params.rebuild_every)) rebuild();
+  const double pending = static_cast<double>(m.entries.size() - indexedSize());
+  if (pending >= std::max(static_cast<double>(m.params.rebuild_every),
+                          m.params.rebuild_fraction * static_cast<double>(indexedSize())))
+    rebuild();
 }
 
 void ScanContextDatabase::rebuild() {

@@ -81,24 +81,27 @@ DescriptorMatch scanContextDistance(const ScanContext& query, const ScanContext&
     for (int d = -coarse_search_radius; d <= coarse_search_radius; ++d) shifts.push_back(((centre + d) % n + n) % n);
   }
 
+  // Unit columns make an empty column's cosine 0, so the sum over all pairs is the sum over occupied pairs;
+  // the number of pairs that count is the occupied pairs (both) or the pairs with any occupied column.
   const bool penalize = empty_columns == EmptyColumnPolicy::kPenalizeOneSided;
+  int q_count = 0, c_count = 0;
+  for (int i = 0; i < n; ++i) {
+    q_count += q_occ[static_cast<std::size_t>(i)];
+    c_count += c_occ[static_cast<std::size_t>(i)];
+  }
   DescriptorMatch best;
   best.distance = std::numeric_limits<double>::infinity();
   for (const int s : shifts) {
-    double sum = 0.0;
-    int count = 0;
+    float sum = 0.0f;
+    int both = 0;
     for (int i = 0; i < n; ++i) {
-      const int k = (i + s) % n;
-      const bool a = q_occ[static_cast<std::size_t>(i)] != 0;
-      const bool b = c_occ[static_cast<std::size_t>(k)] != 0;
-      if (a && b) {
-        sum += static_cast<double>(similarity(i, k));
-        ++count;
-      } else if (penalize && (a || b)) {
-        ++count;  // one-sided column: similarity 0, distance 1
-      }
+      const int k = i + s < n ? i + s : i + s - n;
+      sum += similarity(i, k);
+      both += q_occ[static_cast<std::size_t>(i)] & c_occ[static_cast<std::size_t>(k)];
     }
-    const double distance = count > 0 ? std::min(1.0, std::max(0.0, 1.0 - sum / count)) : 1.0;
+    const int count = penalize ? q_count + c_count - both : both;
+    const double distance =
+        count > 0 ? std::min(1.0, std::max(0.0, 1.0 - static_cast<double>(sum) / count)) : 1.0;
     if (distance < best.distance) {
       best.distance = distance;
       best.shift = s;

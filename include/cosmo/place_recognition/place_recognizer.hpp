@@ -33,8 +33,10 @@ struct PlaceRecognitionParams {
   double exclude_recent_seconds = 0.0;
   /// Candidates returned per database searched (1 = the best only).
   int max_matches_per_database = 1;
-  /// Rebuild each database's k-d tree every this many insertions (newer entries are searched linearly).
+  /// k-d tree rebuild period of each database: after max(rebuild_every, rebuild_fraction * tree size)
+  /// insertions (newer entries are searched linearly).
   int rebuild_every = 50;
+  double rebuild_fraction = 0.1;
 
   /// Reads config/place_recognition.yaml (its root or the `place_recognition` section).
   static PlaceRecognitionParams fromConfig(const ConfigNode& node);
