@@ -1,0 +1,160 @@
+// Noise models: YAML reading/writing, the environment configs, and the estimation recovering a known
+// covariance from a synthetic single-robot run.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "cosmo/dataset/dataset_recorder.hpp"
+#include "cosmo/dataset/noise_model_estimation.hpp"
+#include "cosmo/dataset/noise_models.hpp"
+#include "cosmo/jrl/io.hpp"
+#include "synthetic_team.hpp"
+
+using namespace cosmo;
+using jrl::symbol;
+
+namespace {
+
+std::filesystem::path tempDir() {
+  const auto dir = std::filesystem::temp_directory_path() / ("cosmo_noise_test_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+ConfigNode parse(const std::string& text) { return ConfigNode{YAML::Load(text), "test.yaml: "}; }
+
+// |Q_hat - Q| within k standard errors of a sample second moment, entry by entry.
+void expectWithinSamplingError(const Matrix6& est, const Matrix6& truth, std::size_t n, double k, const char* what) {
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) {
+      const double se = std::sqrt((truth(i, i) * truth(j, j) + truth(i, j) * truth(i, j)) / static_cast<double>(n));
+      EXPECT_NEAR(est(i, j), truth(i, j), k * se) << what << " (" << i << "," << j << ")";
+    }
+}
+
+// A single robot driving many laps with odometry noise Q_odo and loop closures with noise Q_lc, a tenth of
+// them gross errors; written as a JRL (what cosmo_noise_models reads).
+jrl::Dataset singleRobotRun(const Matrix6& q_odo, const Matrix6& q_lc, std::size_t n, std::uint64_t seed) {
+  test::TangentSampler sampler(seed);
+  DatasetRecorder rec("single", {'a'}, NoiseModels{});
+  std::vector<Pose3> truth;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double phase = 2 * M_PI * static_cast<double>(i) / 40.0;
+    truth.push_back(test::circlePose(phase, 0.001 * static_cast<double>(i)));
+    const Pose3 odo = i ? sampler.perturb(truth[i - 1].inverse(Eigen::Isometry) * truth[i], q_odo) : Pose3::Identity();
+    rec.addKeyframe('a', i, 1000000000ULL * (i + 1), odo, truth[i]);
+    if (i >= 40) {
+      Pose3 m = sampler.perturb(truth[i].inverse(Eigen::Isometry) * truth[i - 40], q_lc);
+      if (i % 10 == 0) m = m * test::grossError();
+      rec.addLoopClosure({'a', 1000000000ULL * (i + 1), symbol('a', i), symbol('a', i - 40), m});
+    }
+  }
+  return rec.build();
+}
+
+}  // namespace
+
+TEST(NoiseModels, DefaultsAreValidAndRoundTripThroughYaml) {
+  const NoiseModels d;
+  EXPECT_NO_THROW(checkCovariance(d.odometry, "odometry"));
+  EXPECT_NO_THROW(checkCovariance(d.loop_closure, "loop_closure"));
+  EXPECT_DOUBLE_EQ(d.odometry(0, 0), 8.664332784342755e-05);  // the reference file's stored value
+  const auto dir = tempDir();
+  const std::string path = (dir / "nm.yaml").string();
+  NoiseModels m;
+  m.environment = "unit \"test\"";
+  m.odometry(1, 2) = m.odometry(2, 1) = 1.0 / 3.0 * 1e-5;
+  m.save(path, "line one\nline two");
+  const NoiseModels back = NoiseModels::load(path);
+  EXPECT_EQ(back.odometry, m.odometry);  // bit for bit
+  EXPECT_EQ(back.loop_closure, m.loop_closure);
+  EXPECT_EQ(back.environment, m.environment);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(NoiseModels, ReadsFlatListsAndSigmas) {
+  const NoiseModels m = NoiseModels::fromConfig(parse(
+      "odometry:\n  sigmas: [0.01, 0.01, 0.01, 0.1, 0.1, 0.1]\n"
+      "loop_closure:\n  covariance: [1,0,0,0,0,0, 0,1,0,0,0,0, 0,0,1,0,0,0, 0,0,0,2,0,0, 0,0,0,0,2,0, 0,0,0,0,0,2]\n"));
+  EXPECT_DOUBLE_EQ(m.odometry(0, 0), 1e-4);
+  EXPECT_DOUBLE_EQ(m.odometry(5, 5), 0.01);
+  EXPECT_EQ(m.odometry(0, 1), 0.0);
+  EXPECT_EQ(m.loop_closure(3, 3), 2.0);
+  // Missing sections keep the defaults.
+  EXPECT_EQ(NoiseModels::fromConfig(parse("environment: x\n")).loop_closure, NoiseModels::defaultLoopClosure());
+}
+
+TEST(NoiseModels, BadConfigsNameFileAndKey) {
+  auto message = [](const std::string& text) {
+    try {
+      NoiseModels::fromConfig(parse(text));
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("odometry:\n  covariance: [1, 2, 3]\n").find("test.yaml: odometry.covariance: expected 36"),
+            std::string::npos);
+  EXPECT_NE(message("odometry:\n  sigmas: [1, 2, x, 4, 5, 6]\n").find("odometry.sigmas[2]"), std::string::npos);
+  EXPECT_NE(message("loop_closure:\n  sigmas: [1, 2, 0, 4, 5, 6]\n").find("positive definite"), std::string::npos);
+  EXPECT_NE(message("loop_closure:\n  nothing: 1\n").find("loop_closure: expected 'covariance'"), std::string::npos);
+  std::string asym = "odometry:\n  covariance: [1,0.5,0,0,0,0, 0,1,0,0,0,0, 0,0,1,0,0,0, 0,0,0,1,0,0, 0,0,0,0,1,0, 0,0,0,0,0,1]\n";
+  EXPECT_NE(message(asym).find("not symmetric"), std::string::npos);
+  EXPECT_THROW(NoiseModels::load("/nonexistent/noise.yaml"), std::runtime_error);
+}
+
+TEST(NoiseModels, EnvironmentConfigsLoad) {
+  for (const char* env : {"synthetic", "ntu", "kth", "tuhh", "cu_boulder"}) {
+    const std::string path = std::string(COSMO_SOURCE_DIR) + "/config/noise_models/" + env + ".yaml";
+    NoiseModels m;
+    ASSERT_NO_THROW(m = NoiseModels::load(path)) << path;
+    EXPECT_EQ(m.environment, env);
+  }
+  // tuhh = the covariances stored in the reference COSMO-Bench file.
+  const NoiseModels tuhh = NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/tuhh.yaml");
+  EXPECT_EQ(tuhh.odometry, NoiseModels::defaultOdometry());
+  EXPECT_EQ(tuhh.loop_closure, NoiseModels::defaultLoopClosure());
+}
+
+TEST(NoiseModelEstimation, RecoversKnownCovarianceFromASyntheticRun) {
+  // Dense "true" covariances: the reference file's (realistic magnitudes and correlations).
+  const Matrix6 q_odo = NoiseModels::defaultOdometry(), q_lc = NoiseModels::defaultLoopClosure();
+  const std::size_t n = 4000;
+  const jrl::Dataset run = jrl::parseJrl(jrl::dumpJrl(singleRobotRun(q_odo, q_lc, n, 11)));
+  const MeasurementSets sets = collectMeasurements(run);
+  ASSERT_EQ(sets.odometry.size(), n - 1);
+  ASSERT_EQ(sets.loop_closures.size(), n - 40);
+  const NoiseModelEstimate est = estimateNoiseModels(sets.odometry, sets.loop_closures);
+  EXPECT_EQ(est.odometry.used, n - 1);
+  EXPECT_EQ(est.odometry.rejected, 0u);
+  const std::size_t gross = (n - 40) / 10;  // i % 10 == 0 for i in [40, n)
+  EXPECT_EQ(est.loop_closure.rejected, gross);
+  EXPECT_EQ(est.loop_closure.used, n - 40 - gross);
+  expectWithinSamplingError(est.models.odometry, q_odo, est.odometry.used, 4.5, "odometry");
+  expectWithinSamplingError(est.models.loop_closure, q_lc, est.loop_closure.used, 4.5, "loop closure");
+  // Relative error of the variances: a few percent at this sample size.
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(est.models.loop_closure(i, i) / q_lc(i, i), 1.0, 0.1) << i;
+  // The centred variant is nearly the same here (zero-mean noise).
+  NoiseModelEstimationParams centred;
+  centred.subtract_mean = true;
+  const NoiseModelEstimate c = estimateNoiseModels(sets.odometry, sets.loop_closures, centred);
+  EXPECT_LT((c.models.odometry - est.models.odometry).cwiseAbs().maxCoeff(), 0.01 * q_odo.cwiseAbs().maxCoeff());
+}
+
+TEST(NoiseModelEstimation, TooFewMeasurementsIsAClearError) {
+  std::vector<MeasurementWithTruth> few(3);
+  try {
+    estimateNoiseModels(few, few);
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("odometry: only 3 usable measurements"), std::string::npos) << e.what();
+  }
+  // Identical measurements give a singular Q: refused, not written.
+  std::vector<MeasurementWithTruth> same(20);
+  EXPECT_THROW(estimateNoiseModels(same, same), std::runtime_error);
+  jrl::Dataset no_gt;
+  no_gt.name = "x";
+  EXPECT_THROW(collectMeasurements(no_gt), std::runtime_error);
+}
