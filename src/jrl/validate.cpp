@@ -210,7 +210,7 @@ class Validator {
         if (dt > 1e-9 || dq > 1e-9)
           add("groundtruth." + rk(r) + idx(index),
               "ground truth of " + keyName(key) + " differs from groundtruth." + rk(it->second.first) + " (" +
-                  fmt(dt) + " m)");
+                  fmt(dt) + " m, quaternion " + fmt(dq) + ")");
       }
     }
   }

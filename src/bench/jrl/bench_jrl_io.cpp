@@ -1,0 +1,112 @@
+// Read / write times of JRL files: the reference COSMO-Bench file (when ../shared exists) and a ~4 MB
+// synthetic COSMO-like dataset. Target (issue 2): each well under a second.
+//   bench_jrl_io [--repeats N] [--poses N] [--keep DIR]
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+#include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/shared_data.hpp"
+#include "cosmo/jrl/io.hpp"
+#include "cosmo/jrl/synthetic.hpp"
+
+namespace fs = std::filesystem;
+using cosmo::bench::Stopwatch;
+
+namespace {
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct Times {
+  std::vector<double> read_ms, parse_ms, dump_ms, write_ms;
+};
+
+void measure(const std::string& label, const std::string& path, int repeats, const std::string& out_dir) {
+  Times t;
+  bool identical = true;
+  std::size_t bytes = 0;
+  for (int i = 0; i < repeats; ++i) {
+    Stopwatch sw;
+    const cosmo::jrl::Dataset d = cosmo::jrl::readJrl(path);
+    t.read_ms.push_back(sw.elapsedMs());
+    const std::string text = slurp(path);
+    bytes = text.size();
+    sw.restart();
+    const cosmo::jrl::Dataset d2 = cosmo::jrl::parseJrl(text, path);
+    t.parse_ms.push_back(sw.elapsedMs());
+    sw.restart();
+    const std::string dumped = cosmo::jrl::dumpJrl(d2);
+    t.dump_ms.push_back(sw.elapsedMs());
+    identical = identical && dumped == text;
+    const std::string out = out_dir + "/bench_out.jrl";
+    sw.restart();
+    cosmo::jrl::writeJrl(out, d);
+    t.write_ms.push_back(sw.elapsedMs());
+  }
+  auto med = [](const std::vector<double>& v) { return cosmo::bench::quantile(v, 0.5); };
+  auto mx = [](const std::vector<double>& v) { return cosmo::bench::quantile(v, 1.0); };
+  std::printf("%-28s %9.2f MB  read %7.1f ms (max %7.1f)  parse %7.1f ms  dump %7.1f ms  write %7.1f ms (max %7.1f)  "
+              "round trip %s\n",
+              label.c_str(), double(bytes) / 1e6, med(t.read_ms), mx(t.read_ms), med(t.parse_ms), med(t.dump_ms),
+              med(t.write_ms), mx(t.write_ms), identical ? "byte-identical" : "DIFFERS");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int repeats = 5;
+  std::size_t poses = cosmo::jrl::SyntheticParams{}.poses_per_robot;
+  std::string keep;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--repeats" && i + 1 < argc) {
+      repeats = std::max(1, std::atoi(argv[++i]));
+    } else if (a == "--poses" && i + 1 < argc) {
+      poses = static_cast<std::size_t>(std::atol(argv[++i]));
+    } else if (a == "--keep" && i + 1 < argc) {
+      keep = argv[++i];
+    } else {
+      std::cout << "usage: bench_jrl_io [--repeats N] [--poses N] [--keep DIR]\n"
+                   "  median (and max) over N runs of readJrl (file -> Dataset), parseJrl (text -> Dataset),\n"
+                   "  dumpJrl (Dataset -> text) and writeJrl (Dataset -> file, atomic, fsync'd)\n";
+      return a == "--help" || a == "-h" ? 0 : 2;
+    }
+  }
+  const fs::path dir = keep.empty() ? fs::temp_directory_path() / ("cosmo_bench_jrl_" + std::to_string(::getpid()))
+                                    : fs::path(keep);
+  fs::create_directories(dir);
+  std::printf("bench_jrl_io: %d repeats, medians\n", repeats);
+
+  if (const auto ref = cosmo::sharedPath("ref/jrl/tuhh_r3_01_night_wifi.jrl"))
+    measure("tuhh_r3_01_night_wifi.jrl", *ref, repeats, dir.string());
+  else
+    std::printf("reference file not found (../shared missing): skipped\n");
+
+  std::mt19937_64 rng(42);
+  cosmo::jrl::SyntheticParams params;
+  params.poses_per_robot = poses;
+  Stopwatch sw;
+  const auto synth = cosmo::jrl::makeSyntheticDataset(params, rng);
+  const double gen_ms = sw.elapsedMs();
+  const std::string synth_path = (dir / "synthetic_cosmo.jrl").string();
+  cosmo::jrl::writeJrl(synth_path, synth);
+  std::size_t factors = 0;
+  for (const auto& [r, entries] : synth.measurements)
+    for (const auto& e : entries) factors += e.factors.size();
+  std::printf("synthetic: %zu robots x %zu poses, %zu factors, generated in %.1f ms\n", synth.robots.size(), poses,
+              factors, gen_ms);
+  measure("synthetic_cosmo.jrl", synth_path, repeats, dir.string());
+
+  if (keep.empty()) fs::remove_all(dir);
+  return 0;
+}
