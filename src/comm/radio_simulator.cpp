@@ -116,6 +116,7 @@ std::vector<Transfer> RadioSimulator::step(double t) {
 
   initializeNewCommunications(t);
   updateActiveCommunications(t);
+  last_step_ = active_;
   return terminateCommunications(t);
 }
 

@@ -91,6 +91,9 @@ class RadioSimulator {
   /// Every finished transfer so far, in the order they ended.
   const std::vector<Transfer>& transferLog() const { return log_; }
   const std::vector<ActiveCommunication>& activeCommunications() const { return active_; }
+  /// The communications that carried (or tried to carry) data in the last step, including those that ended
+  /// in it (for link display: a short transfer starts and ends within one step).
+  const std::vector<ActiveCommunication>& lastStepCommunications() const { return last_step_; }
   /// Whether `receiver` already got `sender`'s keyframe.
   bool wasDelivered(char sender, char receiver, std::size_t keyframe) const;
   /// Keyframes of `sender` not yet delivered to `receiver`.
@@ -125,6 +128,7 @@ class RadioSimulator {
   std::uint64_t seed_;
   std::mt19937_64 rng_;
   std::vector<ActiveCommunication> active_;
+  std::vector<ActiveCommunication> last_step_;
   std::vector<bool> new_this_step_;  ///< parallel to active_: started in the current step
   std::vector<Transfer> log_;
   RadioStats stats_;

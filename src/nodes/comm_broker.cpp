@@ -1,0 +1,332 @@
+// comm_broker: the simulated radio between robots (cosmo::RadioSimulator, the paper's Algorithm 1) on ROS
+// time.
+//
+// Subscribes  /<r>/keyframe_scans  (cosmo/Keyframe)  keyframe scans robot r offers to its teammates
+//             /<r>/reference_pose  (geometry_msgs/PoseStamped, world frame)  r is "on" from its first pose;
+//                                  after its last pose it stays on at that position
+// Publishes   /<r>/received_scans  (cosmo/Keyframe, `sender` set) delivered scans; the cloud is the real
+//                                  decompressed xz payload (x y z only)
+//             /comm/links          (visualization_msgs/MarkerArray, frame `world`) active links, coloured by
+//                                  their mean throughput so far (red 0 .. green B)
+//             /comm/stats          (std_msgs/String, JSON, once per step batch) counters + active links
+// Params      ~robots [a, b, c] (or "a,b,c"), ~comm wifi|proradio, ~config (a config/comm/*.yaml, wins over
+//             ~comm), ~seed (int), ~size_model paper|real, ~timeout_mode no_progress|total_duration,
+//             ~log_file (CSV of every transfer + <name>.summary.json; written every 30 s of ROS time and on
+//             shutdown; empty = none), ~xz_preset (0..9, default 6), ~frame_id (default world)
+// Steps: every delta of ROS time (/clock under use_sim_time) on the grid k * delta, catching up when time jumps.
+#include <geometry_msgs/PoseStamped.h>
+#include <ros/ros.h>
+#include <std_msgs/String.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cosmo/Keyframe.h"
+#include "cosmo/comm/radio_simulator.hpp"
+#include "cosmo/comm/scan_compression.hpp"
+#include "cosmo/comm/transfer_log.hpp"
+#include "cosmo/ros/point_cloud.hpp"
+
+namespace {
+
+std::vector<char> readRobots(ros::NodeHandle& pnh) {
+  std::vector<std::string> names;
+  XmlRpc::XmlRpcValue v;
+  if (pnh.getParam("robots", v)) {
+    if (v.getType() == XmlRpc::XmlRpcValue::TypeArray) {
+      for (int i = 0; i < v.size(); ++i) {
+        if (v[i].getType() != XmlRpc::XmlRpcValue::TypeString)
+          throw std::runtime_error("~robots: entry " + std::to_string(i) + " is not a string");
+        names.push_back(static_cast<std::string>(v[i]));
+      }
+    } else if (v.getType() == XmlRpc::XmlRpcValue::TypeString) {
+      std::string s = static_cast<std::string>(v);
+      for (char& c : s)
+        if (c == ',' || c == '[' || c == ']' || c == '\'' || c == '"') c = ' ';
+      std::istringstream in(s);
+      for (std::string n; in >> n;) names.push_back(n);
+    } else {
+      throw std::runtime_error("~robots: expected a list of robot ids, e.g. [a, b, c]");
+    }
+  }
+  if (names.empty()) throw std::runtime_error("~robots: no robots given (e.g. _robots:='[a, b, c]')");
+  std::vector<char> ids;
+  for (const auto& n : names) {
+    if (n.size() != 1) throw std::runtime_error("~robots: robot id '" + n + "' must be a single character");
+    ids.push_back(n[0]);
+  }
+  return ids;
+}
+
+std_msgs::ColorRGBA throughputColor(double fraction) {
+  std_msgs::ColorRGBA c;
+  const double f = std::clamp(fraction, 0.0, 1.0);
+  c.r = static_cast<float>(f < 0.5 ? 1.0 : 2.0 * (1.0 - f));
+  c.g = static_cast<float>(f < 0.5 ? 2.0 * f : 1.0);
+  c.b = 0.0f;
+  c.a = 1.0f;
+  return c;
+}
+
+class CommBroker {
+ public:
+  CommBroker(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
+    const std::vector<char> robots = readRobots(pnh);
+    std::string comm = "wifi", config, size_model, timeout_mode;
+    pnh.param<std::string>("comm", comm, comm);
+    pnh.param<std::string>("config", config, "");
+    cosmo::RadioParams params =
+        config.empty() ? cosmo::RadioParams::byName(comm) : cosmo::RadioParams::fromConfig(cosmo::ConfigNode::load(config));
+    if (pnh.getParam("size_model", size_model)) params.size_model = cosmo::sizeModelFromString(size_model, "~size_model");
+    if (pnh.getParam("timeout_mode", timeout_mode))
+      params.timeout_mode = cosmo::timeoutModeFromString(timeout_mode, "~timeout_mode");
+    int seed = 0;
+    pnh.param("seed", seed, 0);
+    pnh.param("xz_preset", xz_preset_, 6);
+    if (xz_preset_ < 0 || xz_preset_ > 9) throw std::runtime_error("~xz_preset: must be in 0..9");
+    pnh.param<std::string>("log_file", log_file_, "");
+    pnh.param<std::string>("frame_id", frame_id_, "world");
+    sim_ = std::make_unique<cosmo::RadioSimulator>(params, robots, static_cast<std::uint64_t>(seed));
+
+    for (char r : sim_->robots()) {
+      const std::string ns(1, r);
+      keyframe_subs_.push_back(nh.subscribe<cosmo::Keyframe>(
+          ns + "/keyframe_scans", 100, [this, r](const cosmo::Keyframe::ConstPtr& m) { onKeyframe(r, *m); }));
+      pose_subs_.push_back(nh.subscribe<geometry_msgs::PoseStamped>(
+          ns + "/reference_pose", 20, [this, r](const geometry_msgs::PoseStamped::ConstPtr& m) { onPose(r, *m); }));
+      received_pubs_[r] = nh.advertise<cosmo::Keyframe>(ns + "/received_scans", 100);
+    }
+    links_pub_ = nh.advertise<visualization_msgs::MarkerArray>("comm/links", 2);
+    stats_pub_ = nh.advertise<std_msgs::String>("comm/stats", 10);
+    timer_ = nh.createWallTimer(ros::WallDuration(0.01), [this](const ros::WallTimerEvent&) { onTimer(); });
+    ROS_INFO("comm_broker: %zu robots, B %.0f kB/s, d_init %.0f m, d_intf %.0f m, P_max %.2f, seed %d, sizes %s, timeout %s",
+             robots.size(), params.bandwidth_kBps, params.d_init, params.d_intf, params.p_max, seed,
+             cosmo::toString(params.size_model).c_str(), cosmo::toString(params.timeout_mode).c_str());
+  }
+
+  ~CommBroker() { writeLog(); }
+
+  void writeLog() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (log_file_.empty()) return;
+    try {
+      cosmo::writeTransferLog(log_file_, sim_->transferLog(), sim_->stats(), sim_->params());
+    } catch (const std::exception& e) {
+      ROS_ERROR("comm_broker: %s", e.what());
+    }
+  }
+
+ private:
+  struct Stored {
+    std_msgs::Header header;
+    geometry_msgs::Pose reference;
+    bool has_reference = false;
+    std::vector<std::uint8_t> payload;
+  };
+
+  void onKeyframe(char r, const cosmo::Keyframe& m) {
+    const std::string topic = std::string("/") + r + "/keyframe_scans";
+    if (!m.robot.empty() && m.robot != std::string(1, r))
+      ROS_WARN_THROTTLE(5.0, "comm_broker: %s: message says robot '%s'; using '%c'", topic.c_str(), m.robot.c_str(), r);
+    Stored s;
+    std::size_t raw = 0;
+    try {
+      const cosmo::Scan scan = cosmo::ros_glue::fromPointCloud2(m.cloud, true, topic);
+      raw = cosmo::rawPayloadBytes(scan);
+      s.payload = cosmo::compressScan(scan, static_cast<std::uint32_t>(xz_preset_));  // outside the lock
+    } catch (const std::exception& e) {
+      ROS_ERROR("comm_broker: dropping keyframe %u: %s", m.index, e.what());
+      return;
+    }
+    s.header = m.header;
+    s.header.frame_id = m.header.frame_id.empty() ? m.cloud.header.frame_id : m.header.frame_id;
+    s.reference = m.reference;
+    s.has_reference = m.has_reference;
+    std::lock_guard<std::mutex> lock(mutex_);
+    sim_->offerKeyframe(r, m.index, s.payload.size(), raw);
+    store_[{r, m.index}] = std::move(s);
+  }
+
+  void onPose(char r, const geometry_msgs::PoseStamped& m) {
+    const auto& p = m.pose.position;
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      ROS_WARN_THROTTLE(5.0, "comm_broker: /%c/reference_pose: non-finite position ignored", r);
+      return;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    sim_->setRobotState(r, Eigen::Vector3d(p.x, p.y, p.z), true);
+  }
+
+  void onTimer() {
+    const ros::Time now_ros = ros::Time::now();
+    if (now_ros.isZero()) return;  // sim time before the first /clock
+    const double now = now_ros.toSec();
+    std::vector<cosmo::Transfer> ended;
+    double t_last = 0.0;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      const double dt = sim_->params().step;
+      if (!started_ || now - sim_->nextStepTime() > 3600.0) {
+        if (started_) ROS_WARN("comm_broker: ROS time jumped forward by more than an hour; restarting the step grid");
+        sim_->setStartTime(std::ceil(now / dt - 1e-9) * dt);
+        started_ = true;
+      } else if (sim_->nextStepTime() - now > 1.0) {
+        ROS_WARN_THROTTLE(5.0, "comm_broker: ROS time went backwards (%.3f s < %.3f s); waiting", now,
+                          sim_->nextStepTime());
+      }
+      int steps = 0;
+      std::map<std::pair<char, char>, cosmo::ActiveCommunication> links;  // links of this batch of steps
+      while (sim_->nextStepTime() <= now + 1e-9) {
+        t_last = sim_->nextStepTime();
+        const auto e = sim_->step(t_last);
+        ended.insert(ended.end(), e.begin(), e.end());
+        for (const auto& c : sim_->lastStepCommunications()) links[{c.sender, c.receiver}] = c;
+        ++steps;
+      }
+      if (steps == 0) return;
+      for (const cosmo::Transfer& x : ended) deliver(x);
+      publishLinks(now_ros, t_last, links);
+      publishStats(t_last);
+      if (!log_file_.empty() && t_last - last_log_write_ >= 30.0) {
+        last_log_write_ = t_last;
+        try {
+          cosmo::writeTransferLog(log_file_, sim_->transferLog(), sim_->stats(), sim_->params());
+        } catch (const std::exception& ex) {
+          ROS_ERROR_THROTTLE(30.0, "comm_broker: %s", ex.what());
+        }
+      }
+    }
+  }
+
+  // Called with the mutex held.
+  void deliver(const cosmo::Transfer& x) {
+    if (x.outcome != cosmo::Transfer::Outcome::Delivered) {
+      ROS_DEBUG("comm_broker: %c -> %c keyframe %zu timed out", x.sender, x.receiver, x.keyframe);
+      return;
+    }
+    auto it = store_.find({x.sender, x.keyframe});
+    if (it == store_.end()) return;
+    const Stored& s = it->second;
+    cosmo::Keyframe out;
+    try {
+      const cosmo::Scan scan = cosmo::decompressScan(s.payload);
+      out.cloud = cosmo::ros_glue::toPointCloud2(scan, s.header.frame_id);
+    } catch (const std::exception& e) {
+      ROS_ERROR("comm_broker: keyframe %c%zu: %s", x.sender, x.keyframe, e.what());
+      return;
+    }
+    out.header = s.header;
+    out.cloud.header = s.header;
+    out.robot = std::string(1, x.sender);
+    out.index = static_cast<std::uint32_t>(x.keyframe);
+    out.reference = s.reference;
+    out.has_reference = s.has_reference;
+    out.sender = std::string(1, x.sender);
+    received_pubs_.at(x.receiver).publish(out);
+    ROS_DEBUG("comm_broker: delivered %c%zu to %c (%zu bytes, %.1f s)", x.sender, x.keyframe, x.receiver, x.bytes,
+              x.end - x.start);
+  }
+
+  void publishLinks(const ros::Time& stamp, double t,
+                    const std::map<std::pair<char, char>, cosmo::ActiveCommunication>& links) {
+    visualization_msgs::Marker m;
+    m.header.frame_id = frame_id_;
+    m.header.stamp = stamp;
+    m.ns = "comm_links";
+    m.id = 0;
+    m.pose.orientation.w = 1.0;
+    if (links.empty()) {
+      m.action = visualization_msgs::Marker::DELETE;
+    } else {
+      m.type = visualization_msgs::Marker::LINE_LIST;
+      m.action = visualization_msgs::Marker::ADD;
+      m.scale.x = 0.5;
+      const double step = sim_->params().step;
+      for (const auto& [pair, c] : links) {
+        const double duration = t - c.start + step;  // steps so far * delta
+        const double mean_rate = c.bytes_delivered / std::max(duration, step);
+        const std_msgs::ColorRGBA color = throughputColor(mean_rate / sim_->params().bandwidthBps());
+        for (char r : {c.sender, c.receiver}) {
+          const Eigen::Vector3d p = sim_->position(r);
+          geometry_msgs::Point q;
+          q.x = p.x();
+          q.y = p.y();
+          q.z = p.z();
+          m.points.push_back(q);
+          m.colors.push_back(color);
+        }
+      }
+      m.color = m.colors.front();
+    }
+    visualization_msgs::MarkerArray array;
+    array.markers.push_back(m);
+    links_pub_.publish(array);
+  }
+
+  void publishStats(double t) {
+    const cosmo::RadioStats& s = sim_->stats();
+    nlohmann::json j;
+    j["time"] = t;
+    j["steps"] = s.steps;
+    j["keyframes_offered"] = s.keyframes_offered;
+    j["initiated"] = s.initiated;
+    j["delivered"] = s.delivered;
+    j["timed_out"] = s.timed_out;
+    j["bytes_delivered"] = s.bytes_delivered;
+    j["bytes_transmitted"] = s.bytes_transmitted;
+    j["active"] = nlohmann::json::array();
+    for (const auto& c : sim_->activeCommunications())
+      j["active"].push_back({{"sender", std::string(1, c.sender)},
+                             {"receiver", std::string(1, c.receiver)},
+                             {"keyframe", c.keyframe},
+                             {"bytes", c.bytes},
+                             {"progress", c.bytes ? c.bytes_delivered / static_cast<double>(c.bytes) : 1.0},
+                             {"distance", c.distance},
+                             {"interference", c.interference}});
+    nlohmann::json pending = nlohmann::json::object();
+    for (char a : sim_->robots())
+      for (char b : sim_->robots())
+        if (a != b) pending[std::string(1, a) + "->" + std::string(1, b)] = sim_->undeliveredCount(a, b);
+    j["pending"] = pending;
+    std_msgs::String msg;
+    msg.data = j.dump();
+    stats_pub_.publish(msg);
+  }
+
+  std::mutex mutex_;
+  std::unique_ptr<cosmo::RadioSimulator> sim_;
+  std::map<std::pair<char, std::size_t>, Stored> store_;
+  std::vector<ros::Subscriber> keyframe_subs_, pose_subs_;
+  std::map<char, ros::Publisher> received_pubs_;
+  ros::Publisher links_pub_, stats_pub_;
+  ros::WallTimer timer_;
+  int xz_preset_ = 6;
+  std::string log_file_, frame_id_;
+  bool started_ = false;
+  double last_log_write_ = 0.0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "comm_broker");
+  ros::NodeHandle nh, pnh("~");
+  std::unique_ptr<CommBroker> broker;
+  try {
+    broker = std::make_unique<CommBroker>(nh, pnh);
+  } catch (const std::exception& e) {
+    ROS_FATAL("comm_broker: %s", e.what());
+    return 1;
+  }
+  ros::AsyncSpinner spinner(2);  // compression of offered scans does not hold up the steps
+  spinner.start();
+  ros::waitForShutdown();
+  spinner.stop();
+  broker->writeLog();
+  return 0;
+}
