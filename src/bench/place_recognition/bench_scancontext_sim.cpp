@@ -1,0 +1,186 @@
+// bench_scancontext_sim: precision / recall of ScanContext place recognition on synthetic multi-trial sequences
+// (written by cosmo_simulate: a sequence yaml with per-robot bags and pose_inW.csv references).
+//
+//   bench_scancontext_sim <sequence.yaml> [more.yaml ...] [--config place_recognition.yaml] [--kf 2.0]
+//                         [--max-keyframes N]
+//
+// Per trial: scans read from the bag (cosmo/ros/bag_io.hpp); a keyframe every `--kf` metres of reference
+// motion (LiDAR pose = reference body pose * extrinsic); each keyframe scan dewarped with the reference
+// (per-point times); descriptors with the configured parameters.
+//   intra-robot: each keyframe searched against the robot's earlier keyframes (exclude_recent excluded);
+//   inter-robot: each keyframe of robot X searched against all keyframes of robot Y, for every ordered pair
+//   (the radio decides in the pipeline which scans are exchanged; here every scan is, an upper bound on the
+//   number of searches).
+// A detection is true when the reference positions of query and top candidate are within 5 m (and 10 m).
+// Separated from bench_scancontext because it links the ROS bag glue.
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/pose_io.hpp"
+#include "cosmo/place_recognition/place_recognizer.hpp"
+#include "cosmo/place_recognition/revisit_evaluation.hpp"
+#include "cosmo/ros/bag_io.hpp"
+
+namespace fs = std::filesystem;
+using namespace cosmo;
+
+namespace {
+
+struct Keyframes {
+  std::string robot;
+  std::vector<ScanContext> descriptors;
+  std::vector<Eigen::Vector3d> positions;
+};
+
+/// Points moved to the sensor frame at the scan stamp using the reference LiDAR trajectory (times binned into
+/// 64 slots between the earliest and latest point time).
+Scan dewarp(const Scan& scan, const Trajectory& body, const Pose3& T_body_lidar) {
+  if (!scan.hasTime()) return scan;
+  float t_min = 0.0f, t_max = 0.0f;
+  for (float t : scan.time) {
+    t_min = std::min(t_min, t);
+    t_max = std::max(t_max, t);
+  }
+  const int slots = 64;
+  const Pose3 end_inv = (body.atClamped(scan.stamp) * T_body_lidar).inverse();
+  std::vector<Eigen::Isometry3f> corr(slots);
+  for (int k = 0; k < slots; ++k) {
+    const double t = t_min + (t_max - t_min) * (k + 0.5) / slots;
+    const auto stamp = static_cast<StampNs>(static_cast<double>(scan.stamp) + t * 1e9);
+    corr[k] = (end_inv * body.atClamped(stamp) * T_body_lidar).cast<float>();
+  }
+  Scan out = scan;
+  const float span = std::max(1e-6f, t_max - t_min);
+  for (std::size_t i = 0; i < out.points.size(); ++i) {
+    const int k = std::min(slots - 1, static_cast<int>((scan.time[i] - t_min) / span * slots));
+    out.points[i] = corr[k] * out.points[i];
+  }
+  return out;
+}
+
+std::vector<Keyframes> loadSequence(const std::string& yaml_path, const PlaceRecognitionParams& params, double kf_m,
+                                    std::size_t max_keyframes) {
+  const YAML::Node root = YAML::LoadFile(yaml_path);
+  const fs::path dir = fs::path(yaml_path).parent_path();
+  auto resolve = [&](const std::string& f) { return fs::path(f).is_absolute() ? fs::path(f) : dir / f; };
+  std::vector<Keyframes> out;
+  for (const auto& t : root["trials"]) {
+    Keyframes kf;
+    kf.robot = t["robot"].as<std::string>();
+    const fs::path bag = resolve(t["bag"].as<std::string>());
+    const fs::path ref = resolve(t["reference"].as<std::string>());
+    if (!fs::exists(bag) || !fs::exists(ref)) {
+      std::printf("  trial %s: %s or %s missing, skipped\n", kf.robot.c_str(), bag.c_str(), ref.c_str());
+      continue;
+    }
+    std::vector<double> e = t["extrinsic"] ? t["extrinsic"].as<std::vector<double>>()
+                                           : std::vector<double>{0, 0, 0, 0, 0, 0, 1};
+    const Pose3 T_body_lidar = parsePoseNumbers(e, yaml_path + ": extrinsic");
+    const Trajectory body = readMcdPoseCsv(ref.string());
+    const std::string topic = t["topic"] ? t["topic"].as<std::string>() : "/os_cloud_node/points";
+    ros_glue::ScanBagReader reader(bag.string(), topic);
+    Scan scan;
+    std::optional<Eigen::Vector3d> last;
+    std::size_t scans = 0;
+    bench::Stopwatch sw;
+    while (reader.next(scan) && kf.descriptors.size() < max_keyframes) {
+      ++scans;
+      if (!body.covers(scan.stamp)) continue;
+      const Pose3 lidar = body.atClamped(scan.stamp) * T_body_lidar;
+      if (last && (lidar.translation() - *last).norm() <= kf_m) continue;
+      last = lidar.translation();
+      kf.descriptors.push_back(makeScanContext(dewarp(scan, body, T_body_lidar), params.sc));
+      kf.positions.push_back(lidar.translation());
+    }
+    std::printf("  trial %s: %zu scans read, %zu keyframes (%.1f s)\n", kf.robot.c_str(), scans,
+                kf.descriptors.size(), sw.elapsedMs() * 1e-3);
+    std::fflush(stdout);
+    out.push_back(std::move(kf));
+  }
+  return out;
+}
+
+void printTable(const char* title, const std::vector<QueryOutcome>& outcomes, double threshold) {
+  std::printf("%s: %zu queries\n", title, outcomes.size());
+  for (const double radius : {5.0, 10.0}) {
+    const PrPoint d = precisionRecallAt(outcomes, threshold, radius);
+    std::printf("  default threshold %.3f, revisit <= %.0f m: precision %.3f recall %.3f (%zu/%zu detections "
+                "true, %zu revisits)\n",
+                threshold, radius, d.precision, d.recall, d.true_positives, d.detections, d.revisits);
+  }
+  std::printf("  threshold | 5 m: det  TP  revisits precision recall | 10 m: TP revisits precision recall\n");
+  for (double t = 0.05; t <= 0.601; t += 0.025) {
+    const PrPoint a = precisionRecallAt(outcomes, t, 5.0), b = precisionRecallAt(outcomes, t, 10.0);
+    std::printf("  %8.3f  | %6zu %4zu %6zu  %8.3f %6.3f | %7zu %6zu  %8.3f %6.3f%s\n", t, a.detections,
+                a.true_positives, a.revisits, a.precision, a.recall, b.true_positives, b.revisits, b.precision,
+                b.recall, std::abs(t - threshold) < 1e-9 ? "  <- default" : "");
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> sequences;
+  std::string config;
+  double kf_m = 2.0;
+  std::size_t max_keyframes = 1000000;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--config" && i + 1 < argc) config = argv[++i];
+    else if (a == "--kf" && i + 1 < argc) kf_m = std::stod(argv[++i]);
+    else if (a == "--max-keyframes" && i + 1 < argc) max_keyframes = std::stoul(argv[++i]);
+    else if (!a.empty() && a[0] != '-') sequences.push_back(a);
+    else {
+      std::cerr << "usage: bench_scancontext_sim <sequence.yaml> [...] [--config file.yaml] [--kf 2.0] "
+                   "[--max-keyframes N]\n";
+      return 2;
+    }
+  }
+  if (sequences.empty()) {
+    std::cerr << "bench_scancontext_sim: give at least one sequence yaml (from cosmo_simulate)\n";
+    return 2;
+  }
+  try {
+    PlaceRecognitionParams params;
+    if (!config.empty()) params = PlaceRecognitionParams::fromConfig(ConfigNode::load(config));
+    const ScanContextDatabaseParams dbp = params.databaseParams();
+    std::vector<QueryOutcome> intra_all, inter_all;
+    for (const auto& seq : sequences) {
+      std::printf("== sequence %s (keyframes every %.1f m, exclude_recent %d) ==\n", seq.c_str(), kf_m,
+                  params.exclude_recent);
+      const auto robots = loadSequence(seq, params, kf_m, max_keyframes);
+      std::vector<QueryOutcome> intra, inter;
+      for (const auto& r : robots) {
+        const auto o = evaluateIncremental(r.descriptors, r.positions, dbp, params.exclude_recent);
+        intra.insert(intra.end(), o.begin(), o.end());
+      }
+      for (const auto& x : robots)
+        for (const auto& y : robots) {
+          if (&x == &y) continue;
+          const auto o = evaluateAgainst(x.descriptors, x.positions, y.descriptors, y.positions, dbp);
+          inter.insert(inter.end(), o.begin(), o.end());
+        }
+      printTable("intra-robot", intra, params.threshold);
+      printTable("inter-robot", inter, params.threshold);
+      intra_all.insert(intra_all.end(), intra.begin(), intra.end());
+      inter_all.insert(inter_all.end(), inter.begin(), inter.end());
+    }
+    if (sequences.size() > 1) {
+      std::printf("== all %zu sequences ==\n", sequences.size());
+      printTable("intra-robot", intra_all, params.threshold);
+      printTable("inter-robot", inter_all, params.threshold);
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "bench_scancontext_sim: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
