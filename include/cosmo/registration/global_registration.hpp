@@ -1,0 +1,53 @@
+#pragma once
+// Global (initial-guess-free) registration of a loop-closure scan pair in the manner of KISS-Matcher:
+// voxel downsampling -> normals -> FPFH -> mutual-NN correspondences (capped) -> pairwise-consistency graph ->
+// max k-core / max clique -> GNC-TLS rotation + TLS translation -> optional point-to-plane ICP -> validity gate.
+// The gate looks only at the registration's own evidence (inlier counts), never at a reference pose: a wrong
+// loop closure it accepts is a realistic outlier.
+#include <cstddef>
+#include <string>
+
+#include "cosmo/common/pose.hpp"
+#include "cosmo/common/scan.hpp"
+#include "cosmo/registration/feature_cloud.hpp"
+#include "cosmo/registration/registration_params.hpp"
+#include "cosmo/registration/stage_observer.hpp"
+
+namespace cosmo {
+
+struct RegistrationResult {
+  Pose3 T_target_source = Pose3::Identity();  ///< maps source points into the target frame
+  std::size_t source_points = 0;      ///< feature points of the source (downsampled, with a normal)
+  std::size_t target_points = 0;      ///< same for the target
+  std::size_t correspondences = 0;    ///< mutual-NN correspondences after the cap
+  std::size_t max_core_size = 0;      ///< vertices of the max k-core of the consistency graph
+  std::size_t pruned_inliers = 0;     ///< correspondences surviving the pruning (max clique / k-core)
+  std::size_t final_inliers = 0;      ///< pruned correspondences within noise_bound of the final transform
+  bool clique_proven = true;          ///< false when the max-clique search hit its node budget
+  bool refined = false;               ///< the ICP refinement was applied
+  double overlap = 0.0;               ///< fraction of source points with a target point near after the solve
+  bool valid = false;                 ///< the gate's verdict
+  std::string reason;                 ///< why it was rejected (or "ok")
+};
+
+class GlobalRegistration {
+ public:
+  explicit GlobalRegistration(const RegistrationParams& p = {});
+
+  /// Register `source` to `target` (both in their own sensor frames).
+  RegistrationResult align(const Scan& source, const Scan& target) const;
+  /// The same with stage notifications (for timing by tools/benchmarks).
+  RegistrationResult align(const Scan& source, const Scan& target, StageObserver* observer) const;
+  /// Per-scan half, cacheable per keyframe.
+  FeatureCloud prepare(const Scan& scan, StageObserver* observer = nullptr) const;
+  /// Pairwise half on prepared clouds.
+  RegistrationResult align(const FeatureCloud& source, const FeatureCloud& target,
+                           StageObserver* observer = nullptr) const;
+
+  const RegistrationParams& params() const { return params_; }
+
+ private:
+  RegistrationParams params_;
+};
+
+}  // namespace cosmo

@@ -1,0 +1,23 @@
+#pragma once
+// Local refinement after the global solve: point-to-plane ICP (Gauss-Newton on SE(3)) between the
+// downsampled source points and the downsampled target points with normals, nearest neighbours by an exact
+// nanoflann kd-tree. Deterministic.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <vector>
+
+namespace cosmo {
+
+struct IcpResult {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  int iterations = 0;
+  std::size_t matched = 0;  ///< source points with a target neighbour within max_distance at the end
+  double rmse = 0.0;        ///< point-to-plane RMSE over those
+  bool converged = false;
+};
+
+IcpResult refinePointToPlane(const std::vector<Eigen::Vector3f>& source, const std::vector<Eigen::Vector3f>& target,
+                             const std::vector<Eigen::Vector3f>& target_normals, const Eigen::Isometry3d& initial,
+                             double max_distance, int max_iterations);
+
+}  // namespace cosmo

@@ -1,0 +1,58 @@
+#pragma once
+// Exact kd-tree over contiguous float rows (nanoflann, single index: deterministic), for 3-D points and for
+// feature vectors. The data must outlive the tree.
+#include <nanoflann.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace cosmo {
+
+template <int Dim>
+class KdTree {
+ public:
+  /// `data` holds `count` rows of `Dim` floats (e.g. std::vector<Eigen::Vector3f>::data()->data()).
+  KdTree(const float* data, std::size_t count) : adaptor_{data, count}, index_(Dim, adaptor_, params()) {
+    index_.buildIndex();
+  }
+  std::size_t size() const { return adaptor_.count; }
+
+  /// Nearest neighbour: (index, squared distance); (-1, inf) for an empty tree.
+  std::pair<int, float> nearest(const float* query) const {
+    if (adaptor_.count == 0) return {-1, std::numeric_limits<float>::infinity()};
+    std::uint32_t idx = 0;
+    float d2 = 0.f;
+    nanoflann::KNNResultSet<float, std::uint32_t> rs(1);
+    rs.init(&idx, &d2);
+    index_.findNeighbors(rs, query, nanoflann::SearchParams());
+    return {static_cast<int>(idx), d2};
+  }
+
+  /// All neighbours within `radius` (unsorted order is the tree's, deterministic); returns their count.
+  std::size_t radius(const float* query, float radius, std::vector<std::pair<std::uint32_t, float>>& out) const {
+    out.clear();
+    nanoflann::SearchParams sp;
+    sp.sorted = false;
+    return index_.radiusSearch(query, radius * radius, out, sp);
+  }
+
+ private:
+  struct Adaptor {
+    const float* data;
+    std::size_t count;
+    std::size_t kdtree_get_point_count() const { return count; }
+    float kdtree_get_pt(std::size_t i, std::size_t d) const { return data[i * Dim + d]; }
+    template <class BBox>
+    bool kdtree_get_bbox(BBox&) const { return false; }
+  };
+  using Index = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Adaptor>, Adaptor, Dim,
+                                                    std::uint32_t>;
+  static nanoflann::KDTreeSingleIndexAdaptorParams params() { return nanoflann::KDTreeSingleIndexAdaptorParams(10); }
+
+  Adaptor adaptor_;
+  Index index_;
+};
+
+}  // namespace cosmo

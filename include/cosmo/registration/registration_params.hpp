@@ -1,0 +1,47 @@
+#pragma once
+// Parameters of the global (correspondence-based) registration of loop closures, KISS-Matcher style.
+// Defaults follow KISS-Matcher's gains for a 0.3 m voxel; every value is read from config/registration.yaml.
+#include <cstddef>
+#include <cstdint>
+
+#include "cosmo/common/config.hpp"
+
+namespace cosmo {
+
+struct RegistrationParams {
+  // --- preprocessing -------------------------------------------------------------------------------------
+  double voxel_size = 0.3;        ///< voxel edge (m) of the downsampling (one centroid per voxel)
+  double min_range = 0.5;         ///< points closer than this to the sensor are dropped (m); 0 = keep
+  double max_range = 0.0;         ///< points farther than this are dropped (m); 0 = keep all
+  // --- features ------------------------------------------------------------------------------------------
+  double normal_radius = 0.9;     ///< radius (m) of the normal estimation (3 x voxel)
+  double fpfh_radius = 1.5;       ///< radius (m) of the FPFH neighbourhood (5 x voxel)
+  std::size_t min_normal_neighbors = 5;  ///< points with fewer neighbours get no normal and no feature
+  // --- correspondences -----------------------------------------------------------------------------------
+  std::size_t max_correspondences = 5000;  ///< cap on mutual-NN correspondences (best feature distance first)
+  bool mutual_filter = true;      ///< keep only mutual nearest neighbours in feature space
+  // --- pruning -------------------------------------------------------------------------------------------
+  double noise_bound = 0.3;       ///< max residual (m) of an inlier correspondence; edges tolerate 2x this
+  bool use_max_clique = true;     ///< max clique inside the max k-core (else the max k-core itself)
+  std::uint64_t max_clique_nodes = 20000;   ///< branch-and-bound node budget (deterministic cut-off)
+  // --- robust solve --------------------------------------------------------------------------------------
+  double gnc_factor = 1.4;        ///< GNC-TLS: growth factor of the control parameter mu
+  int gnc_max_iterations = 100;   ///< GNC-TLS: iteration cap
+  double gnc_cost_tolerance = 1e-6;  ///< GNC-TLS: stop when the cost changes less than this
+  std::size_t max_rotation_pairs = 20000;  ///< cap on translation-invariant pairs used for the rotation
+  // --- refinement ----------------------------------------------------------------------------------------
+  bool refine = true;             ///< point-to-plane ICP on the downsampled full clouds after the global solve
+  int icp_iterations = 20;        ///< ICP iteration cap
+  double icp_max_distance = 0.9;  ///< ICP correspondence distance (m)
+  double icp_max_correction_m = 1.0;    ///< a refinement that moves farther than this is discarded (m)
+  double icp_max_correction_deg = 5.0;  ///< ... or rotates more than this (deg)
+  // --- validity gate (never looks at ground truth) -------------------------------------------------------
+  std::size_t min_final_inliers = 20;  ///< accept only with at least this many consistent inliers
+  std::size_t min_correspondences = 10; ///< below this the problem is declared degenerate
+  double min_inlier_ratio = 0.0;  ///< final inliers / correspondences must reach this (0 = off)
+  double min_overlap = 0.0;       ///< fraction of source points within icp_max_distance after refinement (0 = off)
+
+  static RegistrationParams fromConfig(const ConfigNode& node);
+};
+
+}  // namespace cosmo
