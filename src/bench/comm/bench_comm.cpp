@@ -7,6 +7,7 @@
 //   5. simulator step cost with 3, 10 and 30 robots
 // Usage: bench_comm [--samples N] [--seconds S]   (wall-clock timings; run on an idle machine for final figures)
 #include <cmath>
+#include <ctime>
 #include <cstdio>
 #include <cstring>
 #include <map>
@@ -159,10 +160,10 @@ void compression(int repeats) {
       {"MulRan KAIST03 OS1-64 keyframes (.pcd, downsampled ~37k)", *root + "/mulran_kaist03_keyframes/Scans", false},
       {"hdl32 pair (.pcd, ~69k)", *root + "/hdl32_pair", false},
       {"KITTI 07 keyframes (xyz .bin, downsampled)", *root + "/kitti07_keyframes", false}};
-  std::printf("| data | scans | points (mean) | ratio mean | ratio sd | compress ms (median) | decompress ms (median) |\n|---|---|---|---|---|---|---|\n");
+  std::printf("| data | scans | points (mean) | ratio mean | ratio sd | compress wall ms (median) | compress CPU ms | decompress wall ms |\n|---|---|---|---|---|---|---|---|\n");
   for (const Set& s : sets) {
     Ratio ratio;
-    std::vector<double> tc, td;
+    std::vector<double> tc, td, cc;
     double pts = 0;
     const auto files = listScanFiles(s.folder);
     for (const auto& f : files) {
@@ -172,7 +173,9 @@ void compression(int repeats) {
       std::vector<std::uint8_t> bytes;
       for (int k = 0; k < repeats; ++k) {
         bench::Stopwatch w;
+        const std::clock_t c0 = std::clock();
         bytes = compressScan(scan);
+        cc.push_back(1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
         tc.push_back(w.elapsedMs());
         w.restart();
         const Scan back = decompressScan(bytes);
@@ -181,29 +184,32 @@ void compression(int repeats) {
       }
       ratio.add(static_cast<double>(bytes.size()) / rawPayloadBytes(scan));
     }
-    std::printf("| %s | %zu | %.0f | %.3f | %.3f | %.1f | %.1f |\n", s.name, files.size(), pts / files.size(),
-                ratio.mean(), ratio.sd(), bench::quantile(tc, 0.5), bench::quantile(td, 0.5));
+    std::printf("| %s | %zu | %.0f | %.3f | %.3f | %.1f | %.1f | %.1f |\n", s.name, files.size(), pts / files.size(),
+                ratio.mean(), ratio.sd(), bench::quantile(tc, 0.5), bench::quantile(cc, 0.5), bench::quantile(td, 0.5));
   }
   // The 64 x 1024 case: compression time of an organized grid at every xz preset.
   const Scan grid = organize64x1024(readScanFile(*root + "/kitti00/velodyne/000000.bin"));
   std::printf("\n64 x 1024 organized scan (KITTI 00 000000 re-gridded, 786432 B raw), by xz preset:\n");
-  std::printf("| preset | ratio | compress ms (median of %d) |\n|---|---|---|\n", repeats);
+  std::printf("| preset | ratio | compress wall ms (median of %d) | compress CPU ms (median) |\n|---|---|---|---|\n", repeats);
   for (std::uint32_t preset : {0u, 1u, 3u, 6u, 9u}) {
-    std::vector<double> t;
+    std::vector<double> t, cpu;
     std::size_t size = 0;
     for (int k = 0; k < repeats; ++k) {
       bench::Stopwatch w;
+      const std::clock_t c0 = std::clock();
       size = compressScan(grid, preset).size();
+      cpu.push_back(1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
       t.push_back(w.elapsedMs());
     }
-    std::printf("| %u | %.3f | %.1f |\n", preset, static_cast<double>(size) / rawPayloadBytes(grid), bench::quantile(t, 0.5));
+    std::printf("| %u | %.3f | %.1f | %.1f |\n", preset, static_cast<double>(size) / rawPayloadBytes(grid),
+                bench::quantile(t, 0.5), bench::quantile(cpu, 0.5));
   }
 }
 
 void stepCost(double seconds) {
   std::printf("\n## 5. Simulator step cost (%.0f s of simulated time per run, robots in random walks in a 300 m square,\n"
               "##    a keyframe every 2 s per robot, paper size model with S = 786432 B)\n", seconds);
-  std::printf("| model | robots | steps | us per step (mean) | delivered | timed out |\n|---|---|---|---|---|---|\n");
+  std::printf("| model | robots | steps | wall us per step | CPU us per step | delivered | timed out |\n|---|---|---|---|---|---|---|\n");
   for (const auto& [name, p] : {std::pair{"Wi-Fi", RadioParams::wifi()}, std::pair{"Pro-Radio", RadioParams::proRadio()}}) {
     for (int n : {3, 10, 30}) {
       std::vector<char> ids;
@@ -219,6 +225,7 @@ void stepCost(double seconds) {
       }
       const int steps = static_cast<int>(seconds / p.step);
       bench::Stopwatch w;
+      const std::clock_t c0 = std::clock();
       for (int k = 0; k < steps; ++k) {
         for (int i = 0; i < n; ++i) {
           heading[i] += turn(rng);
@@ -230,7 +237,8 @@ void stepCost(double seconds) {
         sim.step(sim.nextStepTime());
       }
       const double ms = w.elapsedMs();
-      std::printf("| %s | %d | %d | %.2f | %llu | %llu |\n", name, n, steps, 1000.0 * ms / steps,
+      const double cpu_ms = 1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+      std::printf("| %s | %d | %d | %.2f | %.2f | %llu | %llu |\n", name, n, steps, 1000.0 * ms / steps, 1000.0 * cpu_ms / steps,
                   static_cast<unsigned long long>(sim.stats().delivered), static_cast<unsigned long long>(sim.stats().timed_out));
     }
   }
