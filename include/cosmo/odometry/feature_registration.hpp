@@ -1,0 +1,45 @@
+#pragma once
+// Scan-to-local-map registration of LOAM features: iterate {deskew with the current motion estimate,
+// associate features with map lines / planes, one robust Gauss-Newton step}; Huber weights on the distances;
+// directions the constraints do not determine (e.g. along a featureless corridor) keep the initial guess
+// (Zhang, Kaess & Singh 2016 "solution remapping").
+#include <optional>
+
+#include "cosmo/common/pose.hpp"
+#include "cosmo/odometry/feature_correspondences.hpp"
+#include "cosmo/odometry/feature_extraction.hpp"
+#include "cosmo/odometry/local_feature_map.hpp"
+#include "cosmo/odometry/loam_params.hpp"
+
+namespace cosmo {
+
+struct RegistrationResult {
+  Pose3 pose = Pose3::Identity();  ///< sensor pose at the scan stamp in the map (odometry) frame
+  int iterations = 0;
+  bool converged = false;
+  std::size_t num_edge_constraints = 0;
+  std::size_t num_plane_constraints = 0;
+  int degenerate_directions = 0;  ///< directions of [rot, trans] left at the guess
+  double inlier_fraction = 0.0;   ///< features with a constraint and |r| < inlier_dist, over all features
+};
+
+/// Motion used for deskewing inside the registration: the previous scan's pose and the time between scans.
+struct DeskewReference {
+  Pose3 previous_pose = Pose3::Identity();
+  double period = 0.0;  ///< s
+};
+
+/// One robust Gauss-Newton step for the constraints at pose T (left perturbation, [rot, trans]); returns the
+/// update and the number of degenerate directions through `degenerate`.
+Vector6 robustGaussNewtonStep(const std::vector<FeatureConstraint>& constraints, const Pose3& T,
+                              double huber_delta, double min_eigenvalue_per_constraint, int& degenerate);
+
+/// Registers `features` (sensor frame) to `map` starting at `guess`.
+RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFeatureMap& map, const Pose3& guess,
+                                    const LoamParams& params, const std::optional<DeskewReference>& deskew);
+
+/// Fraction of (every `stride`-th) features that find a map constraint with |r| < inlier_dist at pose T.
+double scorePose(const LoamFeatures& features, const LocalFeatureMap& map, const Pose3& T, const LoamParams& params,
+                 std::size_t stride);
+
+}  // namespace cosmo

@@ -1,0 +1,54 @@
+#pragma once
+// LiDAR-only LOAM odometry at scan rate (spec 4.1): scan lines -> edge / planar features -> robust
+// scan-to-local-map registration (last K scans' features) from the best of several initial guesses
+// (constant velocity, zero motion, and a coarse yaw search when both fit poorly). Degenerate scans (empty,
+// NaN, < 100 points, too few constraints, unconstrained directions) never throw: the result carries a
+// warning and the motion model fills in.
+#include <string>
+
+#include "cosmo/common/pose.hpp"
+#include "cosmo/common/scan.hpp"
+#include "cosmo/odometry/feature_extraction.hpp"
+#include "cosmo/odometry/local_feature_map.hpp"
+#include "cosmo/odometry/loam_params.hpp"
+
+namespace cosmo {
+
+struct OdometryResult {
+  Pose3 pose = Pose3::Identity();   ///< sensor pose at scan.stamp in the odometry frame (first scan = identity)
+  Pose3 delta = Pose3::Identity();  ///< motion since the previous scan
+  bool ok = true;                   ///< false: degenerate input, motion model used (fully or in some directions)
+  std::string warning;
+  // Diagnostics.
+  std::size_t num_points = 0;  ///< valid points organised into scan lines
+  std::size_t num_edge_features = 0;
+  std::size_t num_planar_features = 0;
+  int iterations = 0;
+  double inlier_fraction = 0.0;
+  std::string initial_guess;  ///< "first", "constant_velocity", "zero_motion", "yaw_search", "motion_model"
+};
+
+class LoamOdometry {
+ public:
+  explicit LoamOdometry(const LoamParams& p = {});
+  /// Processes the next scan (stamps should increase; equal or zero stamps are treated as an unknown period).
+  OdometryResult update(const Scan& scan);
+  const LoamParams& params() const { return params_; }
+  /// Features of the last scan (sensor frame), for inspection.
+  const LoamFeatures& lastFeatures() const { return last_features_; }
+  std::size_t numScans() const { return num_scans_; }
+
+ private:
+  OdometryResult fallback(OdometryResult r, double period, const std::string& why);
+
+  LoamParams params_;
+  LocalFeatureMap map_;
+  LoamFeatures last_features_;
+  std::size_t num_scans_ = 0;
+  Pose3 pose_ = Pose3::Identity();
+  Pose3 last_delta_ = Pose3::Identity();
+  double last_period_ = 0.0;
+  StampNs last_stamp_ = 0;
+};
+
+}  // namespace cosmo

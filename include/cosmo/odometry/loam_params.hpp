@@ -1,0 +1,66 @@
+#pragma once
+// Parameters of the LOAM odometry (feature extraction, local map, registration, motion model). Defaults are
+// the values COSMO-Bench used (evalio's LOAM pipeline, spec section 4 item 1); `fromConfig` reads
+// config/odometry.yaml (section `odometry`, or the root when there is no such section).
+#include <cstddef>
+
+#include "cosmo/common/config.hpp"
+
+namespace cosmo {
+
+struct LoamParams {
+  // --- scan lines -------------------------------------------------------------------------------------------
+  /// Beam count used when the scan has no `ring` field and the beam count cannot be estimated from the data.
+  int fallback_scan_lines = 64;
+  /// Points closer than this (m) are dropped before feature extraction (the robot body, NaN-like zeros).
+  double min_range = 1.0;
+  /// Points farther than this (m) are dropped.
+  double max_range = 120.0;
+
+  // --- feature extraction (spec 4.1) --------------------------------------------------------------------------
+  int neighbor_points = 3;               ///< points on each side used for the curvature
+  int number_sectors = 6;                ///< sectors per scan line
+  int max_edge_feats_per_sector = 5;     ///< edge features kept per sector
+  int max_planar_feats_per_sector = 50;  ///< planar features kept per sector
+  double edge_feat_threshold = 100.0;    ///< unnormalised curvature (m^2) above which a point is an edge
+  double planar_feat_threshold = 1.0;    ///< unnormalised curvature (m^2) below which a point is planar
+  double occlusion_thresh = 0.5;         ///< range jump (m) between neighbours marking an occlusion boundary
+  double parallel_thresh = 1.0;          ///< range jump (fraction of range) to both neighbours: beam || surface
+
+  // --- local map --------------------------------------------------------------------------------------------
+  int num_local_map_scans = 3;  ///< scans whose features form the local map
+
+  // --- registration (spec 4.1) ------------------------------------------------------------------------------
+  int max_icf_iterations = 20;                ///< iterations of re-association + Gauss-Newton step
+  double position_convergence_thresh = 1e-3;  ///< stop when the translation update (m) is below this ...
+  double rotation_convergence_thresh = 1e-4;  ///< ... and the rotation update (rad) below this
+  int num_edge_neighbors = 5;                 ///< map edge points searched per edge feature
+  double max_edge_neighbor_dist = 2.0;        ///< (m) farther edge neighbours are ignored
+  int min_line_fit_points = 3;                ///< fewer edge neighbours: no line residual
+  double min_line_condition_number = 5.0;     ///< largest / middle eigenvalue of the neighbours' scatter
+  int num_plane_neighbors = 5;                ///< map planar points searched per planar feature
+  double max_plane_neighbor_dist = 4.0;       ///< (m) farther plane neighbours are ignored
+  double max_avg_point_plane_dist = 0.2;      ///< (m) plane fits with a larger mean residual are rejected
+  int min_plane_fit_points = 4;               ///< fewer plane neighbours: no plane residual
+
+  // --- robustness (ours; not in the paper) ---------------------------------------------------------------------
+  /// Plane fits need neighbours spread in 2D: middle / largest eigenvalue of their scatter at least this
+  /// (rejects neighbours that all lie on one scan line, which pull the estimate towards zero motion).
+  double min_plane_spread_ratio = 0.05;
+  double huber_delta = 0.1;  ///< (m) Huber kernel width on the point-line / point-plane distances
+  /// An initial guess whose inlier fraction (features with a correspondence closer than `inlier_dist`) is
+  /// below this triggers a coarse yaw search around the best guess.
+  double min_guess_inlier_fraction = 0.5;
+  double inlier_dist = 0.3;           ///< (m) residual counted as an inlier when scoring guesses
+  double yaw_search_step_deg = 10.0;  ///< yaw step of the coarse search
+  double yaw_search_max_deg = 50.0;   ///< yaw range (+-) of the coarse search
+  /// Fewer usable correspondences than this after registration: degenerate, the motion model is used.
+  int min_correspondences = 30;
+  /// Deskew features with the current motion estimate when the scan carries per-point times.
+  bool deskew = true;
+
+  /// Reads the keys above (same names) from `cfg` (its `odometry` child when present).
+  static LoamParams fromConfig(const ConfigNode& cfg);
+};
+
+}  // namespace cosmo

@@ -1,0 +1,32 @@
+#pragma once
+// LOAM's local map: the edge and planar features of the last K registered scans, in the odometry frame,
+// with a k-d tree over each kind.
+#include <deque>
+#include <vector>
+
+#include "cosmo/odometry/feature_extraction.hpp"
+#include "cosmo/odometry/kd_tree.hpp"
+
+namespace cosmo {
+
+class LocalFeatureMap {
+ public:
+  explicit LocalFeatureMap(std::size_t max_scans = 3) : max_scans_(max_scans) {}
+  /// Adds one scan's features (already in the odometry frame), drops the oldest beyond K, rebuilds the trees.
+  void add(std::vector<Eigen::Vector3d> edges, std::vector<Eigen::Vector3d> planes);
+  void clear();
+  bool empty() const { return scans_.empty(); }
+  std::size_t numScans() const { return scans_.size(); }
+  const KdTree3& edges() const { return edge_tree_; }
+  const KdTree3& planes() const { return plane_tree_; }
+
+ private:
+  struct Entry {
+    std::vector<Eigen::Vector3d> edges, planes;
+  };
+  std::size_t max_scans_;
+  std::deque<Entry> scans_;
+  KdTree3 edge_tree_, plane_tree_;
+};
+
+}  // namespace cosmo

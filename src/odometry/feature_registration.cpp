@@ -1,0 +1,145 @@
+#include "cosmo/odometry/feature_registration.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "cosmo/odometry/dewarp.hpp"
+
+namespace cosmo {
+
+Vector6 robustGaussNewtonStep(const std::vector<FeatureConstraint>& constraints, const Pose3& T,
+                              double huber_delta, double min_eigenvalue_per_constraint, int& degenerate) {
+  Matrix6 H = Matrix6::Zero();
+  Vector6 g = Vector6::Zero();
+  for (const auto& c : constraints) {
+    const Eigen::Vector3d q = T * c.point;
+    const double r = c.normal.dot(q) - c.offset;
+    Vector6 J;
+    J.head<3>() = q.cross(c.normal);  // d r / d omega for T <- exp([omega, v]) T
+    J.tail<3>() = c.normal;
+    const double a = std::abs(r);
+    const double w = a <= huber_delta ? 1.0 : huber_delta / a;
+    H.noalias() += w * J * J.transpose();
+    g.noalias() += w * r * J;
+  }
+  degenerate = 0;
+  if (constraints.empty()) {
+    degenerate = 6;
+    return Vector6::Zero();
+  }
+  // Solution remapping: solve in H's eigenbasis, leaving directions with too little information untouched.
+  Eigen::SelfAdjointEigenSolver<Matrix6> es(H);
+  const double min_ev = min_eigenvalue_per_constraint * static_cast<double>(constraints.size());
+  Vector6 coeff = es.eigenvectors().transpose() * g;
+  for (int i = 0; i < 6; ++i) {
+    if (es.eigenvalues()[i] < min_ev) {
+      coeff[i] = 0.0;
+      ++degenerate;
+    } else {
+      coeff[i] /= es.eigenvalues()[i];
+    }
+  }
+  return -(es.eigenvectors() * coeff);
+}
+
+double scorePose(const LoamFeatures& features, const LocalFeatureMap& map, const Pose3& T, const LoamParams& params,
+                 std::size_t stride) {
+  std::vector<FeatureConstraint> cs;
+  associateFeatures(features.edge_points, features.planar_points, map, T, params, cs, stride);
+  const std::size_t n = (features.edge_points.size() + stride - 1) / stride +
+                        (features.planar_points.size() + stride - 1) / stride;
+  if (n == 0) return 0.0;
+  std::size_t good = 0;
+  for (const auto& c : cs)
+    if (std::abs(c.normal.dot(T * c.point) - c.offset) < params.inlier_dist) ++good;
+  return static_cast<double>(good) / static_cast<double>(n);
+}
+
+namespace {
+/// Every `stride`-th element (all when stride == 1).
+template <typename T>
+std::vector<T> subsample(const std::vector<T>& v, std::size_t stride) {
+  if (stride <= 1) return v;
+  std::vector<T> out;
+  out.reserve(v.size() / stride + 1);
+  for (std::size_t i = 0; i < v.size(); i += stride) out.push_back(v[i]);
+  return out;
+}
+}  // namespace
+
+RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFeatureMap& map, const Pose3& guess,
+                                    const LoamParams& params, const std::optional<DeskewReference>& deskew) {
+  RegistrationResult res;
+  res.pose = guess;
+  const bool do_deskew = deskew && params.deskew && deskew->period > 0.0 &&
+                         (!features.edge_time.empty() || !features.planar_time.empty());
+  constexpr double kMinEigenvaluePerConstraint = 1e-3;
+  constexpr int kInnerSteps = 4;  // Gauss-Newton steps per association
+  std::vector<FeatureConstraint> cs;
+  std::vector<Eigen::Vector3d> edges, planes;
+
+  // Coarse-to-fine: a subsample of the features (about 2000) until the pose settles to ~1 cm / 1 mrad, then
+  // all features to the convergence thresholds. Each stage: associate, then a few Gauss-Newton steps with
+  // the association fixed; repeat until an association round moves the pose less than the thresholds.
+  const std::size_t n_all = features.size();
+  const std::size_t coarse_stride = std::max<std::size_t>(1, n_all / 2000);
+  struct Stage {
+    std::size_t stride;
+    double pos_thresh, rot_thresh;
+  };
+  std::vector<Stage> stages;
+  if (coarse_stride > 1)
+    stages.push_back({coarse_stride, 10.0 * params.position_convergence_thresh, 10.0 * params.rotation_convergence_thresh});
+  stages.push_back({1, params.position_convergence_thresh, params.rotation_convergence_thresh});
+
+  int rounds = 0;
+  for (std::size_t si = 0; si < stages.size(); ++si) {
+    const Stage& st = stages[si];
+    const bool last_stage = (si + 1 == stages.size());
+    LoamFeatures f;
+    f.edge_points = subsample(features.edge_points, st.stride);
+    f.planar_points = subsample(features.planar_points, st.stride);
+    f.edge_time = subsample(features.edge_time, st.stride);
+    f.planar_time = subsample(features.planar_time, st.stride);
+    for (int it = 0; it < params.max_icf_iterations; ++it) {
+      if (do_deskew) {
+        const Pose3 delta = deskew->previous_pose.inverse() * res.pose;
+        deskewConstantVelocity(f.edge_points, f.edge_time, delta, deskew->period, edges);
+        deskewConstantVelocity(f.planar_points, f.planar_time, delta, deskew->period, planes);
+      } else {
+        edges = f.edge_points;
+        planes = f.planar_points;
+      }
+      associateFeatures(edges, planes, map, res.pose, params, cs);
+      ++rounds;
+      const Pose3 before = res.pose;
+      for (int k = 0; k < kInnerSteps; ++k) {
+        int degenerate = 0;
+        const Vector6 dx =
+            robustGaussNewtonStep(cs, res.pose, params.huber_delta, kMinEigenvaluePerConstraint, degenerate);
+        res.degenerate_directions = degenerate;
+        res.pose = orthonormalized(expSE3(dx) * res.pose);
+        if (dx.head<3>().norm() < params.rotation_convergence_thresh &&
+            dx.tail<3>().norm() < params.position_convergence_thresh)
+          break;
+      }
+      const Vector6 moved = logSE3(before.inverse() * res.pose);
+      if (moved.head<3>().norm() < st.rot_thresh && moved.tail<3>().norm() < st.pos_thresh) {
+        if (last_stage) res.converged = true;
+        break;
+      }
+    }
+  }
+  res.iterations = rounds;
+  // Statistics from the last association (the pose has moved by less than the last, small, update since).
+  std::size_t good = 0;
+  for (const auto& c : cs) {
+    (c.edge ? res.num_edge_constraints : res.num_plane_constraints)++;
+    if (std::abs(c.normal.dot(res.pose * c.point) - c.offset) < params.inlier_dist) ++good;
+  }
+  const std::size_t n = features.size();
+  res.inlier_fraction = n ? static_cast<double>(good) / static_cast<double>(n) : 0.0;
+  return res;
+}
+
+}  // namespace cosmo

@@ -1,0 +1,137 @@
+#include "cosmo/odometry/loam_odometry.hpp"
+
+#include <cmath>
+
+#include "cosmo/odometry/dewarp.hpp"
+#include "cosmo/odometry/feature_registration.hpp"
+#include "cosmo/odometry/motion_model.hpp"
+#include "cosmo/odometry/scan_lines.hpp"
+
+namespace cosmo {
+namespace {
+constexpr std::size_t kMinPoints = 100;
+constexpr double kPi = 3.14159265358979323846;
+
+std::vector<Eigen::Vector3d> transformed(const Pose3& T, const std::vector<Eigen::Vector3d>& pts) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(pts.size());
+  for (const auto& p : pts) out.push_back(T * p);
+  return out;
+}
+}  // namespace
+
+LoamOdometry::LoamOdometry(const LoamParams& p) : params_(p), map_(static_cast<std::size_t>(std::max(1, p.num_local_map_scans))) {}
+
+OdometryResult LoamOdometry::fallback(OdometryResult r, double period, const std::string& why) {
+  const Pose3 delta = predictMotion(last_delta_, last_period_, period);
+  r.delta = delta;
+  r.pose = orthonormalized(pose_ * delta);
+  r.ok = false;
+  r.warning = why + "; motion model used";
+  r.initial_guess = "motion_model";
+  pose_ = r.pose;
+  if (period > 0.0) last_period_ = period;
+  return r;
+}
+
+OdometryResult LoamOdometry::update(const Scan& scan) {
+  OdometryResult r;
+  const bool first = (num_scans_ == 0);
+  ++num_scans_;
+  double period = 0.0;
+  if (!first && scan.stamp > last_stamp_ && last_stamp_ > 0) period = toSeconds(scan.stamp - last_stamp_);
+  if (scan.stamp > 0) last_stamp_ = scan.stamp;
+
+  const ScanLines lines = organizeScanLines(scan, params_);
+  r.num_points = lines.numPoints();
+  last_features_ = r.num_points >= kMinPoints ? extractFeatures(lines, params_) : LoamFeatures{};
+  r.num_edge_features = last_features_.edge_points.size();
+  r.num_planar_features = last_features_.planar_points.size();
+
+  if (first) {
+    r.initial_guess = "first";
+    if (r.num_points < kMinPoints) {
+      r.ok = false;
+      r.warning = "first scan has only " + std::to_string(r.num_points) + " valid points (of " +
+                  std::to_string(scan.size()) + "); odometry starts at identity with an empty map";
+    } else {
+      map_.add(last_features_.edge_points, last_features_.planar_points);
+    }
+    return r;
+  }
+  if (r.num_points < kMinPoints)
+    return fallback(r, period,
+                    "scan has only " + std::to_string(r.num_points) + " valid points (of " + std::to_string(scan.size()) + ")");
+  if (last_features_.size() < static_cast<std::size_t>(params_.min_correspondences))
+    return fallback(r, period, "scan has only " + std::to_string(last_features_.size()) + " features");
+  if (map_.empty()) {
+    r = fallback(r, period, "local map is empty");
+    map_.add(transformed(r.pose, last_features_.edge_points), transformed(r.pose, last_features_.planar_points));
+    return r;
+  }
+
+  // Initial guesses: constant velocity and zero motion; a coarse yaw search when both fit poorly.
+  const Pose3 cv_delta = predictMotion(last_delta_, last_period_, period);
+  const std::size_t stride = std::max<std::size_t>(1, last_features_.size() / 400);
+  Pose3 guess = pose_ * cv_delta;
+  double best = scorePose(last_features_, map_, guess, params_, stride);
+  r.initial_guess = "constant_velocity";
+  const bool cv_is_zero = logSE3(cv_delta).norm() < 1e-6;
+  if (!cv_is_zero && best < 0.9) {
+    const double s0 = scorePose(last_features_, map_, pose_, params_, stride);
+    if (s0 > best) {
+      best = s0;
+      guess = pose_;
+      r.initial_guess = "zero_motion";
+    }
+  }
+  if (best < params_.min_guess_inlier_fraction && params_.yaw_search_step_deg > 0.0) {
+    const Pose3 centre = guess;
+    for (double yaw = params_.yaw_search_step_deg; yaw <= params_.yaw_search_max_deg + 1e-9;
+         yaw += params_.yaw_search_step_deg) {
+      for (double sign : {1.0, -1.0}) {
+        const Pose3 cand = centre * makePose(0, 0, 0, 0, 0, sign * yaw * kPi / 180.0);
+        const double s = scorePose(last_features_, map_, cand, params_, stride);
+        if (s > best) {
+          best = s;
+          guess = cand;
+          r.initial_guess = "yaw_search";
+        }
+      }
+    }
+  }
+
+  std::optional<DeskewReference> deskew;
+  if (period > 0.0) deskew = DeskewReference{pose_, period};
+  const RegistrationResult reg = registerFeatures(last_features_, map_, guess, params_, deskew);
+  r.iterations = reg.iterations;
+  r.inlier_fraction = reg.inlier_fraction;
+  const std::size_t ncons = reg.num_edge_constraints + reg.num_plane_constraints;
+  if (ncons < static_cast<std::size_t>(params_.min_correspondences))
+    return fallback(r, period, "only " + std::to_string(ncons) + " feature correspondences with the local map");
+
+  r.pose = reg.pose;
+  r.delta = pose_.inverse() * reg.pose;
+  if (reg.degenerate_directions > 0) {
+    r.ok = false;
+    r.warning = "degenerate geometry: " + std::to_string(reg.degenerate_directions) +
+                " of 6 directions unconstrained, kept from the initial guess (motion model)";
+  }
+  pose_ = r.pose;
+  last_delta_ = r.delta;
+  if (period > 0.0) last_period_ = period;
+
+  // Insert this scan's (deskewed) features into the local map.
+  std::vector<Eigen::Vector3d> edges, planes;
+  if (deskew && params_.deskew) {
+    deskewConstantVelocity(last_features_.edge_points, last_features_.edge_time, r.delta, period, edges);
+    deskewConstantVelocity(last_features_.planar_points, last_features_.planar_time, r.delta, period, planes);
+  } else {
+    edges = last_features_.edge_points;
+    planes = last_features_.planar_points;
+  }
+  map_.add(transformed(pose_, edges), transformed(pose_, planes));
+  return r;
+}
+
+}  // namespace cosmo
