@@ -265,11 +265,12 @@ std::string DatasetRecorder::metadataYaml(const BuildReport& report) const {
   return out.str();
 }
 
-BuildReport DatasetRecorder::write(const std::string& path) const {
+BuildReport DatasetRecorder::write(const std::string& path, jrl::Dataset* built) const {
   BuildReport report;
-  const jrl::Dataset ds = build(&report);
+  jrl::Dataset ds = build(&report);
   jrl::writeJrl(path, ds);
   writeFileAtomically(metadataPath(path), metadataYaml(report));
+  if (built) *built = std::move(ds);
   return report;
 }
 

@@ -94,8 +94,9 @@ class DatasetRecorder {
   jrl::Dataset build() const { return build(nullptr); }
   jrl::Dataset build(BuildReport* report) const;
   /// build() and write the JRL to `path` atomically (temp + rename), then the metadata next to it
-  /// (metadataPath(path)). Returns the build report.
-  BuildReport write(const std::string& path) const;
+  /// (metadataPath(path)). Returns the build report; the dataset written goes to `*built` when given.
+  /// Throws std::runtime_error naming the path on I/O failure (an existing file is left untouched).
+  BuildReport write(const std::string& path, jrl::Dataset* built = nullptr) const;
   /// "<path without .jrl>.recorder.yaml".
   static std::string metadataPath(const std::string& jrl_path);
   /// The metadata text written next to the JRL: rule, whether labels exist, noise models, counts.

@@ -1,0 +1,206 @@
+// recorder: gathers every robot's keyframes (odometry, reference pose) and loop closures and writes the
+// COSMO-Bench JRL (DatasetRecorder, include/cosmo/dataset/dataset_recorder.hpp) to <output_dir>/<name>.jrl,
+// atomically, on shutdown (SIGINT/SIGTERM included: the handler only sets a flag, the main thread writes),
+// on request (service ~write, std_srvs/Trigger, or any message on ~write_request) and every ~autosave_period.
+//
+// Subscribes, per robot r of ~robots: /<r>/keyframes_meas (cosmo/RecorderKeyframe) and /<r>/loop_closures
+// (cosmo/RecorderLoopClosure).
+// Parameters: ~robots ("a,b,c" or a list), ~name (dataset name), ~output_dir, ~noise_models (YAML path),
+// ~outlier_rule (fidelity | squared), ~autosave_period (s, 0 = off), ~progress_period (s, 0 = off).
+#include <ros/ros.h>
+#include <std_msgs/Empty.h>
+#include <std_srvs/Trigger.h>
+
+#include <atomic>
+#include <csignal>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+
+#include "cosmo/RecorderKeyframe.h"
+#include "cosmo/RecorderLoopClosure.h"
+#include "cosmo/dataset/dataset_recorder.hpp"
+#include "cosmo/jrl/stats.hpp"
+
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;
+void onSignal(int) { g_stop = 1; }
+
+cosmo::Pose3 toPose(const geometry_msgs::Pose& p) {
+  return cosmo::makePose(Eigen::Vector3d(p.position.x, p.position.y, p.position.z),
+                         Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z));
+}
+
+std::vector<char> readRobots(const ros::NodeHandle& pnh) {
+  std::vector<std::string> list;
+  std::string text = "a,b,c";
+  if (!pnh.getParam("robots", list)) {
+    pnh.getParam("robots", text);
+    std::string token;
+    for (const char c : text + ",") {
+      if (c == ',' || c == ' ') {
+        if (!token.empty()) list.push_back(token);
+        token.clear();
+      } else {
+        token += c;
+      }
+    }
+  }
+  std::vector<char> robots;
+  for (const auto& r : list) {
+    if (r.size() != 1) throw std::runtime_error("~robots: robot ids are single characters, got '" + r + "'");
+    robots.push_back(r[0]);
+  }
+  if (robots.empty()) throw std::runtime_error("~robots: empty");
+  return robots;
+}
+
+class RecorderNode {
+ public:
+  RecorderNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
+    const std::vector<char> robots = readRobots(pnh);
+    std::string name = "cosmo", output_dir = ".", noise_path, rule_name = "fidelity";
+    pnh.param("name", name, name);
+    pnh.param("output_dir", output_dir, output_dir);
+    pnh.param("noise_models", noise_path, std::string(COSMO_SOURCE_DIR "/config/noise_models/synthetic.yaml"));
+    pnh.param("outlier_rule", rule_name, rule_name);
+    pnh.param("autosave_period", autosave_period_, 30.0);
+    pnh.param("progress_period", progress_period_, 5.0);
+    const auto rule = cosmo::parseOutlierRule(rule_name);
+    if (!rule) throw std::runtime_error("~outlier_rule: expected 'fidelity' or 'squared', got '" + rule_name + "'");
+    cosmo::NoiseModels noise;
+    if (std::filesystem::exists(noise_path)) {
+      noise = cosmo::NoiseModels::load(noise_path);  // throws naming file and key
+    } else {
+      ROS_WARN("recorder: ~noise_models '%s' not found: using the built-in defaults", noise_path.c_str());
+    }
+    std::filesystem::create_directories(output_dir);
+    path_ = (std::filesystem::path(output_dir) / (name + ".jrl")).string();
+    recorder_.emplace(name, robots, noise, *rule);
+    for (const char r : robots) {
+      const std::string ns = "/" + std::string(1, r);
+      subs_.push_back(nh.subscribe<cosmo::RecorderKeyframe>(
+          ns + "/keyframes_meas", 10000, [this, r](const cosmo::RecorderKeyframe::ConstPtr& m) { onKeyframe(r, *m); }));
+      subs_.push_back(nh.subscribe<cosmo::RecorderLoopClosure>(
+          ns + "/loop_closures", 10000, [this, r](const cosmo::RecorderLoopClosure::ConstPtr& m) { onLoopClosure(r, *m); }));
+    }
+    service_ = pnh.advertiseService("write", &RecorderNode::onWriteService, this);
+    write_request_ = pnh.subscribe<std_msgs::Empty>("write_request", 10, [this](const std_msgs::Empty::ConstPtr&) {
+      write("request");
+    });
+    ROS_INFO("recorder: %zu robots, noise models '%s', outlier rule %s, writing %s", robots.size(),
+             noise.environment.c_str(), cosmo::outlierRuleName(*rule), path_.c_str());
+  }
+
+  /// Main loop in the calling thread: until SIGINT/SIGTERM or ros::shutdown, then the final write.
+  void run() {
+    ros::WallTime last_progress = ros::WallTime::now(), last_save = last_progress;
+    ros::WallRate rate(100.0);
+    while (!g_stop && ros::ok()) {
+      ros::spinOnce();
+      const ros::WallTime now = ros::WallTime::now();
+      if (progress_period_ > 0 && (now - last_progress).toSec() >= progress_period_) {
+        ROS_INFO("recorder: %s", recorder_->progressLine().c_str());
+        last_progress = now;
+      }
+      if (autosave_period_ > 0 && (now - last_save).toSec() >= autosave_period_ && changed_) {
+        write("autosave", false);
+        last_save = now;
+      }
+      rate.sleep();
+    }
+    if (ros::ok()) ros::spinOnce();  // what already arrived
+    write("shutdown");
+  }
+
+ private:
+  void onKeyframe(char topic_robot, const cosmo::RecorderKeyframe& m) {
+    if (m.robot.size() != 1 || m.robot[0] != topic_robot)
+      ROS_WARN_THROTTLE(5.0, "recorder: /%c/keyframes_meas: robot field '%s' differs from the topic's robot",
+                        topic_robot, m.robot.c_str());
+    const char robot = m.robot.size() == 1 ? m.robot[0] : topic_robot;
+    try {
+      std::optional<cosmo::Pose3> reference;
+      if (m.has_reference) reference = toPose(m.reference);
+      const cosmo::Pose3 odometry = m.index == 0 ? cosmo::Pose3::Identity() : toPose(m.odometry_from_previous);
+      recorder_->addKeyframe(robot, m.index, m.header.stamp.toNSec(), odometry, reference);
+      changed_ = true;
+    } catch (const std::exception& e) {
+      ROS_WARN("recorder: /%c/keyframes_meas: %s (ignored)", topic_robot, e.what());
+    }
+  }
+
+  void onLoopClosure(char topic_robot, const cosmo::RecorderLoopClosure& m) {
+    try {
+      if (m.owner.size() != 1 || m.robot1.size() != 1 || m.robot2.size() != 1)
+        throw std::invalid_argument("owner, robot1 and robot2 must be single characters");
+      cosmo::LoopClosureMeasurement lc;
+      lc.owner = m.owner[0];
+      lc.computed_at = m.header.stamp.toNSec();
+      lc.key1 = cosmo::jrl::symbol(m.robot1[0], m.index1);
+      lc.key2 = cosmo::jrl::symbol(m.robot2[0], m.index2);
+      lc.measurement = toPose(m.measurement);
+      recorder_->addLoopClosure(lc);
+      changed_ = true;
+    } catch (const std::exception& e) {
+      ROS_WARN("recorder: /%c/loop_closures: %s (ignored)", topic_robot, e.what());
+    }
+  }
+
+  bool onWriteService(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+    std::string message;
+    res.success = write("service", true, &message);
+    res.message = message;
+    return true;
+  }
+
+  bool write(const char* why, bool print_stats = true, std::string* message = nullptr) {
+    try {
+      cosmo::jrl::Dataset ds;
+      const cosmo::BuildReport report = recorder_->write(path_, &ds);
+      changed_ = false;
+      std::ostringstream out;
+      out << "wrote " << path_ << " (" << why << "): " << recorder_->progressLine();
+      if (!report.labelled) out << "; " << report.labels_note;
+      if (report.keyframes_pending || report.loop_closures_pending)
+        out << "; pending (not written yet): " << report.keyframes_pending << " keyframes, "
+            << report.loop_closures_pending << " loop closures";
+      ROS_INFO("recorder: %s", out.str().c_str());
+      if (print_stats) std::cout << cosmo::jrl::formatStats(cosmo::jrl::computeStats(ds)) << std::endl;
+      if (message) *message = out.str();
+      return true;
+    } catch (const std::exception& e) {
+      ROS_ERROR("recorder: writing %s failed: %s", path_.c_str(), e.what());
+      if (message) *message = e.what();
+      return false;
+    }
+  }
+
+  std::optional<cosmo::DatasetRecorder> recorder_;
+  std::string path_;
+  double autosave_period_ = 30.0, progress_period_ = 5.0;
+  bool changed_ = false;
+  std::vector<ros::Subscriber> subs_;
+  ros::Subscriber write_request_;
+  ros::ServiceServer service_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "recorder", ros::init_options::NoSigintHandler);
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  ros::NodeHandle nh, pnh("~");
+  try {
+    RecorderNode node(nh, pnh);
+    node.run();
+  } catch (const std::exception& e) {
+    ROS_FATAL("recorder: %s", e.what());
+    ros::shutdown();
+    return 1;
+  }
+  ros::shutdown();
+  return 0;
+}

@@ -1,0 +1,121 @@
+// cosmo_noise_models: estimate the odometry and loop-closure noise models (spec section 6) from a run's JRL
+// with ground truth (normally a single-robot run of the environment's designated trial) and write the YAML
+// the recorder reads (config/noise_models/<environment>.yaml).
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+#include "cosmo/dataset/noise_model_estimation.hpp"
+#include "cosmo/jrl/io.hpp"
+
+namespace {
+
+void usage(std::ostream& out) {
+  out << "usage: cosmo_noise_models INPUT.jrl OUTPUT.yaml [options]\n"
+         "  Estimates Q = (1/N) sum r r^T, r = Log(m^-1 * m*) (rotation first), for the odometry (every\n"
+         "  BetweenFactorPose3 <r>(i-1) -> <r>i) and the good loop closures (every other BetweenFactorPose3 whose\n"
+         "  error is under the thresholds) of INPUT.jrl against its groundtruth, and writes OUTPUT.yaml.\n"
+         "options:\n"
+         "  --robot R              use only robot R's measurements (default: every robot; a single-robot run has one)\n"
+         "  --environment NAME     label written to the YAML (default: the dataset name)\n"
+         "  --max-translation M    loop closures with a larger translation error are left out (default 0.5)\n"
+         "  --max-rotation RAD     loop closures with a larger rotation error are left out (default 0.05)\n"
+         "  --subtract-mean        centred sample covariance (divide by N-1) instead of the second moment\n"
+         "  --min-samples N        refuse to estimate from fewer measurements (default 10)\n";
+}
+
+void printEstimate(const char* what, const cosmo::CovarianceEstimate& e) {
+  std::cout << what << ": " << e.used << " used, " << e.rejected << " over the thresholds\n  sigmas [rx ry rz tx ty tz]:";
+  for (int i = 0; i < 6; ++i) std::cout << ' ' << std::setprecision(4) << std::sqrt(e.covariance(i, i));
+  std::cout << "\n  mean residual:";
+  for (int i = 0; i < 6; ++i) std::cout << ' ' << std::setprecision(3) << e.mean_residual(i);
+  std::cout << "\n";
+}
+
+double number(const std::string& flag, const char* text) {
+  char* end = nullptr;
+  const double v = std::strtod(text, &end);
+  if (!end || *end || !(v > 0)) throw std::invalid_argument(flag + ": expected a positive number, got '" + text + "'");
+  return v;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string input, output, environment;
+  std::optional<char> robot;
+  cosmo::NoiseModelEstimationParams params;
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      auto value = [&]() -> const char* {
+        if (i + 1 >= argc) throw std::invalid_argument(a + ": missing value");
+        return argv[++i];
+      };
+      if (a == "-h" || a == "--help") {
+        usage(std::cout);
+        return 0;
+      } else if (a == "--robot") {
+        const std::string r = value();
+        if (r.size() != 1) throw std::invalid_argument("--robot: expected one character, got '" + r + "'");
+        robot = r[0];
+      } else if (a == "--environment") {
+        environment = value();
+      } else if (a == "--max-translation") {
+        params.max_translation_error = number(a, value());
+      } else if (a == "--max-rotation") {
+        params.max_rotation_error = number(a, value());
+      } else if (a == "--subtract-mean") {
+        params.subtract_mean = true;
+      } else if (a == "--min-samples") {
+        params.min_samples = static_cast<std::size_t>(number(a, value()));
+      } else if (!a.empty() && a[0] == '-') {
+        throw std::invalid_argument("unknown option " + a);
+      } else if (input.empty()) {
+        input = a;
+      } else if (output.empty()) {
+        output = a;
+      } else {
+        throw std::invalid_argument("unexpected argument " + a);
+      }
+    }
+    if (input.empty() || output.empty()) throw std::invalid_argument("need INPUT.jrl and OUTPUT.yaml");
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "cosmo_noise_models: " << e.what() << "\n";
+    usage(std::cerr);
+    return 2;
+  }
+  try {
+    const cosmo::jrl::Dataset ds = cosmo::jrl::readJrl(input);
+    if (robot && std::find(ds.robots.begin(), ds.robots.end(), *robot) == ds.robots.end())
+      throw std::runtime_error(input + ": no robot '" + std::string(1, *robot) + "'");
+    std::string robots;
+    for (const char r : ds.robots)
+      if (!robot || r == *robot) robots += std::string(robots.empty() ? "" : " ") + r;
+    if (!robot && ds.robots.size() > 1)
+      std::cerr << "cosmo_noise_models: warning: pooling robots " << robots
+                << " (spec section 6 uses a single-robot run; --robot R picks one)\n";
+    const cosmo::MeasurementSets sets = cosmo::collectMeasurements(ds, robot);
+    cosmo::NoiseModelEstimate est = cosmo::estimateNoiseModels(sets.odometry, sets.loop_closures, params);
+    est.models.environment = environment.empty() ? ds.name : environment;
+    printEstimate("odometry", est.odometry);
+    printEstimate("loop closures", est.loop_closure);
+    std::ostringstream header;
+    header << "Noise models estimated by cosmo_noise_models (spec section 6) from " << input << "\n"
+           << "dataset '" << ds.name << "', robots " << robots << ": " << est.odometry.used << " odometry factors, "
+           << est.loop_closure.used << " loop closures (" << est.loop_closure.rejected << " left out: error >= "
+           << params.max_translation_error << " m or >= " << params.max_rotation_error << " rad)\n"
+           << "Q = " << (params.subtract_mean ? "centred sample covariance, 1/(N-1)" : "(1/N) sum r r^T")
+           << " with r = Log(m^-1 * m*), rotation first";
+    est.models.save(output, header.str());
+    std::cout << "wrote " << output << "\n";
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "cosmo_noise_models: " << e.what() << "\n";
+    return 1;
+  }
+}
