@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cstdlib>
 #include <cstring>
 #include <random>
 #include <sstream>
@@ -109,8 +110,11 @@ std::string mutate(std::string s, std::mt19937_64& rng) {
 TEST(JrlFuzz, MutatedDocumentsParseOrThrowRuntimeError) {
   const auto corpus = seeds();
   ASSERT_GE(corpus.size(), 3u);
-  std::mt19937_64 rng(20261122);
-  constexpr int kIterations = 6000;
+  // Deterministic by default; COSMO_FUZZ_SEED / COSMO_FUZZ_ITERATIONS allow longer exploratory runs.
+  const char* seed_env = std::getenv("COSMO_FUZZ_SEED");
+  const char* iter_env = std::getenv("COSMO_FUZZ_ITERATIONS");
+  std::mt19937_64 rng(seed_env ? std::strtoull(seed_env, nullptr, 10) : 20261122ull);
+  const int kIterations = iter_env ? std::max(100, std::atoi(iter_env)) : 6000;
   int parsed = 0, rejected = 0;
   for (int i = 0; i < kIterations; ++i) {
     const std::string input = mutate(corpus[static_cast<std::size_t>(i) % corpus.size()], rng);

@@ -1,0 +1,82 @@
+// The cosmo_jrl command-line tool (found beside this test binary): output and exit codes.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "cosmo/common/shared_data.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string toolPath() {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) return "";
+  const fs::path tool = self.parent_path() / "cosmo_jrl";
+  return fs::exists(tool) ? tool.string() : "";
+}
+
+/// Runs the tool with `args`; returns {exit code, stdout}.
+std::pair<int, std::string> run(const std::string& args) {
+  const std::string cmd = "'" + toolPath() + "' " + args + " 2>/dev/null";
+  FILE* p = ::popen(cmd.c_str(), "r");
+  if (!p) return {-1, ""};
+  std::string out;
+  std::array<char, 4096> buf;
+  std::size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
+  const int status = ::pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+const std::string kTiny = std::string(COSMO_SOURCE_DIR) + "/test/jrl/data/tiny_example.jrl";
+
+}  // namespace
+
+TEST(CosmoJrlTool, StatsValidateAndExitCodes) {
+  if (toolPath().empty()) GTEST_SKIP() << "cosmo_jrl is not built beside this test";
+  auto [rc, out] = run("stats " + kTiny);
+  EXPECT_EQ(rc, 0);
+  EXPECT_NE(out.find("tiny_example"), std::string::npos) << out;
+  EXPECT_NE(out.find("LC        1 (100.0 %)"), std::string::npos) << out;
+  std::tie(rc, out) = run("stats --json " + kTiny);
+  EXPECT_EQ(rc, 0);
+  EXPECT_EQ(out.rfind("{", 0), 0u) << out;
+  EXPECT_NE(out.find("\"irlc_count\":1"), std::string::npos) << out;
+  std::tie(rc, out) = run("validate " + kTiny);
+  EXPECT_EQ(rc, 0) << out;
+  EXPECT_EQ(run("--help").first, 0);
+  EXPECT_EQ(run("").first, 2);
+  EXPECT_EQ(run("stats").first, 2);
+  EXPECT_EQ(run("frobnicate x").first, 2);
+  EXPECT_EQ(run("stats /nonexistent/x.jrl").first, 1);
+
+  // An invalid dataset: validate prints the violation with its place and exits 1.
+  const fs::path bad = fs::temp_directory_path() / ("cosmo_tool_bad_" + std::to_string(::getpid()) + ".jrl");
+  {
+    std::ifstream in(kTiny);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("\"stamp\":1700000000750000000"), 27, "\"stamp\":1");
+    std::ofstream(bad) << text;
+  }
+  std::tie(rc, out) = run("validate " + bad.string());
+  EXPECT_EQ(rc, 1);
+  EXPECT_NE(out.find("measurements.b[1].stamp: stamp 1 is before the previous entry's"), std::string::npos) << out;
+  fs::remove(bad);
+}
+
+TEST(CosmoJrlTool, ReferenceStats) {
+  const auto path = cosmo::sharedPath("ref/jrl/tuhh_r3_01_night_wifi.jrl");
+  if (!path) GTEST_SKIP() << "../shared/ref/jrl/tuhh_r3_01_night_wifi.jrl not available";
+  if (toolPath().empty()) GTEST_SKIP() << "cosmo_jrl is not built beside this test";
+  const auto [rc, out] = run("stats " + *path);
+  EXPECT_EQ(rc, 0);
+  for (const char* want : {"duration  12:06", "length    2.13 km", "LC        356 (13.5 %)", "IRLC      280 (9.6 %)"})
+    EXPECT_NE(out.find(want), std::string::npos) << want << "\n" << out;
+}
