@@ -12,7 +12,9 @@
 // Params      ~robots [a, b, c] (or "a,b,c"), ~comm wifi|proradio, ~config (a config/comm/*.yaml, wins over
 //             ~comm), ~seed (int), ~size_model paper|real, ~timeout_mode no_progress|total_duration,
 //             ~log_file (CSV of every transfer + <name>.summary.json; written every 30 s of ROS time and on
-//             shutdown; empty = none), ~xz_preset (0..9, default 6), ~frame_id (default world)
+//             shutdown; empty = none), ~xz_preset (0..9, default 6), ~frame_id (default world),
+//             ~compress_payload (default true; false with size_model paper skips xz, about 0.25 s of CPU per
+//             64 x 1024 scan, and forwards the x y z points as they came, which xz's losslessness makes identical)
 // Steps: every delta of ROS time (/clock under use_sim_time) on the grid k * delta, catching up when time jumps.
 #include <geometry_msgs/PoseStamped.h>
 #include <ros/ros.h>
@@ -91,6 +93,9 @@ class CommBroker {
     if (xz_preset_ < 0 || xz_preset_ > 9) throw std::runtime_error("~xz_preset: must be in 0..9");
     pnh.param<std::string>("log_file", log_file_, "");
     pnh.param<std::string>("frame_id", frame_id_, "world");
+    pnh.param("compress_payload", compress_, true);
+    if (!compress_ && params.size_model == cosmo::RadioParams::SizeModel::RealCompressed)
+      throw std::runtime_error("~compress_payload false needs ~size_model paper (the real size needs xz)");
     sim_ = std::make_unique<cosmo::RadioSimulator>(params, robots, static_cast<std::uint64_t>(seed));
 
     for (char r : sim_->robots()) {
@@ -126,7 +131,8 @@ class CommBroker {
     std_msgs::Header header;
     geometry_msgs::Pose reference;
     bool has_reference = false;
-    std::vector<std::uint8_t> payload;
+    std::vector<std::uint8_t> payload;  ///< xz payload (compress_payload) ...
+    cosmo::Scan points;                  ///< ... or the x y z points as they came
   };
 
   void onKeyframe(char r, const cosmo::Keyframe& m) {
@@ -138,7 +144,11 @@ class CommBroker {
     try {
       const cosmo::Scan scan = cosmo::ros_glue::fromPointCloud2(m.cloud, true, topic);
       raw = cosmo::rawPayloadBytes(scan);
-      s.payload = cosmo::compressScan(scan, static_cast<std::uint32_t>(xz_preset_));  // outside the lock
+      if (compress_) {
+        s.payload = cosmo::compressScan(scan, static_cast<std::uint32_t>(xz_preset_));  // outside the lock
+      } else {
+        s.points.points = scan.points;
+      }
     } catch (const std::exception& e) {
       ROS_ERROR("comm_broker: dropping keyframe %u: %s", m.index, e.what());
       return;
@@ -148,7 +158,7 @@ class CommBroker {
     s.reference = m.reference;
     s.has_reference = m.has_reference;
     std::lock_guard<std::mutex> lock(mutex_);
-    sim_->offerKeyframe(r, m.index, s.payload.size(), raw);
+    sim_->offerKeyframe(r, m.index, compress_ ? s.payload.size() : raw, raw);
     store_[{r, m.index}] = std::move(s);
   }
 
@@ -214,7 +224,7 @@ class CommBroker {
     const Stored& s = it->second;
     cosmo::Keyframe out;
     try {
-      const cosmo::Scan scan = cosmo::decompressScan(s.payload);
+      const cosmo::Scan scan = compress_ ? cosmo::decompressScan(s.payload) : s.points;
       out.cloud = cosmo::ros_glue::toPointCloud2(scan, s.header.frame_id);
     } catch (const std::exception& e) {
       ROS_ERROR("comm_broker: keyframe %c%zu: %s", x.sender, x.keyframe, e.what());
@@ -306,6 +316,7 @@ class CommBroker {
   ros::Publisher links_pub_, stats_pub_;
   ros::WallTimer timer_;
   int xz_preset_ = 6;
+  bool compress_ = true;
   std::string log_file_, frame_id_;
   bool started_ = false;
   double last_log_write_ = 0.0;
