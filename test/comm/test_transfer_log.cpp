@@ -1,0 +1,50 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cosmo/comm/transfer_log.hpp"
+
+using namespace cosmo;
+
+TEST(TransferLog, CsvAndSummaryFiles) {
+  RadioParams p = RadioParams::wifi();
+  p.size_model = RadioParams::SizeModel::RealCompressed;
+  RadioSimulator sim(p, {'a', 'b'}, 1);
+  sim.setRobotState('a', {0, 0, 0}, true);
+  sim.setRobotState('b', {2, 0, 0}, true);
+  sim.offerKeyframe('a', 3, 1000);
+  sim.offerKeyframe('b', 4, 100000000);  // 50 s at full bandwidth: b's transfer will not finish
+  for (int i = 0; i < 50; ++i) sim.step(sim.nextStepTime());
+  sim.setRobotState('b', {500, 0, 0}, true);
+  for (int i = 0; i < 50; ++i) sim.step(sim.nextStepTime());
+  ASSERT_GE(sim.transferLog().size(), 2u);
+
+  const auto dir = std::filesystem::temp_directory_path() / ("cosmo_transfer_log_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string csv = (dir / "transfers.csv").string();
+  writeTransferLog(csv, sim.transferLog(), sim.stats(), sim.params());
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "sender,receiver,keyframe,start,end,bytes,outcome");
+  int delivered = 0, timed_out = 0, rows = 0;
+  while (std::getline(in, line)) {
+    ++rows;
+    delivered += line.find(",delivered") != std::string::npos;
+    timed_out += line.find(",timed_out") != std::string::npos;
+  }
+  EXPECT_EQ(rows, static_cast<int>(sim.transferLog().size()));
+  EXPECT_EQ(delivered, static_cast<int>(sim.stats().delivered));
+  EXPECT_EQ(timed_out, static_cast<int>(sim.stats().timed_out));
+  EXPECT_GE(timed_out, 1);
+  std::ifstream js((dir / "transfers.summary.json").string());
+  const auto j = nlohmann::json::parse(js);
+  EXPECT_EQ(j["delivered"].get<int>(), delivered);
+  EXPECT_EQ(j["params"]["timeout_mode"], "no_progress");
+  EXPECT_FALSE(std::filesystem::exists(csv + ".tmp"));
+  EXPECT_THROW(writeTransferLog((dir / "missing" / "x.csv").string(), {}, sim.stats(), p), std::runtime_error);
+  std::filesystem::remove_all(dir);
+}
