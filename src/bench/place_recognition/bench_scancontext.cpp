@@ -166,8 +166,8 @@ void realSearchVariants(const RealSet& set, const PlaceRecognitionParams& params
     int same = 0, total = 0;
     Stats increase;
     for (std::size_t i = 0; i < sc.size(); ++i)
-      for (std::size_t j = 0; j < sc.size(); ++j) {
-        if (i == j) continue;
+      for (std::size_t j = 0; j < sc.size(); ++j) {  // near pairs and each scan with itself, rotated copies
+        if ((set.poses[i].translation() - set.poses[j].translation()).norm() > near_m) continue;
         for (const double t : {0.0, 1.0, 2.5, -1.7}) {
           const ScanContext q = t == 0.0 ? sc[j] : makeScanContext(turnSensor(set.scans[j], t), params.sc);
           const auto full = scanContextDistance(q, sc[i], params.sc.empty_columns, -1);
@@ -177,8 +177,8 @@ void realSearchVariants(const RealSet& set, const PlaceRecognitionParams& params
           increase.add(coarse.distance - full.distance);
         }
       }
-    std::printf("  %-26s coarse alignment +-%d sectors: same shift as full search in %d/%d pairs, distance "
-                "increase mean %.4f max %.4f\n",
+    std::printf("  %-26s coarse alignment +-%d sectors: same shift as full search in %d/%d near (<= 3 m) or "
+                "self pairs with turns, distance increase mean %.4f max %.4f\n",
                 set.name.c_str(), radius, same, total, increase.mean(), increase.max());
   }
   for (const int stride : {2, 4, 8}) {
