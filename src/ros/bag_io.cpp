@@ -45,7 +45,7 @@ std::size_t ScanBagReader::size() const { return impl_->view->size(); }
 
 bool ScanBagReader::next(Scan& scan) {
   while (impl_->it != impl_->view->end()) {
-    const rosbag::MessageInstance& m = *impl_->it;
+    const rosbag::MessageInstance m = *impl_->it;  // a copy: the iterator's instance is reset by ++
     ++impl_->it;
     auto msg = m.instantiate<sensor_msgs::PointCloud2>();
     if (!msg) throw std::runtime_error(impl_->where + ": message type " + m.getDataType() + " is not sensor_msgs/PointCloud2");
