@@ -151,12 +151,11 @@ int main(int argc, char** argv) {
     const PrPoint d = precisionRecallAt(outcomes, params.threshold, radius);
     std::printf("default threshold %.3f: precision %.3f recall %.3f (%zu/%zu detections correct, %zu revisits)\n",
                 params.threshold, d.precision, d.recall, d.true_positives, d.detections, d.revisits);
-    std::printf("descriptor time: mean %.3f ms, p95 %.3f ms (point_stride %d)\n",
-                [&] { double s = 0; for (double v : descriptor_ms) s += v; return s / descriptor_ms.size(); }(),
-                bench::quantile(descriptor_ms, 0.95), params.sc.point_stride);
-    std::printf("query+insert time: mean %.3f ms, p95 %.3f ms, max %.3f ms\n",
-                [&] { double s = 0; for (double v : query_ms) s += v; return s / query_ms.size(); }(),
-                bench::quantile(query_ms, 0.95), bench::quantile(query_ms, 1.0));
+    std::printf("descriptor time: median %.3f ms, p95 %.3f ms (point_stride %d)\n",
+                bench::quantile(descriptor_ms, 0.5), bench::quantile(descriptor_ms, 0.95), params.sc.point_stride);
+    std::printf("query+insert time: median %.3f ms, p95 %.3f ms, max %.3f ms (database of up to %zu entries)\n",
+                bench::quantile(query_ms, 0.5), bench::quantile(query_ms, 0.95), bench::quantile(query_ms, 1.0),
+                descriptors.size());
   } catch (const std::exception& e) {
     std::cerr << "cosmo_scancontext: " << e.what() << "\n";
     return 1;
