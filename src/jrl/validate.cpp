@@ -124,8 +124,7 @@ class Validator {
     const std::string pr = "measurements." + rk(r);
     const auto& entries = it->second;
     std::set<std::pair<std::uint64_t, std::uint64_t>> links;  // own Between(Pose) index pairs, sorted
-    std::uint64_t max_own = 0;
-    bool any_own = false;
+    std::set<std::uint64_t> own;                              // own pose indices referenced
     for (std::size_t e = 0; e < entries.size(); ++e) {
       const std::string pe = pr + idx(e);
       if (e > 0 && entries[e].stamp < entries[e - 1].stamp)
@@ -153,22 +152,19 @@ class Validator {
         }
         if (!isPoseFactor(f.type)) continue;
         for (Key k : f.keys)
-          if (robotOf(k) == r) {
-            any_own = true;
-            max_own = std::max(max_own, indexOf(k));
-          }
+          if (robotOf(k) == r) own.insert(indexOf(k));
         if (!prior && robotOf(f.keys[0]) == r && robotOf(f.keys[1]) == r) {
           const auto a = indexOf(f.keys[0]), b = indexOf(f.keys[1]);
           links.insert({std::min(a, b), std::max(a, b)});
         }
       }
     }
-    if (!any_own) return;
-    std::size_t reported = 0, missing = 0;
-    for (std::uint64_t i = 1; i <= max_own; ++i) {
-      if (links.count({i - 1, i})) continue;
-      ++missing;
-      if (++reported <= 20)
+    // Unbroken chain: every referenced own pose i > 0 is linked to i-1 by a Between factor (by induction all
+    // of 0..max are then referenced). Bounded by the number of referenced poses, whatever the key values.
+    std::size_t missing = 0;
+    for (std::uint64_t i : own) {
+      if (i == 0 || links.count({i - 1, i})) continue;
+      if (++missing <= 20)
         add(pr, "odometry chain broken: no Between factor " + keyName(symbol(r, i - 1)) + " -> " +
                     keyName(symbol(r, i)));
     }

@@ -106,3 +106,15 @@ TEST(JrlValidate, StructuralProblemsOfInMemoryDatasets) {
   EXPECT_TRUE(reports(v, "measurements.z", "not listed in robots")) << joined(v);
   EXPECT_TRUE(reports(v, "robots[2]", "duplicate robot 'a'")) << joined(v);
 }
+
+TEST(JrlValidate, HugeKeyIndexDoesNotLoopOverTheIndexRange) {
+  // A (fuzz-found) key with index near 2^56 must give one missing link, not a loop over 2^56 indices.
+  Dataset d = tiny();
+  factorAt(d, 'a', 2, 0).keys = {symbol('a', 1), symbol('a', kIndexMask)};
+  d.groundtruth.reset();
+  d.initialization.reset();
+  const auto v = validate(d);
+  EXPECT_TRUE(reports(v, "measurements.a", "no Between factor a72057594037927934 -> a72057594037927935")) << joined(v);
+  EXPECT_TRUE(reports(v, "measurements.a", "no Between factor a1 -> a2")) << joined(v);
+  EXPECT_EQ(v.size(), 2u) << joined(v);
+}

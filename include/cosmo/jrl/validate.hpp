@@ -19,8 +19,10 @@ struct Violation {
 /// symmetric (|Σij-Σji| <= 1e-9·max|Σ|) and positive definite (Cholesky); per robot stamps non-decreasing;
 /// every key a robot's factors reference present in that robot's groundtruth and initialization (when the
 /// dataset has them); finite values with unit quaternions; ground truth of a key shared by several robots
-/// identical (1e-9); outlier ids in range and outliers ⊆ potential outliers; odometry chain unbroken (for each
-/// robot r whose factors reference own poses up to r<N>, a Between factor r<i-1>–r<i> for every i in 1..N).
+/// identical (1e-9); outlier ids in range and outliers ⊆ potential outliers; odometry chain unbroken (every own
+/// pose r<i>, i > 0, that robot r's Pose2/Pose3 factors reference is linked to r<i-1> by a Between factor in r's
+/// list, so poses 0..N form one chain; at most 20 missing links are listed per robot).
+/// Cost: O(factors · log) whatever the key values (no loop over index ranges).
 /// Returns every violation, in document order; empty = valid.
 std::vector<Violation> validate(const Dataset& dataset);
 
