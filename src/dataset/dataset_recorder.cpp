@@ -21,6 +21,16 @@ struct Placed {
   std::size_t arrival = 0;
 };
 
+// A YAML double-quoted string.
+std::string quoted(const std::string& text) {
+  std::string q = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') q += '\\';
+    q += c == '\n' ? ' ' : c;
+  }
+  return q + "\"";
+}
+
 bool placedBefore(const Placed& a, const Placed& b) {
   return std::tie(a.entry, a.lc->computed_at, a.lc->key1, a.lc->key2, a.arrival) <
          std::tie(b.entry, b.lc->computed_at, b.lc->key1, b.lc->key2, b.arrival);
@@ -241,7 +251,7 @@ std::string DatasetRecorder::metadataPath(const std::string& jrl_path) {
 std::string DatasetRecorder::metadataYaml(const BuildReport& report) const {
   std::ostringstream out;
   out << "# Written by the cosmo recorder next to " << name_ << ".jrl (see include/cosmo/dataset/dataset_recorder.hpp)\n";
-  out << "name: \"" << name_ << "\"\n";
+  out << "name: " << quoted(name_) << "\n";
   out << "robots: [";
   for (std::size_t i = 0; i < robots_.size(); ++i) out << (i ? ", " : "") << robots_[i];
   out << "]\n";
@@ -250,10 +260,10 @@ std::string DatasetRecorder::metadataYaml(const BuildReport& report) const {
     out << (i ? ", " : "") << report.robots_without_keyframes[i];
   out << "]\n";
   out << "outlier_labels: " << (report.labelled ? "true" : "false") << "\n";
-  if (!report.labelled) out << "outlier_labels_note: \"" << report.labels_note << "\"\n";
+  if (!report.labelled) out << "outlier_labels_note: " << quoted(report.labels_note) << "\n";
   out << "outlier_rule: " << outlierRuleName(rule_) << "  # fidelity: sqrt(r^T Q^-1 r) > critical; squared: r^T Q^-1 r > critical\n";
   out << "critical_value: " << critical_value_ << "  # 95 % chi^2, 6 dof\n";
-  out << "noise_models: \"" << noise_.environment << "\"\n";
+  out << "noise_models: " << quoted(noise_.environment) << "\n";
   out << "entries: " << report.entries << "\n";
   out << "odometry_factors: " << report.odometry << "\n";
   out << "intra_robot_loop_closures: " << report.intra << "\n";

@@ -1,6 +1,7 @@
 // DatasetRecorder on a synthetic 2-robot team: the COSMO conventions of ../shared/docs/jrl.md §10.
 #include <gtest/gtest.h>
 #include <unistd.h>
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -219,6 +220,10 @@ TEST_F(RecorderTest, WritesAtomicallyAndParsesBack) {
   meta << in.rdbuf();
   EXPECT_NE(meta.str().find("outlier_labels: true"), std::string::npos);
   EXPECT_NE(meta.str().find("outlier_rule: fidelity"), std::string::npos);
+  const YAML::Node yaml = YAML::LoadFile(DatasetRecorder::metadataPath(path));
+  EXPECT_TRUE(yaml["outlier_labels"].as<bool>());
+  EXPECT_EQ(yaml["outliers"].as<std::size_t>(), written.outliers);
+  EXPECT_EQ(yaml["name"].as<std::string>(), "synthetic_team");
   for (const auto& f : std::filesystem::directory_iterator(dir))  // no temporary files left behind
     EXPECT_EQ(f.path().string().find(".tmp."), std::string::npos) << f.path();
   // A failing write (missing folder) throws and leaves the previous file untouched.
