@@ -1,0 +1,47 @@
+#pragma once
+// Procedural campus: a grid of blocks separated by streets (some turned into footpaths, some blocks crossed
+// by diagonal footpaths), each block filled with buildings (boxes, L-shapes, courtyards), a row of identical
+// buildings (repeated in several blocks: look-alike places), a park (trees, paths) or a car park; streets
+// lined with kerbs, poles, tree rows, walls/fences and parked cars; gentle terrain under everything.
+#include <cstdint>
+#include <string>
+
+#include "cosmo/common/config.hpp"
+#include "cosmo/sim/world.hpp"
+
+namespace cosmo::sim {
+
+struct WorldParams {
+  int blocks_x = 4;                  ///< blocks along x (junctions: blocks_x + 1)
+  int blocks_y = 3;                  ///< blocks along y
+  double block_min = 70.0;           ///< block pitch range (street centre to street centre), m
+  double block_max = 100.0;
+  double street_half_width = 4.0;    ///< kerb offset from the street centre line, m
+  double sidewalk_width = 3.0;       ///< paved strip outside the kerb, m
+  double footpath_half_width = 1.5;  ///< m
+  double footpath_fraction = 0.15;   ///< interior streets turned into footpaths (no kerbs, no cars)
+  double diagonal_fraction = 0.35;   ///< park blocks crossed by a diagonal footpath
+  double building_height_min = 6.0;  ///< m
+  double building_height_max = 24.0; ///< m
+  double p_buildings = 0.45;         ///< block type weights: varied buildings,
+  double p_row = 0.2;                ///< rows of identical buildings (one shared template),
+  double p_park = 0.2;               ///< park with trees,
+  double p_parking = 0.15;           ///< car park with rows of cars and lamp posts
+  double tree_row_fraction = 0.5;    ///< street sides lined with a row of identical trees
+  double tree_spacing = 9.0;         ///< m
+  double pole_spacing = 28.0;        ///< lamp posts along streets, m (0: none)
+  double parked_car_fraction = 0.3;  ///< street sides with parked cars
+  double wall_fraction = 0.25;       ///< block sides with a wall or fence
+  double outer_ring = 40.0;          ///< depth of the built-up / wooded ring outside the outer streets, m
+  double terrain_margin = 90.0;      ///< terrain beyond the outer ring, m
+  TerrainParams terrain;
+
+  static WorldParams fromConfig(const ConfigNode& node);
+  /// Every parameter as text (for the cache key).
+  std::string describe() const;
+};
+
+/// The world and its path network for `seed`.
+World generateWorld(const WorldParams& params, std::uint64_t seed);
+
+}  // namespace cosmo::sim

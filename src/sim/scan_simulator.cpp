@@ -1,0 +1,106 @@
+#include "cosmo/sim/scan_simulator.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "cosmo/sim/material.hpp"
+
+namespace cosmo::sim {
+
+namespace {
+inline double uniform01(std::uint64_t& s) { return static_cast<double>(splitmix64(s) >> 11) * 0x1.0p-53; }
+inline double gaussian(std::uint64_t& s) {
+  const double u1 = std::max(uniform01(s), 1e-300), u2 = uniform01(s);
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+}
+}  // namespace
+
+ScanSimulator::ScanSimulator(const World& world, LidarModel lidar) : world_(world), lidar_(std::move(lidar)) {
+  const auto el = lidar_.elevations();
+  dirs_.resize(lidar_.raysPerScan());
+  for (int b = 0; b < lidar_.beams; ++b)
+    for (int c = 0; c < lidar_.columns; ++c) {
+      const double az = lidar_.azimuth(c);
+      dirs_[static_cast<std::size_t>(b) * lidar_.columns + c] =
+          Eigen::Vector3d(std::cos(el[b]) * std::cos(az), std::cos(el[b]) * std::sin(az), std::sin(el[b]));
+    }
+}
+
+Scan ScanSimulator::simulate(const Trajectory& body, const Pose3& T_body_lidar, StampNs stamp, std::uint64_t seed) const {
+  if (body.empty()) throw std::invalid_argument("ScanSimulator: empty trajectory");
+  std::vector<Pose3> poses(static_cast<std::size_t>(lidar_.columns));
+  for (int c = 0; c < lidar_.columns; ++c) {
+    const double dt = lidar_.columnTime(c);
+    const StampNs t = stamp - static_cast<StampNs>(std::llround(-dt * 1e9));
+    poses[c] = body.atClamped(t) * T_body_lidar;
+  }
+  return simulate(poses, stamp, seed);
+}
+
+Scan ScanSimulator::simulate(const std::vector<Pose3>& column_poses, StampNs stamp, std::uint64_t seed) const {
+  const int B = lidar_.beams, C = lidar_.columns;
+  if (static_cast<int>(column_poses.size()) != C)
+    throw std::invalid_argument("ScanSimulator: expected one pose per column");
+  const std::size_t n = lidar_.raysPerScan();
+  std::vector<float> range(n, std::numeric_limits<float>::quiet_NaN());
+  std::vector<float> intensity(n, 0.0f);
+  std::uint64_t scan_key = seed ^ (stamp * 0xD1B54A32D192ED03ULL);
+  const std::uint64_t scan_seed = splitmix64(scan_key);
+  const auto& materials = materialTable();
+  const LidarModel& L = lidar_;
+
+  tbb::parallel_for(tbb::blocked_range<int>(0, C, 16), [&](const tbb::blocked_range<int>& cols) {
+    for (int c = cols.begin(); c != cols.end(); ++c) {
+      const Pose3& T = column_poses[c];
+      const Eigen::Matrix3d R = T.linear();
+      const Eigen::Vector3d origin = T.translation();
+      for (int b = 0; b < B; ++b) {
+        const std::size_t idx = static_cast<std::size_t>(b) * C + c;
+        const Eigen::Vector3d& ds = dirs_[idx];
+        const Ray ray(origin, R * ds);
+        Hit hit;
+        if (!world_.intersect(ray, 1e-6, L.max_range, hit)) continue;
+        std::uint64_t rs = scan_seed ^ (static_cast<std::uint64_t>(idx) * 0x9E3779B97F4A7C15ULL);
+        splitmix64(rs);
+        const double cos_inc = std::abs(hit.normal.dot(ray.d));
+        if (cos_inc < L.grazing_cos) continue;
+        const MaterialProps& m = materials[hit.material < kCount ? hit.material : 0];
+        if (uniform01(rs) > m.return_prob * (1.0 - L.dropout)) continue;
+        // Detection probability falls off steeply around a range that grows with the returned signal.
+        const double signal = std::max(1e-4, m.reflectivity * cos_inc);
+        const double r50 = L.detection_range * std::sqrt(signal / 0.1);
+        const double q = hit.t / r50;
+        const double q2 = q * q, q4 = q2 * q2;
+        if (uniform01(rs) > 1.0 / (1.0 + q4 * q4)) continue;
+        double r = hit.t + L.range_sigma * gaussian(rs);
+        if (m.depth_spread > 0.0f && L.foliage_spread > 0.0) r += L.foliage_spread * m.depth_spread * uniform01(rs);
+        if (r < L.min_range || r > L.max_range) continue;
+        range[idx] = static_cast<float>(r);
+        intensity[idx] = static_cast<float>(std::min(L.intensity_scale * signal * (0.95 + 0.1 * uniform01(rs)), 65535.0));
+      }
+    }
+  });
+
+  Scan scan;
+  scan.stamp = stamp;
+  std::size_t valid = 0;
+  for (float r : range) valid += std::isfinite(r) ? 1 : 0;
+  scan.reserve(valid);
+  for (int b = 0; b < B; ++b)
+    for (int c = 0; c < C; ++c) {
+      const std::size_t idx = static_cast<std::size_t>(b) * C + c;
+      if (!std::isfinite(range[idx])) continue;
+      scan.points.push_back((range[idx] * dirs_[idx]).cast<float>());
+      scan.intensity.push_back(intensity[idx]);
+      scan.time.push_back(static_cast<float>(L.columnTime(c)));
+      scan.ring.push_back(static_cast<std::uint16_t>(b));
+    }
+  return scan;
+}
+
+}  // namespace cosmo::sim

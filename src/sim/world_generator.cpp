@@ -1,0 +1,374 @@
+#include "cosmo/sim/world_generator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <random>
+#include <sstream>
+
+#include <Eigen/Geometry>
+
+#include "cosmo/sim/material.hpp"
+
+namespace cosmo::sim {
+
+#define COSMO_SIM_WORLD_FIELDS(X)                                                                              \
+  X(blocks_x) X(blocks_y) X(block_min) X(block_max) X(street_half_width) X(sidewalk_width)                     \
+  X(footpath_half_width) X(footpath_fraction) X(diagonal_fraction) X(building_height_min) X(building_height_max) \
+  X(p_buildings) X(p_row) X(p_park) X(p_parking) X(tree_row_fraction) X(tree_spacing) X(pole_spacing)           \
+  X(parked_car_fraction) X(wall_fraction) X(outer_ring) X(terrain_margin)
+#define COSMO_SIM_TERRAIN_FIELDS(X) X(cell) X(amplitude) X(wavelength) X(waves) X(material_cell)
+
+WorldParams WorldParams::fromConfig(const ConfigNode& node) {
+  WorldParams p;
+#define X(f) node.read(#f, p.f);
+  COSMO_SIM_WORLD_FIELDS(X)
+#undef X
+  const ConfigNode t = node["terrain"];
+#define X(f) t.read(#f, p.terrain.f);
+  COSMO_SIM_TERRAIN_FIELDS(X)
+#undef X
+  return p;
+}
+
+std::string WorldParams::describe() const {
+  std::ostringstream os;
+  os << std::setprecision(17);
+#define X(f) os << #f << '=' << f << ';';
+  COSMO_SIM_WORLD_FIELDS(X)
+#undef X
+#define X(f) os << "terrain." #f << '=' << terrain.f << ';';
+  COSMO_SIM_TERRAIN_FIELDS(X)
+#undef X
+  return os.str();
+}
+
+namespace {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+struct Rect {
+  Vector2d lo, hi;
+  Vector2d size() const { return hi - lo; }
+  Vector2d center() const { return 0.5 * (lo + hi); }
+};
+
+struct TreeShape {
+  double trunk_radius, trunk_height, canopy_rx, canopy_rz;
+};
+
+struct RowTemplate {
+  double width, depth, height, gap;
+};
+
+class Builder {
+ public:
+  Builder(const WorldParams& p, std::mt19937_64& rng, Terrain& terrain, std::vector<Primitive>& prims)
+      : p_(p), rng_(rng), terrain_(terrain), prims_(prims) {
+    row_tree_ = {0.25, 3.0, 2.3, 1.9};
+    row_ = {uni(11.0, 15.0), uni(28.0, 36.0), uni(9.0, 15.0), uni(8.0, 12.0)};
+  }
+
+  double uni(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
+  bool chance(double prob) { return uni(0.0, 1.0) < prob; }
+
+  /// Box with its bottom buried below the local ground and z0..z1 measured from the ground at its centre
+  /// (z0 <= 0: down into the ground).
+  void box(const Vector2d& c, double lx, double ly, double z0, double z1, double yaw, std::uint8_t mat) {
+    const double g = terrain_.height(c.x(), c.y());
+    const double bottom = z0 <= 0.0 ? terrain_.minHeightAround(c.x(), c.y(), 0.5 * std::hypot(lx, ly)) - 0.3 : g + z0;
+    const double top = g + z1;
+    if (top <= bottom) return;
+    prims_.push_back(Primitive::box({c.x(), c.y(), 0.5 * (bottom + top)}, {0.5 * lx, 0.5 * ly, 0.5 * (top - bottom)},
+                                    yaw, mat));
+  }
+
+  void tree(const Vector2d& c, const TreeShape& s) {
+    const double g = terrain_.minHeightAround(c.x(), c.y(), s.trunk_radius);
+    prims_.push_back(Primitive::cylinder(c.x(), c.y(), g - 0.3, g + s.trunk_height + 0.5 * s.canopy_rz, s.trunk_radius, kBark));
+    prims_.push_back(Primitive::ellipsoid({c.x(), c.y(), g + s.trunk_height + s.canopy_rz * 0.8},
+                                          {s.canopy_rx, s.canopy_rx, s.canopy_rz}, kFoliage));
+  }
+
+  TreeShape randomTree() {
+    const double r = uni(0.15, 0.35);
+    return {r, uni(2.2, 4.5), uni(1.5, 3.5), uni(1.3, 3.0)};
+  }
+
+  void pole(const Vector2d& c, double height, double arm_yaw) {
+    const double g = terrain_.minHeightAround(c.x(), c.y(), 0.1);
+    prims_.push_back(Primitive::cylinder(c.x(), c.y(), g - 0.3, g + height, 0.08, kMetal));
+    const Vector2d a = c + 0.7 * Vector2d(std::cos(arm_yaw), std::sin(arm_yaw));
+    prims_.push_back(Primitive::box({a.x(), a.y(), g + height - 0.1}, {0.75, 0.12, 0.08}, arm_yaw, kMetal));
+  }
+
+  void car(const Vector2d& c, double yaw) {
+    const double len = uni(4.0, 4.8), wid = uni(1.7, 1.9);
+    box(c, len, wid, 0.25, uni(0.95, 1.1), yaw, kCarPaint);
+    const Vector2d cab = c - 0.1 * len * Vector2d(std::cos(yaw), std::sin(yaw));
+    box(cab, 0.55 * len, wid - 0.1, 0.9, uni(1.4, 1.6), yaw, kCarPaint);
+  }
+
+  /// Building of a random kind inside `lot` (axis-aligned lot, building rotated by yaw about the lot centre).
+  void building(const Rect& lot, double yaw) {
+    const Vector2d sz = lot.size();
+    if (sz.minCoeff() < 8.0) return;
+    const double h = uni(p_.building_height_min, p_.building_height_max);
+    const double lx = sz.x() * uni(0.6, 0.95), ly = sz.y() * uni(0.6, 0.95);
+    const Vector2d c = lot.center();
+    const std::uint8_t mat = pickFacade();
+    const double kind = uni(0.0, 1.0);
+    const Eigen::Rotation2Dd R(yaw);
+    auto part = [&](double ox, double oy, double px, double py, double ph) {
+      box(c + R * Vector2d(ox, oy), px, py, 0.0, ph, yaw, mat);
+    };
+    if (kind < 0.45 || std::min(lx, ly) < 20.0) {
+      part(0, 0, lx, ly, h);
+      if (chance(0.4)) part(0.25 * lx, 0, 0.5 * lx, ly + 3.0, std::min(h, 4.5));  // podium / canopy wing
+    } else if (kind < 0.8) {  // L-shape: two wings sharing a corner
+      const double w = std::min(uni(10.0, 16.0), 0.5 * std::min(lx, ly));
+      const double sx = chance(0.5) ? 1 : -1, sy = chance(0.5) ? 1 : -1;
+      part(0, sy * 0.5 * (ly - w), lx, w, h);
+      part(sx * 0.5 * (lx - w), -sy * 0.5 * w, w, ly - w, h * uni(0.7, 1.0));
+    } else {  // courtyard: four wings around an open yard, one gap for a gate
+      const double w = std::min(uni(9.0, 13.0), 0.3 * std::min(lx, ly));
+      part(0, 0.5 * (ly - w), lx, w, h);
+      part(0, -0.5 * (ly - w), lx, w, h);
+      const double gate = chance(0.5) ? 5.0 : 0.0;
+      part(0.5 * (lx - w), 0.5 * gate, w, ly - 2 * w - gate, h);
+      part(-0.5 * (lx - w), 0, w, ly - 2 * w, h);
+    }
+  }
+
+  std::uint8_t pickFacade() {
+    const double u = uni(0.0, 1.0);
+    return u < 0.45 ? kConcrete : (u < 0.85 ? kBrick : kGlassFacade);
+  }
+
+  void fillBuildings(const Rect& r) {
+    const Vector2d sz = r.size();
+    const int nx = sz.x() > 55.0 ? 2 : 1, ny = sz.y() > 55.0 ? 2 : 1;
+    for (int i = 0; i < nx; ++i)
+      for (int j = 0; j < ny; ++j) {
+        Rect lot{r.lo + Vector2d(i * sz.x() / nx, j * sz.y() / ny), r.lo + Vector2d((i + 1) * sz.x() / nx, (j + 1) * sz.y() / ny)};
+        lot.lo.array() += 2.0;
+        lot.hi.array() -= 2.0;
+        if (chance(0.12)) {  // an open lot: a few trees instead
+          fillTrees(lot, 0.4);
+          continue;
+        }
+        building(lot, 0.0);
+      }
+  }
+
+  /// Identical buildings in rows (one template for the whole world): places that look alike.
+  void fillRow(const Rect& r) {
+    const Vector2d sz = r.size();
+    const double pitch = row_.width + row_.gap;
+    const int n = std::max(1, static_cast<int>((sz.x() + row_.gap) / pitch));
+    const double x0 = r.center().x() - 0.5 * (n * pitch - row_.gap) + 0.5 * row_.width;
+    const int rows = sz.y() > 2 * row_.depth + 10.0 ? 2 : 1;
+    for (int k = 0; k < rows; ++k) {
+      const double y = rows == 1 ? r.center().y() : (k == 0 ? r.lo.y() + 0.5 * row_.depth : r.hi.y() - 0.5 * row_.depth);
+      for (int i = 0; i < n; ++i)
+        box({x0 + i * pitch, y}, row_.width, std::min(row_.depth, sz.y()), 0.0, row_.height, 0.0, kConcrete);
+    }
+  }
+
+  void fillTrees(const Rect& r, double density_per_100m2, const std::vector<std::pair<Vector2d, Vector2d>>& avoid = {}) {
+    const Vector2d sz = r.size();
+    if (sz.minCoeff() <= 0) return;
+    const int n = static_cast<int>(sz.x() * sz.y() / 100.0 * density_per_100m2);
+    std::vector<Vector2d> placed;
+    for (int k = 0, tries = 0; k < n && tries < 20 * n; ++tries) {
+      const Vector2d c(uni(r.lo.x(), r.hi.x()), uni(r.lo.y(), r.hi.y()));
+      bool ok = true;
+      for (const auto& q : placed) ok = ok && (q - c).norm() > 5.0;
+      for (const auto& [a, b] : avoid) {
+        const Vector2d ab = b - a;
+        const double s = std::clamp((c - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+        ok = ok && (a + s * ab - c).norm() > 4.5;
+      }
+      if (!ok) continue;
+      placed.push_back(c);
+      tree(c, randomTree());
+      ++k;
+    }
+  }
+
+  void fillPark(const Rect& r, const std::vector<std::pair<Vector2d, Vector2d>>& paths) {
+    fillTrees(r, 0.45, paths);
+    if (chance(0.5)) {  // a pavilion, turned
+      const Vector2d c = r.center() + Vector2d(uni(-0.2, 0.2) * r.size().x(), uni(-0.2, 0.2) * r.size().y());
+      bool clear = true;
+      for (const auto& [a, b] : paths) {
+        const Vector2d ab = b - a;
+        const double s = std::clamp((c - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+        clear = clear && (a + s * ab - c).norm() > 14.0;
+      }
+      if (clear) box(c, uni(8, 14), uni(6, 10), 0.0, uni(3.5, 6.0), uni(0, M_PI), kConcrete);
+    }
+    for (const auto& [a, b] : paths) {
+      const Vector2d ab = b - a;
+      const double len = ab.norm();
+      const Vector2d n = Vector2d(-ab.y(), ab.x()) / len;
+      for (double s = 12.0; s < len - 12.0; s += 20.0) pole(a + ab * (s / len) + 2.2 * n, 4.5, std::atan2(-n.y(), -n.x()));
+    }
+  }
+
+  void fillParking(const Rect& r) {
+    const double row_pitch = 16.0, slot = 2.7;
+    for (double y = r.lo.y() + 3.0; y + 5.0 <= r.hi.y(); y += row_pitch) {
+      for (double x = r.lo.x() + 2.0; x + 2.0 <= r.hi.x(); x += slot)
+        if (chance(0.7)) car({x, y + 2.5}, M_PI / 2 + (chance(0.5) ? 0.0 : M_PI) + uni(-0.05, 0.05));
+      if (y + 5.0 + 8.0 < r.hi.y())
+        for (double x = r.lo.x() + 8.0; x < r.hi.x() - 4.0; x += 25.0) pole({x, y + 8.0}, 8.0, 0.0);
+    }
+  }
+
+  void fillBlock(const Rect& r, int type, const std::vector<std::pair<Vector2d, Vector2d>>& paths) {
+    switch (type) {
+      case 0: fillBuildings(r); break;
+      case 1: fillRow(r); break;
+      case 2: fillPark(r, paths); break;
+      default: fillParking(r); break;
+    }
+  }
+
+  /// Kerbs, sidewalk, tree rows, poles, parked cars and walls along one street (a->b).
+  void street(const Vector2d& a, const Vector2d& b, bool is_street) {
+    const Vector2d ab = b - a;
+    const double len = ab.norm();
+    const Vector2d u = ab / len, n(-u.y(), u.x());
+    const double yaw = std::atan2(u.y(), u.x());
+    if (!is_street) {
+      terrain_.paintSegment(a, b, p_.footpath_half_width, kPaving);
+      for (double s = 15.0; s < len - 10.0; s += 30.0) pole(a + s * u + (p_.footpath_half_width + 0.8) * n, 4.5, yaw + M_PI / 2);
+      return;
+    }
+    const double hw = p_.street_half_width;
+    terrain_.paintSegment(a, b, hw + p_.sidewalk_width, kPaving);
+    terrain_.paintSegment(a, b, hw, kAsphalt);
+    const double clear = hw + p_.sidewalk_width + 1.0;  // keep junctions open
+    for (int side : {-1, 1}) {
+      const Vector2d off = side * n;
+      const double s0 = clear, s1 = len - clear;
+      // Kerb: short segments that follow the terrain.
+      for (double s = s0; s < s1; s += 4.0) {
+        const double l = std::min(4.0, s1 - s);
+        box(a + (s + 0.5 * l) * u + (hw + 0.08) * off, l, 0.16, 0.0, 0.13, yaw, kConcrete);
+      }
+      if (chance(p_.tree_row_fraction))
+        for (double s = s0 + 2.0; s < s1 - 1.0; s += p_.tree_spacing) tree(a + s * u + (hw + p_.sidewalk_width + 1.2) * off, row_tree_);
+      if (p_.pole_spacing > 0 && side == 1)
+        for (double s = s0 + 5.0; s < s1; s += p_.pole_spacing) pole(a + s * u + (hw + 0.5) * off, 7.0, std::atan2(-off.y(), -off.x()));
+      if (chance(p_.parked_car_fraction))
+        for (double s = s0 + 4.0; s < s1 - 4.0; s += 6.0)
+          if (chance(0.75)) car(a + s * u + (hw - 1.2) * off, yaw + (side > 0 ? 0.0 : M_PI));
+      if (chance(p_.wall_fraction)) {
+        const bool fence = chance(0.5);
+        const double d = hw + p_.sidewalk_width + 2.8;
+        for (double s = s0; s < s1; s += 5.0) {
+          const double l = std::min(5.0, s1 - s);
+          box(a + (s + 0.5 * l) * u + d * off, l, fence ? 0.06 : 0.3, 0.0, fence ? 1.8 : 2.2, yaw, fence ? kFence : kWall);
+        }
+      }
+    }
+  }
+
+  TreeShape row_tree_;
+  RowTemplate row_;
+
+ private:
+  const WorldParams& p_;
+  std::mt19937_64& rng_;
+  Terrain& terrain_;
+  std::vector<Primitive>& prims_;
+};
+
+}  // namespace
+
+World generateWorld(const WorldParams& p, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  const int bx = std::max(1, p.blocks_x), by = std::max(1, p.blocks_y);
+  std::vector<double> xs{0.0}, ys{0.0};
+  for (int i = 0; i < bx; ++i) xs.push_back(xs.back() + uni(p.block_min, std::max(p.block_min, p.block_max)));
+  for (int j = 0; j < by; ++j) ys.push_back(ys.back() + uni(p.block_min, std::max(p.block_min, p.block_max)));
+  // Centre the campus on the origin.
+  const double cx = 0.5 * xs.back(), cy = 0.5 * ys.back();
+  for (auto& x : xs) x -= cx;
+  for (auto& y : ys) y -= cy;
+
+  const double pad = p.outer_ring + p.terrain_margin;
+  Terrain terrain = Terrain::generate({xs.front() - pad, ys.front() - pad}, {xs.back() + pad, ys.back() + pad}, p.terrain, rng);
+  std::vector<Primitive> prims;
+  Builder b(p, rng, terrain, prims);
+
+  PathNetwork net;
+  auto node = [&](int i, int j) { return j * (bx + 1) + i; };
+  for (int j = 0; j <= by; ++j)
+    for (int i = 0; i <= bx; ++i) net.addNode({xs[i], ys[j]});
+  // Streets along the grid; some interior ones become footpaths.
+  struct Seg { int a, b; bool street; };
+  std::vector<Seg> segs;
+  for (int j = 0; j <= by; ++j)
+    for (int i = 0; i < bx; ++i) {
+      const bool interior = j > 0 && j < by;
+      segs.push_back({node(i, j), node(i + 1, j), !(interior && b.chance(p.footpath_fraction))});
+    }
+  for (int i = 0; i <= bx; ++i)
+    for (int j = 0; j < by; ++j) {
+      const bool interior = i > 0 && i < bx;
+      segs.push_back({node(i, j), node(i, j + 1), !(interior && b.chance(p.footpath_fraction))});
+    }
+  for (const auto& s : segs) net.addEdge(s.a, s.b, s.street);
+
+  // Blocks.
+  const double total = p.p_buildings + p.p_row + p.p_park + p.p_parking;
+  auto pickType = [&]() {
+    double u = uni(0.0, total > 0 ? total : 1.0);
+    if ((u -= p.p_buildings) < 0) return 0;
+    if ((u -= p.p_row) < 0) return 1;
+    if ((u -= p.p_park) < 0) return 2;
+    return 3;
+  };
+  const double inset = p.street_half_width + p.sidewalk_width + 2.0;
+  for (int j = 0; j < by; ++j)
+    for (int i = 0; i < bx; ++i) {
+      const Rect r{{xs[i] + inset, ys[j] + inset}, {xs[i + 1] - inset, ys[j + 1] - inset}};
+      const int type = pickType();
+      std::vector<std::pair<Vector2d, Vector2d>> paths;
+      if (type == 2 && b.chance(p.diagonal_fraction)) {
+        const bool up = b.chance(0.5);
+        const int na = up ? node(i, j) : node(i + 1, j), nb = up ? node(i + 1, j + 1) : node(i, j + 1);
+        net.addEdge(na, nb, false);
+        paths.emplace_back(net.nodes[na], net.nodes[nb]);
+      }
+      b.fillBlock(r, type, paths);
+    }
+  // The ring outside the outer streets: buildings or woods, so that the campus does not end in a void.
+  const double ring = p.outer_ring;
+  if (ring > inset + 5.0) {
+    std::vector<Rect> outer;
+    for (int i = 0; i < bx; ++i) {
+      outer.push_back({{xs[i] + inset, ys.front() - ring}, {xs[i + 1] - inset, ys.front() - inset}});
+      outer.push_back({{xs[i] + inset, ys.back() + inset}, {xs[i + 1] - inset, ys.back() + ring}});
+    }
+    for (int j = 0; j < by; ++j) {
+      outer.push_back({{xs.front() - ring, ys[j] + inset}, {xs.front() - inset, ys[j + 1] - inset}});
+      outer.push_back({{xs.back() + inset, ys[j] + inset}, {xs.back() + ring, ys[j + 1] - inset}});
+    }
+    for (const auto& r : outer) {
+      if (b.chance(0.55)) b.fillBuildings(r);
+      else b.fillTrees(r, 0.5);
+    }
+  }
+  for (const auto& s : segs) b.street(net.nodes[s.a], net.nodes[s.b], s.street);
+  for (std::size_t e = segs.size(); e < net.edges.size(); ++e)
+    terrain.paintSegment(net.nodes[net.edges[e].a], net.nodes[net.edges[e].b], p.footpath_half_width, kPaving);
+  return World(std::move(terrain), std::move(prims), std::move(net));
+}
+
+}  // namespace cosmo::sim

@@ -1,0 +1,155 @@
+// cosmo_simulate: writes a synthetic multi-trial sequence (MCD-style bags, pose_inW.csv ground truth and a
+// sequence config) from a generation config, cached by a hash of all parameters and the code version.
+//
+//   cosmo_simulate [--config config/sim/default.yaml | --small] [--out DIR] [--cache-dir DIR] [--no-cache] [--force]
+//
+// The last line printed is the path of the sequence config.
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <iostream>
+#include <string>
+
+#include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/pose_io.hpp"
+#include "cosmo/ros/bag_io.hpp"
+#include "cosmo/sim/scan_simulator.hpp"
+#include "cosmo/sim/sequence_planner.hpp"
+
+namespace fs = std::filesystem;
+using namespace cosmo;
+
+namespace {
+
+void usage() {
+  std::cerr << "usage: cosmo_simulate [--config FILE | --small] [--out DIR] [--cache-dir DIR] [--no-cache] [--force]\n"
+               "  --config FILE    generation parameters (default: config/sim/default.yaml of the source tree)\n"
+               "  --small          use config/sim/ci.yaml (a CI-sized sequence)\n"
+               "  --out DIR        put the sequence here (symlinks into the cache, or real files with --no-cache)\n"
+               "  --cache-dir DIR  cache root (default: $COSMO_SIM_CACHE, else ~/.cache/cosmo/sim)\n"
+               "  --no-cache       generate straight into --out, do not read or fill the cache\n"
+               "  --force          regenerate even when the cache holds this sequence\n";
+}
+
+fs::path defaultCacheDir() {
+  if (const char* c = std::getenv("COSMO_SIM_CACHE")) return c;
+  if (const char* x = std::getenv("XDG_CACHE_HOME")) return fs::path(x) / "cosmo" / "sim";
+  if (const char* h = std::getenv("HOME")) return fs::path(h) / ".cache" / "cosmo" / "sim";
+  return fs::temp_directory_path() / "cosmo_sim_cache";
+}
+
+void generate(const sim::SimulationParams& params, const fs::path& dir) {
+  bench::Stopwatch total;
+  std::cout << "planning world and routes (seed " << params.seed << ")..." << std::endl;
+  const auto seq = sim::planSequence(params);
+  const auto& world = *seq.world;
+  std::printf("world: %zu primitives, path network %zu junctions / %.0f m, terrain %.0f x %.0f m (%.1f s)\n",
+              world.objects().primitives().size(), world.network().nodes.size(), world.network().totalLength(),
+              world.terrain().hi().x() - world.terrain().lo().x(), world.terrain().hi().y() - world.terrain().lo().y(),
+              total.elapsedMs() * 1e-3);
+  sim::ScanSimulator simulator(world, params.lidar);
+  sim::writeSequenceConfig((dir / (params.name + ".yaml")).string(), params);
+  for (const auto& t : seq.trials) {
+    const auto& tp = t.params;
+    std::printf("trial %s (robot %s, %s): %zu junctions, %.0f m, %.1f s, %zu scans\n", tp.name.c_str(), tp.robot.c_str(),
+                tp.platform.c_str(), t.route.size(), t.body.length(), toSeconds(t.body.endStamp() - t.body.startStamp()),
+                t.scan_stamps.size());
+    std::fflush(stdout);
+    writeMcdPoseCsv((dir / (tp.name + "_pose_inW.csv")).string(), t.body);
+    ros_glue::ScanBagWriter bag((dir / (tp.name + ".bag")).string());
+    const Pose3 extrinsic = tp.extrinsicPose();
+    bench::Stopwatch sw;
+    std::size_t points = 0;
+    std::future<void> pending;
+    const std::size_t n = t.scan_stamps.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      Scan scan = simulator.simulate(t.body, extrinsic, t.scan_stamps[k], t.noise_seed);
+      points += scan.size();
+      if (pending.valid()) pending.get();  // the previous scan is written while this one is cast
+      pending = std::async(std::launch::async, [&bag, &params, s = std::move(scan)]() {
+        bag.write(params.topic, s, params.frame_id);
+      });
+      if ((k + 1) % std::max<std::size_t>(1, n / 10) == 0 || k + 1 == n) {
+        const double sec = sw.elapsedMs() * 1e-3;
+        std::printf("  %s: %zu/%zu scans, %.0f points/scan, %.2f M rays/s, %.1f s\n", tp.name.c_str(), k + 1, n,
+                    static_cast<double>(points) / (k + 1),
+                    (k + 1) * static_cast<double>(params.lidar.raysPerScan()) / std::max(sec, 1e-9) * 1e-6, sec);
+        std::fflush(stdout);
+      }
+    }
+    if (pending.valid()) pending.get();
+    bag.close();
+  }
+  std::ofstream(dir / "parameters.txt") << params.describe() << "\n";
+  std::printf("generated in %.1f s\n", total.elapsedMs() * 1e-3);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string config, out, cache_dir;
+  bool small = false, no_cache = false, force = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::cerr << a << " needs a value\n";
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--config") config = value();
+    else if (a == "--out") out = value();
+    else if (a == "--cache-dir") cache_dir = value();
+    else if (a == "--small") small = true;
+    else if (a == "--no-cache") no_cache = true;
+    else if (a == "--force") force = true;
+    else if (a == "-h" || a == "--help") { usage(); return 0; }
+    else { std::cerr << "unknown argument " << a << "\n"; usage(); return 2; }
+  }
+  if (config.empty()) config = std::string(COSMO_SOURCE_DIR) + (small ? "/config/sim/ci.yaml" : "/config/sim/default.yaml");
+  if (no_cache && out.empty()) {
+    std::cerr << "--no-cache needs --out DIR\n";
+    return 2;
+  }
+  try {
+    const auto params = sim::SimulationParams::load(config);
+    const std::string key = params.name + "-" + params.hash();
+    const fs::path cache = cache_dir.empty() ? defaultCacheDir() : fs::path(cache_dir);
+    const fs::path final_dir = no_cache ? fs::path(out) : cache / key;
+    const std::string seq_name = params.name + ".yaml";
+    if (!no_cache && !force && fs::exists(final_dir / "COMPLETE")) {
+      std::cout << "cache hit: " << final_dir.string() << std::endl;
+    } else {
+      fs::path tmp = no_cache ? final_dir : fs::path(final_dir.string() + ".tmp-" + std::to_string(::getpid()));
+      fs::create_directories(tmp);
+      std::cout << "generating " << params.name << " (" << config << ") into " << final_dir.string() << std::endl;
+      generate(params, tmp);
+      std::ofstream(tmp / "COMPLETE") << key << "\n";
+      if (!no_cache) {
+        fs::remove_all(final_dir);
+        fs::rename(tmp, final_dir);
+      }
+    }
+    fs::path seq_path = final_dir / seq_name;
+    if (!no_cache && !out.empty()) {  // link the cached files into --out
+      fs::create_directories(out);
+      for (const auto& e : fs::directory_iterator(final_dir)) {
+        const fs::path link = fs::path(out) / e.path().filename();
+        std::error_code ec;
+        fs::remove(link, ec);
+        fs::create_symlink(fs::absolute(e.path()), link);
+      }
+      seq_path = fs::path(out) / seq_name;
+    }
+    std::cout << fs::absolute(seq_path).string() << std::endl;
+  } catch (const std::exception& e) {
+    std::cerr << "cosmo_simulate: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
