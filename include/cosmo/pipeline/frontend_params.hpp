@@ -1,0 +1,40 @@
+#pragma once
+// Parameters of one robot's front-end (spec section 4): its own keys in config/frontend.yaml plus the module
+// parameters it composes (config/odometry.yaml, place_recognition.yaml, registration.yaml).
+#include <string>
+
+#include "cosmo/common/config.hpp"
+#include "cosmo/odometry/loam_params.hpp"
+#include "cosmo/place_recognition/place_recognizer.hpp"
+#include "cosmo/registration/registration_params.hpp"
+
+namespace cosmo::pipeline {
+
+struct FrontendParams {
+  /// d_kf (m): a keyframe when the integrated odometry since the last one exceeds this (spec 4.2).
+  double keyframe_distance = 2.0;
+  /// Dewarp keyframe scans with the reference trajectory when the robot has one (spec 4.3); else odometry.
+  bool dewarp_with_reference = true;
+  /// Points closer than this (m) are dropped from the keyframe scans kept, offered and registered (0 = keep).
+  double keyframe_min_range = 0.0;
+  /// A keyframe's reference pose is taken from the reference trajectory when the stamp lies inside it or at
+  /// most this many seconds outside it (held at the nearest end); farther out the keyframe has none.
+  double reference_tolerance_s = 1.0;
+  /// Keep the registration features of every keyframe / received scan once computed (faster, more memory).
+  bool cache_features = true;
+
+  LoamParams loam;
+  PlaceRecognitionParams place;
+  RegistrationParams registration;
+
+  /// The front-end's own keys (root or `frontend` section of config/frontend.yaml).
+  static FrontendParams fromConfig(const ConfigNode& node);
+  /// Every file of a config folder that exists: frontend.yaml, odometry.yaml, place_recognition.yaml,
+  /// registration.yaml (a missing file keeps the defaults).
+  static FrontendParams loadDir(const std::string& config_dir);
+};
+
+/// The package's config folder in the source tree (compiled in), for tools run from a build tree.
+std::string defaultConfigDir();
+
+}  // namespace cosmo::pipeline

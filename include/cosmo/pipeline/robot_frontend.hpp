@@ -1,0 +1,126 @@
+#pragma once
+// One robot's front-end (spec section 4), the per-robot node of the shared object graph that both drivers
+// (the `frontend` ROS node and the offline TeamRun) drive:
+//   scan -> odometry (LOAM, or a pose from an external odometry source) -> keyframer (d_kf) -> dewarp
+//   (reference trajectory when given, else odometry) -> PlaceRecognizer (own + per-teammate databases) ->
+//   GlobalRegistration of every candidate -> loop-closure measurements stamped with the time they were computed.
+// It keeps its dewarped keyframe scans (points only, the radio payload) to offer to teammates, and takes
+// teammates' scans with receiveTeammateScan().
+//
+// Measurement convention (what the recorder expects): key1 is always this robot's pose and
+// measurement = T_key1^-1 * T_key2, i.e. GlobalRegistration's T_target_source with target = own keyframe scan
+// and source = the matched scan. For an intra-robot closure key1 is the newer keyframe (the query).
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cosmo/common/pose.hpp"
+#include "cosmo/common/scan.hpp"
+#include "cosmo/common/trajectory.hpp"
+#include "cosmo/odometry/keyframer.hpp"
+#include "cosmo/odometry/loam_odometry.hpp"
+#include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/place_recognition/place_recognizer.hpp"
+#include "cosmo/registration/global_registration.hpp"
+
+namespace cosmo::pipeline {
+
+/// A keyframe this robot took.
+struct KeyframeRecord {
+  char robot = 'a';
+  std::size_t index = 0;
+  StampNs stamp = 0;
+  Pose3 odom_pose = Pose3::Identity();  ///< sensor pose in this robot's odometry frame
+  Pose3 relative = Pose3::Identity();   ///< odometry from the previous keyframe (identity for index 0)
+  std::optional<Pose3> reference;       ///< sensor pose in the world frame (reference trajectory)
+};
+
+/// One registered loop-closure candidate (accepted or not).
+struct LoopClosureAttempt {
+  char owner = 'a';          ///< the robot that computed it (= key1's robot)
+  StampNs computed_at = 0;   ///< keyframe stamp, or the time the teammate's scan was received
+  char robot1 = 'a';         ///< key1 = (robot1, index1), always the owner's pose
+  std::size_t index1 = 0;
+  char robot2 = 'a';         ///< key2 = (robot2, index2)
+  std::size_t index2 = 0;
+  Pose3 measurement = Pose3::Identity();  ///< T_key1^-1 * T_key2
+  bool accepted = false;     ///< the registration gate's verdict (only accepted ones are measurements)
+  double descriptor_distance = 1.0;
+  std::size_t inliers = 0;
+  std::string reason;        ///< the registration's reason ("ok" or why it was rejected)
+  bool inter() const { return robot1 != robot2; }
+};
+
+/// What one scan produced.
+struct ScanOutcome {
+  OdometryResult odometry;                  ///< pose (sensor, odometry frame) at the scan stamp
+  std::optional<KeyframeRecord> keyframe;   ///< set when the scan became a keyframe
+  std::vector<LoopClosureAttempt> loop_closures;
+};
+
+class RobotFrontend {
+ public:
+  /// `reference`: the robot's sensor (LiDAR) trajectory in the world frame, in sequence time (may be empty).
+  RobotFrontend(char robot, const FrontendParams& params, Trajectory reference = {});
+
+  /// Next scan (sensor frame, stamps increasing), odometry by LOAM.
+  ScanOutcome processScan(const Scan& scan);
+  /// Next scan with its sensor pose from an external odometry source (any fixed odometry frame).
+  ScanOutcome processScan(const Scan& scan, const Pose3& external_odom_pose);
+  /// A teammate's keyframe scan (points, sensor frame) received at `received_at`: searched against the own
+  /// database, stored in that teammate's database; returns the registered candidates.
+  std::vector<LoopClosureAttempt> receiveTeammateScan(char teammate, std::size_t index, const Scan& scan,
+                                                      StampNs received_at);
+  /// The same sharing the scan (the offline driver hands the sender's own copy: xz is lossless).
+  std::vector<LoopClosureAttempt> receiveTeammateScan(char teammate, std::size_t index,
+                                                      std::shared_ptr<const Scan> scan, StampNs received_at);
+
+  char robot() const { return robot_; }
+  const FrontendParams& params() const { return params_; }
+  /// Dewarped keyframe scan (points only, stamp = keyframe stamp); nullptr for an unknown index.
+  const Scan* keyframeScan(std::size_t index) const;
+  std::shared_ptr<const Scan> keyframeScanShared(std::size_t index) const;
+  const std::vector<KeyframeRecord>& keyframes() const { return keyframes_; }
+  std::size_t scansProcessed() const { return scans_; }
+  const Pose3& lastOdomPose() const { return last_pose_; }
+  StampNs lastStamp() const { return last_stamp_; }
+  bool hasReference() const { return !reference_.empty(); }
+  const Trajectory& reference() const { return reference_; }
+  /// Reference pose at `stamp` (within the tolerance), else nullopt.
+  std::optional<Pose3> referenceAt(StampNs stamp) const;
+  /// Counters.
+  std::size_t loopClosuresAccepted() const { return accepted_; }
+  std::size_t loopClosuresRejected() const { return rejected_; }
+  std::size_t teammateScansReceived() const { return received_; }
+
+ private:
+  ScanOutcome afterOdometry(const Scan& scan, OdometryResult odometry);
+  Scan keyframeScanOf(const Scan& scan) const;
+  LoopClosureAttempt registerPair(char own_query_robot, const LoopCandidate& c, StampNs computed_at);
+  const FeatureCloud& features(char robot, std::size_t index);
+  const Scan* storedScan(char robot, std::size_t index) const;
+
+  char robot_;
+  FrontendParams params_;
+  Trajectory reference_;
+  LoamOdometry odometry_;
+  Keyframer keyframer_;
+  PlaceRecognizer recognizer_;
+  GlobalRegistration registration_;
+
+  std::vector<KeyframeRecord> keyframes_;
+  std::map<std::size_t, std::shared_ptr<const Scan>> own_scans_;
+  std::map<char, std::map<std::size_t, std::shared_ptr<const Scan>>> teammate_scans_;
+  std::map<std::pair<char, std::size_t>, FeatureCloud> feature_cache_;
+  FeatureCloud scratch_features_;
+
+  Trajectory recent_odometry_;  ///< last few odometry poses (dewarping without a reference)
+  Pose3 last_pose_ = Pose3::Identity();
+  StampNs last_stamp_ = 0;
+  std::size_t scans_ = 0, accepted_ = 0, rejected_ = 0, received_ = 0;
+};
+
+}  // namespace cosmo::pipeline

@@ -1,0 +1,89 @@
+#pragma once
+// The whole team in one process, the offline driver of the shared object graph (design.md principle 4):
+// one RobotFrontend per robot, the RadioSimulator (comm) between them and the DatasetRecorder (dataset)
+// gathering every measurement. Deterministic: single-threaded order of events, all randomness from the seed.
+//
+// Event order (what the lockstep ROS launch reproduces): radio steps lie on the grid origin + k * delta. Before
+// a scan stamped s is processed, every radio step at a time <= s runs: robot states are set (on once the robot
+// processed its first scan, position from its reference trajectory held at the ends, or its odometry position
+// without one), the step runs, and each delivered scan is handed to its receiver at the step time (the time
+// its loop closures are computed at). Then the scan goes through its robot's front-end; a new keyframe is
+// offered to the radio and recorded, accepted loop closures are recorded.
+//
+// Payload: with the paper's size model the delivered scan is the sender's own keyframe scan (xz is lossless,
+// so decompress(compress(scan)) is the same points); with the real size model the scan is compressed for its
+// size and the receiver gets the decompressed copy.
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cosmo/comm/radio_params.hpp"
+#include "cosmo/comm/radio_simulator.hpp"
+#include "cosmo/dataset/dataset_recorder.hpp"
+#include "cosmo/dataset/noise_models.hpp"
+#include "cosmo/dataset/outlier_rule.hpp"
+#include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/pipeline/robot_frontend.hpp"
+
+namespace cosmo::pipeline {
+
+struct TeamRunParams {
+  FrontendParams frontend;
+  RadioParams radio = RadioParams::wifi();
+  NoiseModels noise;
+  OutlierRule outlier_rule = OutlierRule::Fidelity;
+  /// Take each robot's odometry from its reference trajectory instead of LOAM (perfect odometry: tests, and
+  /// isolating loop-closure errors). Robots without a reference use LOAM.
+  bool reference_odometry = false;
+};
+
+/// Running totals for progress output.
+struct TeamCounts {
+  std::size_t scans = 0;
+  std::size_t keyframes = 0;
+  std::size_t intra_accepted = 0, intra_rejected = 0;
+  std::size_t inter_accepted = 0, inter_rejected = 0;
+  std::size_t transfers_delivered = 0, transfers_timed_out = 0;
+  std::size_t recorder_rejected = 0;  ///< measurements the recorder refused (logged)
+};
+
+class TeamRun {
+ public:
+  /// `references`: robot -> sensor trajectory in the world frame, sequence time (an empty one: no reference).
+  /// `time_origin`: sequence time of radio time 0 (the sequence start).
+  TeamRun(std::string dataset_name, std::map<char, Trajectory> references, const TeamRunParams& params,
+          std::uint64_t radio_seed, StampNs time_origin);
+
+  /// Runs the radio through `scan.stamp`, then the scan through `robot`'s front-end.
+  void addScan(char robot, const Scan& scan);
+  /// Runs the radio through `end` (the sequence end) so late transfers are delivered.
+  void finish(StampNs end);
+
+  const DatasetRecorder& recorder() const { return recorder_; }
+  const RadioSimulator& radio() const { return radio_; }
+  const RobotFrontend& frontend(char robot) const;
+  const TeamCounts& counts() const { return counts_; }
+  std::vector<char> robots() const;
+  /// Recorder messages (refused measurements), for the log.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  /// Called for every loop-closure attempt (progress, visualisation); optional.
+  std::function<void(const LoopClosureAttempt&)> on_loop_closure;
+
+ private:
+  void advanceRadioTo(StampNs t);
+  void record(const LoopClosureAttempt& a);
+  StampNs toStamp(double radio_time) const;
+
+  TeamRunParams params_;
+  std::map<char, std::unique_ptr<RobotFrontend>> frontends_;
+  RadioSimulator radio_;
+  DatasetRecorder recorder_;
+  StampNs origin_;
+  TeamCounts counts_;
+  std::vector<std::string> warnings_;
+};
+
+}  // namespace cosmo::pipeline

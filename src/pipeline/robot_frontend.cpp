@@ -1,0 +1,192 @@
+#include "cosmo/pipeline/robot_frontend.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "cosmo/odometry/dewarp.hpp"
+
+namespace cosmo::pipeline {
+
+RobotFrontend::RobotFrontend(char robot, const FrontendParams& params, Trajectory reference)
+    : robot_(robot),
+      params_(params),
+      reference_(std::move(reference)),
+      odometry_(params.loam),
+      keyframer_(params.keyframe_distance),
+      recognizer_(robot, params.place),
+      registration_(params.registration) {}
+
+std::optional<Pose3> RobotFrontend::referenceAt(StampNs stamp) const {
+  if (reference_.empty()) return std::nullopt;
+  if (auto p = reference_.at(stamp)) return p;
+  const StampNs tol = toStampNs(params_.reference_tolerance_s);
+  const StampNs start = reference_.startStamp(), end = reference_.endStamp();
+  if ((stamp < start && start - stamp <= tol) || (stamp > end && stamp - end <= tol)) return reference_.atClamped(stamp);
+  return std::nullopt;
+}
+
+ScanOutcome RobotFrontend::processScan(const Scan& scan) { return afterOdometry(scan, odometry_.update(scan)); }
+
+ScanOutcome RobotFrontend::processScan(const Scan& scan, const Pose3& external_odom_pose) {
+  OdometryResult r;
+  r.pose = external_odom_pose;
+  r.delta = scans_ == 0 ? Pose3::Identity() : last_pose_.inverse() * external_odom_pose;
+  r.initial_guess = "external";
+  r.num_points = scan.size();
+  if (!external_odom_pose.matrix().allFinite()) {
+    r.ok = false;
+    r.warning = "external odometry pose is not finite; previous pose kept";
+    r.pose = last_pose_;
+    r.delta = Pose3::Identity();
+  }
+  return afterOdometry(scan, r);
+}
+
+Scan RobotFrontend::keyframeScanOf(const Scan& scan) const {
+  // Dewarp with the reference trajectory when there is one (no odometry error inherited), else odometry.
+  Scan dewarped;
+  if (scan.hasTime()) {
+    if (params_.dewarp_with_reference && !reference_.empty()) {
+      dewarped = dewarp(scan, [this](StampNs t) { return reference_.atClamped(t); });
+    } else {
+      dewarped = dewarp(scan, [this](StampNs t) { return recent_odometry_.atClamped(t); });
+    }
+  } else {
+    dewarped = scan;
+  }
+  // The kept / offered scan carries only points (the radio payload), without NaN or too-close points.
+  Scan out;
+  out.stamp = scan.stamp;
+  const Scan valid = removeInvalidPoints(dewarped, static_cast<float>(params_.keyframe_min_range));
+  out.points = valid.points;
+  return out;
+}
+
+ScanOutcome RobotFrontend::afterOdometry(const Scan& scan, OdometryResult odometry) {
+  ScanOutcome out;
+  ++scans_;
+  // The odometry track for dewarping: the previous pose and this one cover the sweep.
+  std::vector<StampedPose> track;
+  if (!recent_odometry_.empty() && recent_odometry_.endStamp() < scan.stamp)
+    track.push_back(recent_odometry_.poses().back());
+  track.push_back({scan.stamp, odometry.pose});
+  recent_odometry_ = Trajectory(track);
+  last_pose_ = odometry.pose;
+  last_stamp_ = scan.stamp;
+  out.odometry = odometry;
+
+  const KeyframeDecision kd = keyframer_.update(odometry.pose);
+  if (!kd.is_keyframe) return out;
+
+  KeyframeRecord kf;
+  kf.robot = robot_;
+  kf.index = kd.index;
+  kf.stamp = scan.stamp;
+  kf.odom_pose = odometry.pose;
+  kf.relative = kd.index == 0 ? Pose3::Identity() : kd.relative;
+  kf.reference = referenceAt(scan.stamp);
+  keyframes_.push_back(kf);
+  out.keyframe = kf;
+
+  Scan kf_scan = keyframeScanOf(scan);
+  const std::vector<LoopCandidate> candidates = recognizer_.addOwnKeyframe(kd.index, kf_scan);
+  own_scans_[kd.index] = std::make_shared<const Scan>(std::move(kf_scan));
+  for (const auto& c : candidates) out.loop_closures.push_back(registerPair(robot_, c, scan.stamp));
+  return out;
+}
+
+std::vector<LoopClosureAttempt> RobotFrontend::receiveTeammateScan(char teammate, std::size_t index,
+                                                                   const Scan& scan, StampNs received_at) {
+  auto kept = std::make_shared<Scan>();
+  kept->stamp = scan.stamp;
+  kept->points = removeInvalidPoints(scan).points;
+  return receiveTeammateScan(teammate, index, std::shared_ptr<const Scan>(std::move(kept)), received_at);
+}
+
+std::vector<LoopClosureAttempt> RobotFrontend::receiveTeammateScan(char teammate, std::size_t index,
+                                                                   std::shared_ptr<const Scan> scan,
+                                                                   StampNs received_at) {
+  if (teammate == robot_) throw std::invalid_argument(std::string("robot ") + robot_ + ": received its own scan");
+  if (!scan) throw std::invalid_argument(std::string("robot ") + robot_ + ": received a null scan");
+  ++received_;
+  const std::vector<LoopCandidate> candidates = recognizer_.addTeammateScan(teammate, index, *scan);
+  teammate_scans_[teammate][index] = std::move(scan);
+  std::vector<LoopClosureAttempt> out;
+  for (const auto& c : candidates) out.push_back(registerPair(teammate, c, received_at));
+  return out;
+}
+
+const Scan* RobotFrontend::keyframeScan(std::size_t index) const { return storedScan(robot_, index); }
+
+std::shared_ptr<const Scan> RobotFrontend::keyframeScanShared(std::size_t index) const {
+  auto it = own_scans_.find(index);
+  return it == own_scans_.end() ? nullptr : it->second;
+}
+
+const Scan* RobotFrontend::storedScan(char robot, std::size_t index) const {
+  if (robot == robot_) {
+    auto it = own_scans_.find(index);
+    return it == own_scans_.end() ? nullptr : it->second.get();
+  }
+  auto t = teammate_scans_.find(robot);
+  if (t == teammate_scans_.end()) return nullptr;
+  auto it = t->second.find(index);
+  return it == t->second.end() ? nullptr : it->second.get();
+}
+
+const FeatureCloud& RobotFrontend::features(char robot, std::size_t index) {
+  const Scan* scan = storedScan(robot, index);
+  if (!scan) throw std::logic_error("robot frontend: no stored scan for a place-recognition candidate");
+  if (!params_.cache_features) {
+    scratch_features_ = registration_.prepare(*scan);
+    return scratch_features_;
+  }
+  const auto key = std::make_pair(robot, index);
+  auto it = feature_cache_.find(key);
+  if (it == feature_cache_.end()) it = feature_cache_.emplace(key, registration_.prepare(*scan)).first;
+  return it->second;
+}
+
+LoopClosureAttempt RobotFrontend::registerPair(char query_robot, const LoopCandidate& c, StampNs computed_at) {
+  // key1 = the own pose: the query when the query is an own keyframe, else the matched own keyframe.
+  LoopClosureAttempt a;
+  a.owner = robot_;
+  a.computed_at = computed_at;
+  a.descriptor_distance = c.distance;
+  if (c.query_robot == robot_) {
+    a.robot1 = robot_;
+    a.index1 = c.query_index;
+    a.robot2 = c.match_robot;
+    a.index2 = c.match_index;
+  } else {
+    a.robot1 = robot_;
+    a.index1 = c.match_index;
+    a.robot2 = c.query_robot;
+    a.index2 = c.query_index;
+  }
+  (void)query_robot;
+  // target = own keyframe scan (key1), source = the other scan (key2): T_target_source = T_key1^-1 T_key2.
+  RegistrationResult r;
+  if (params_.cache_features) {
+    const FeatureCloud& target = features(a.robot1, a.index1);
+    const FeatureCloud& source = features(a.robot2, a.index2);
+    r = registration_.align(source, target);
+  } else {
+    const Scan* target = storedScan(a.robot1, a.index1);
+    const Scan* source = storedScan(a.robot2, a.index2);
+    if (!target || !source) throw std::logic_error("robot frontend: no stored scan for a candidate");
+    r = registration_.align(*source, *target);
+  }
+  a.measurement = r.T_target_source;
+  a.inliers = r.final_inliers;
+  a.reason = r.reason;
+  a.accepted = r.valid && a.measurement.matrix().allFinite();
+  if (a.accepted) {
+    ++accepted_;
+  } else {
+    ++rejected_;
+  }
+  return a;
+}
+
+}  // namespace cosmo::pipeline

@@ -1,0 +1,124 @@
+#include "cosmo/pipeline/team_run.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "cosmo/comm/scan_compression.hpp"
+#include "cosmo/jrl/dataset.hpp"
+
+namespace cosmo::pipeline {
+
+namespace {
+std::vector<char> keysOf(const std::map<char, Trajectory>& m) {
+  std::vector<char> r;
+  for (const auto& [k, v] : m) r.push_back(k);
+  return r;
+}
+}  // namespace
+
+TeamRun::TeamRun(std::string dataset_name, std::map<char, Trajectory> references, const TeamRunParams& params,
+                 std::uint64_t radio_seed, StampNs time_origin)
+    : params_(params),
+      radio_(params.radio, keysOf(references), radio_seed),
+      recorder_(std::move(dataset_name), keysOf(references), params.noise, params.outlier_rule),
+      origin_(time_origin) {
+  for (auto& [robot, ref] : references)
+    frontends_[robot] = std::make_unique<RobotFrontend>(robot, params.frontend, std::move(ref));
+}
+
+std::vector<char> TeamRun::robots() const { return radio_.robots(); }
+
+const RobotFrontend& TeamRun::frontend(char robot) const {
+  auto it = frontends_.find(robot);
+  if (it == frontends_.end()) throw std::invalid_argument(std::string("team run: unknown robot '") + robot + "'");
+  return *it->second;
+}
+
+StampNs TeamRun::toStamp(double radio_time) const {
+  return origin_ + static_cast<StampNs>(std::llround(radio_time * 1e9));
+}
+
+void TeamRun::record(const LoopClosureAttempt& a) {
+  if (on_loop_closure) on_loop_closure(a);
+  if (a.inter()) {
+    ++(a.accepted ? counts_.inter_accepted : counts_.inter_rejected);
+  } else {
+    ++(a.accepted ? counts_.intra_accepted : counts_.intra_rejected);
+  }
+  if (!a.accepted) return;
+  LoopClosureMeasurement m;
+  m.owner = a.owner;
+  m.computed_at = a.computed_at;
+  m.key1 = jrl::symbol(a.robot1, a.index1);
+  m.key2 = jrl::symbol(a.robot2, a.index2);
+  m.measurement = a.measurement;
+  try {
+    recorder_.addLoopClosure(m);
+  } catch (const std::exception& e) {
+    ++counts_.recorder_rejected;
+    warnings_.push_back(std::string("loop closure refused by the recorder: ") + e.what());
+  }
+}
+
+void TeamRun::advanceRadioTo(StampNs t) {
+  if (t < origin_) return;
+  const double t_rel = static_cast<double>(t - origin_) * 1e-9;
+  while (radio_.nextStepTime() <= t_rel + 1e-9) {
+    const double step_time = radio_.nextStepTime();
+    const StampNs step_stamp = toStamp(step_time);
+    for (auto& [robot, fe] : frontends_) {
+      const bool on = fe->scansProcessed() > 0;
+      const Eigen::Vector3d position = fe->hasReference() ? Eigen::Vector3d(fe->reference().atClamped(step_stamp).translation())
+                                                          : Eigen::Vector3d(fe->lastOdomPose().translation());
+      radio_.setRobotState(robot, position, on);
+    }
+    const std::vector<Transfer> transfers = radio_.step(step_time);
+    for (const auto& tr : transfers) {
+      if (tr.outcome != Transfer::Outcome::Delivered) {
+        ++counts_.transfers_timed_out;
+        continue;
+      }
+      ++counts_.transfers_delivered;
+      std::shared_ptr<const Scan> scan = frontends_.at(tr.sender)->keyframeScanShared(tr.keyframe);
+      if (!scan) continue;
+      if (params_.radio.size_model == RadioParams::SizeModel::RealCompressed) {
+        Scan received = decompressScan(compressScan(*scan));
+        received.stamp = scan->stamp;
+        scan = std::make_shared<const Scan>(std::move(received));
+      }
+      for (const auto& a : frontends_.at(tr.receiver)->receiveTeammateScan(tr.sender, tr.keyframe, scan, step_stamp))
+        record(a);
+    }
+  }
+}
+
+void TeamRun::addScan(char robot, const Scan& scan) {
+  auto it = frontends_.find(robot);
+  if (it == frontends_.end()) throw std::invalid_argument(std::string("team run: unknown robot '") + robot + "'");
+  advanceRadioTo(scan.stamp);
+  RobotFrontend& fe = *it->second;
+  ++counts_.scans;
+  const ScanOutcome out = params_.reference_odometry && fe.hasReference()
+                              ? fe.processScan(scan, fe.reference().atClamped(scan.stamp))
+                              : fe.processScan(scan);
+  if (out.keyframe) {
+    const KeyframeRecord& kf = *out.keyframe;
+    ++counts_.keyframes;
+    try {
+      recorder_.addKeyframe(robot, kf.index, kf.stamp, kf.relative, kf.reference);
+    } catch (const std::exception& e) {
+      ++counts_.recorder_rejected;
+      warnings_.push_back(std::string("keyframe refused by the recorder: ") + e.what());
+    }
+    const Scan* kf_scan = fe.keyframeScan(kf.index);
+    const std::size_t raw = rawPayloadBytes(*kf_scan);
+    std::size_t payload = raw;
+    if (params_.radio.size_model == RadioParams::SizeModel::RealCompressed) payload = compressScan(*kf_scan).size();
+    radio_.offerKeyframe(robot, kf.index, payload, raw);
+  }
+  for (const auto& a : out.loop_closures) record(a);
+}
+
+void TeamRun::finish(StampNs end) { advanceRadioTo(end); }
+
+}  // namespace cosmo::pipeline

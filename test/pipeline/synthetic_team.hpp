@@ -1,0 +1,62 @@
+#pragma once
+// A tiny synthetic team for the pipeline tests, simulated in memory (no bags): the CI campus of
+// config/sim/ci.yaml with a lighter LiDAR and short routes. Deterministic in its parameters.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cosmo/common/scan.hpp"
+#include "cosmo/common/trajectory.hpp"
+#include "cosmo/pipeline/sequence_timing.hpp"
+#include "cosmo/sim/scan_simulator.hpp"
+#include "cosmo/sim/sequence_planner.hpp"
+#include "cosmo/sim/simulation_params.hpp"
+
+namespace cosmo::test {
+
+struct SyntheticTrial {
+  char robot = 'a';
+  std::vector<Scan> scans;  ///< recorded time, sensor frame
+  Trajectory body;          ///< body in world, recorded time
+  Pose3 extrinsic = Pose3::Identity();
+};
+
+/// `robots` trials starting at junction `start_node` (so they see the same place), each cut to its first
+/// `max_scans` scans; a light 32 x 512 LiDAR keeps the tests fast.
+inline std::vector<SyntheticTrial> makeSyntheticTeam(int robots, std::size_t max_scans, int start_node = 0) {
+  const std::vector<double> lengths(static_cast<std::size_t>(robots), 100.0);
+  const double return_fraction = 1.0;
+  sim::SimulationParams params = sim::SimulationParams::load(std::string(COSMO_SOURCE_DIR) + "/config/sim/ci.yaml");
+  params.lidar = sim::LidarModel::os1_32();
+  params.lidar.columns = 512;
+  params.trials.clear();
+  for (std::size_t i = 0; i < lengths.size(); ++i) {
+    sim::TrialParams t;
+    t.robot = std::string(1, static_cast<char>('a' + i));
+    t.name = "test_" + t.robot;
+    t.platform = "atv";
+    t.length = lengths[i];
+    t.start_node = start_node;
+    t.route.length = lengths[i];
+    t.route.start_node = start_node;
+    t.route.return_fraction = return_fraction;
+    t.motion.start_still = 0.5;
+    t.motion.end_still = 0.5;
+    params.trials.push_back(t);
+  }
+  const auto seq = sim::planSequence(params);
+  sim::ScanSimulator simulator(*seq.world, params.lidar);
+  std::vector<SyntheticTrial> out;
+  for (const auto& t : seq.trials) {
+    SyntheticTrial s;
+    s.robot = t.params.robot[0];
+    s.body = t.body;
+    s.extrinsic = t.params.extrinsicPose();
+    for (std::size_t k = 0; k < t.scan_stamps.size() && k < max_scans; ++k)
+      s.scans.push_back(simulator.simulate(t.body, s.extrinsic, t.scan_stamps[k], t.noise_seed));
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace cosmo::test

@@ -1,0 +1,138 @@
+// RobotFrontend on a tiny synthetic stream: keyframes every ~2 m, odometry chain, reference poses, and an
+// inter-robot loop closure from a teammate's scan taken at the same place.
+#include <gtest/gtest.h>
+
+#include "cosmo/pipeline/robot_frontend.hpp"
+#include "cosmo/pipeline/sequence_references.hpp"
+#include "synthetic_team.hpp"
+
+using namespace cosmo;
+using namespace cosmo::pipeline;
+
+namespace {
+
+FrontendParams testParams() {
+  FrontendParams p = FrontendParams::loadDir(defaultConfigDir());
+  p.place.exclude_recent = 5;
+  return p;
+}
+
+Trajectory sensorReference(const test::SyntheticTrial& t) {
+  TrialTiming identity;
+  identity.robot = t.robot;
+  return toSensorReference(t.body, t.extrinsic, identity);
+}
+
+const std::vector<test::SyntheticTrial>& team() {
+  static const auto t = test::makeSyntheticTeam(2, 60);
+  return t;
+}
+
+}  // namespace
+
+TEST(RobotFrontend, KeyframesEveryTwoMetresWithReferenceAndOdometryChain) {
+  const auto& trial = team()[0];
+  ASSERT_GT(trial.scans.size(), 20u);
+  // Odometry from the reference (external odometry): this tests the composition, not LOAM's accuracy.
+  const Trajectory ref = sensorReference(trial);
+  RobotFrontend fe('a', testParams(), ref);
+  std::vector<KeyframeRecord> kfs;
+  for (const auto& s : trial.scans) {
+    const auto out = fe.processScan(s, ref.atClamped(s.stamp));
+    if (out.keyframe) kfs.push_back(*out.keyframe);
+  }
+  ASSERT_GE(kfs.size(), 5u);
+  EXPECT_EQ(kfs.front().index, 0u);
+  EXPECT_EQ(kfs.front().stamp, trial.scans.front().stamp);
+  Trajectory covered;
+  for (const auto& p : ref.poses())
+    if (p.stamp <= trial.scans.back().stamp) covered.append(p.stamp, p.pose);
+  const double path = covered.length();
+  EXPECT_NEAR(static_cast<double>(kfs.size()), path / 2.0, path / 2.0 * 0.35 + 2.0);
+  Pose3 chained = kfs.front().odom_pose;
+  for (std::size_t i = 0; i < kfs.size(); ++i) {
+    EXPECT_EQ(kfs[i].index, i);
+    ASSERT_TRUE(kfs[i].reference.has_value());
+    if (i > 0) {
+      chained = chained * kfs[i].relative;
+      EXPECT_LT((chained.translation() - kfs[i].odom_pose.translation()).norm(), 1e-6);
+      const double step = kfs[i].relative.translation().norm();
+      EXPECT_GT(step, 1.5);
+      EXPECT_LT(step, 3.5);
+    }
+    const Scan* s = fe.keyframeScan(i);
+    ASSERT_NE(s, nullptr);
+    EXPECT_EQ(s->stamp, kfs[i].stamp);
+    EXPECT_GT(s->size(), 1000u);
+    for (const auto& p : s->points) ASSERT_TRUE(p.allFinite());
+  }
+}
+
+TEST(RobotFrontend, LoamOdometryRunsAndTakesKeyframeZeroAtTheFirstScan) {
+  const auto& trial = team()[0];
+  RobotFrontend fe('a', testParams(), sensorReference(trial));
+  std::size_t kfs = 0;
+  for (std::size_t i = 0; i < 20; ++i) {
+    const auto out = fe.processScan(trial.scans[i]);
+    if (out.keyframe) ++kfs;
+    if (i == 0) {
+      ASSERT_TRUE(out.keyframe.has_value());
+      EXPECT_EQ(out.keyframe->index, 0u);
+    }
+    EXPECT_TRUE(out.odometry.pose.matrix().allFinite());
+  }
+  EXPECT_EQ(fe.scansProcessed(), 20u);
+  EXPECT_EQ(fe.keyframes().size(), kfs);
+}
+
+TEST(RobotFrontend, TeammateScanAtTheSamePlaceGivesAnAcceptedInterRobotClosure) {
+  const auto& a = team()[0];
+  const auto& b = team()[1];
+  RobotFrontend fa('a', testParams(), sensorReference(a));
+  RobotFrontend fb('b', testParams(), sensorReference(b));
+  // a few scans each: keyframe 0 of both robots at the shared start junction
+  for (std::size_t i = 0; i < 5; ++i) {
+    fa.processScan(a.scans[i], fa.reference().atClamped(a.scans[i].stamp));
+    fb.processScan(b.scans[i], fb.reference().atClamped(b.scans[i].stamp));
+  }
+  ASSERT_NE(fa.keyframeScan(0), nullptr);
+  const auto attempts = fb.receiveTeammateScan('a', 0, *fa.keyframeScan(0), 123456789ULL);
+  ASSERT_FALSE(attempts.empty());
+  const auto& lc = attempts.front();
+  EXPECT_EQ(lc.owner, 'b');
+  EXPECT_EQ(lc.robot1, 'b');
+  EXPECT_EQ(lc.robot2, 'a');
+  EXPECT_EQ(lc.index2, 0u);
+  EXPECT_EQ(lc.computed_at, 123456789ULL);
+  ASSERT_TRUE(lc.accepted) << lc.reason;
+  const Pose3 truth = fb.keyframes()[lc.index1].reference->inverse() * *fa.keyframes()[0].reference;
+  EXPECT_LT((truth.translation() - lc.measurement.translation()).norm(), 0.3);
+  EXPECT_LT(rotationAngle(truth.inverse() * lc.measurement), 0.05);
+  EXPECT_EQ(fb.teammateScansReceived(), 1u);
+  EXPECT_THROW(fb.receiveTeammateScan('b', 0, *fa.keyframeScan(0), 0), std::invalid_argument);
+}
+
+TEST(RobotFrontend, ExternalOdometryAndDegenerateScansDoNotCrash) {
+  RobotFrontend fe('a', testParams());
+  Scan empty;
+  empty.stamp = 1000;
+  EXPECT_NO_THROW(fe.processScan(empty));
+  Scan nan_scan;
+  nan_scan.stamp = 2000;
+  nan_scan.points.assign(100, Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN()));
+  EXPECT_NO_THROW(fe.processScan(nan_scan));
+  // external odometry: keyframes follow the given poses
+  RobotFrontend ext('b', testParams());
+  std::size_t kfs = 0;
+  for (int i = 0; i < 30; ++i) {
+    Scan s;
+    s.stamp = 1000000000ULL + i * 100000000ULL;
+    s.points = {Eigen::Vector3f(5, 0, 0), Eigen::Vector3f(0, 5, 0)};
+    Pose3 pose = Pose3::Identity();
+    pose.translation() = Eigen::Vector3d(0.5 * i, 0, 0);
+    if (ext.processScan(s, pose).keyframe) ++kfs;
+  }
+  EXPECT_EQ(kfs, 6u);  // 0 at 0 m, then at 2.5, 5, 7.5, 10, 12.5 m (more than 2 m since the last)
+  EXPECT_FALSE(ext.hasReference());
+  EXPECT_FALSE(ext.keyframes().front().reference.has_value());
+}
