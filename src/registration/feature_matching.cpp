@@ -7,7 +7,7 @@
 namespace cosmo {
 
 std::vector<Correspondence> matchFeatures(const FpfhMatrix& source, const FpfhMatrix& target, std::size_t max_count,
-                                          bool mutual) {
+                                          bool mutual, float eps) {
   std::vector<Correspondence> out;
   const auto ns = static_cast<std::size_t>(source.cols());
   const auto nt = static_cast<std::size_t>(target.cols());
@@ -17,7 +17,7 @@ std::vector<Correspondence> matchFeatures(const FpfhMatrix& source, const FpfhMa
   std::vector<int> s2t(ns);
   std::vector<float> s2t_d(ns);
   for (std::size_t i = 0; i < ns; ++i) {
-    const auto [j, d] = target_tree.nearest(source.col(static_cast<Eigen::Index>(i)).data());
+    const auto [j, d] = target_tree.nearest(source.col(static_cast<Eigen::Index>(i)).data(), eps);
     s2t[i] = j;
     s2t_d[i] = d;
   }
@@ -28,7 +28,7 @@ std::vector<Correspondence> matchFeatures(const FpfhMatrix& source, const FpfhMa
     const KdTree<kFpfhDim> source_tree(source.data(), ns);
     for (std::size_t j = 0; j < nt; ++j) {
       if (t2s[j] != -1) continue;
-      t2s[j] = source_tree.nearest(target.col(static_cast<Eigen::Index>(j)).data()).first;
+      t2s[j] = source_tree.nearest(target.col(static_cast<Eigen::Index>(j)).data(), eps).first;
     }
     for (std::size_t i = 0; i < ns; ++i)
       if (t2s[static_cast<std::size_t>(s2t[i])] == static_cast<int>(i))

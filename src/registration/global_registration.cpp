@@ -33,18 +33,20 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
   RegistrationResult r;
   r.source_points = src.points.size();
   r.target_points = tgt.points.size();
+  r.source_keypoints = src.keypoints.size();
+  r.target_keypoints = tgt.keypoints.size();
 
   // Correspondences in feature space.
   const std::vector<Correspondence> corr = matchFeatures(src.features, tgt.features, p.max_correspondences,
-                                                         p.mutual_filter);
+                                                         p.mutual_filter, static_cast<float>(p.matching_eps));
   r.correspondences = corr.size();
   notifyStage(observer, "matching");
 
   // Pairwise-consistency graph, max k-core, max clique.
   std::vector<Eigen::Vector3f> cs(corr.size()), ct(corr.size());
   for (std::size_t i = 0; i < corr.size(); ++i) {
-    cs[i] = src.points[static_cast<std::size_t>(corr[i].source)];
-    ct[i] = tgt.points[static_cast<std::size_t>(corr[i].target)];
+    cs[i] = src.points[static_cast<std::size_t>(src.keypoints[static_cast<std::size_t>(corr[i].source)])];
+    ct[i] = tgt.points[static_cast<std::size_t>(tgt.keypoints[static_cast<std::size_t>(corr[i].target)])];
   }
   std::vector<int> pruned;
   if (corr.size() >= 3) {

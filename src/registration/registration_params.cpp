@@ -19,9 +19,14 @@ RegistrationParams RegistrationParams::fromConfig(const ConfigNode& root) {
   node.read("max_range", p.max_range);
   node.read("normal_radius", p.normal_radius);
   node.read("fpfh_radius", p.fpfh_radius);
+  node.read("spfh_radius", p.spfh_radius);
   node.read("min_normal_neighbors", p.min_normal_neighbors);
+  node.read("max_linearity", p.max_linearity);
+  node.read("fast_features", p.fast_features);
+  node.read("keypoint_voxel", p.keypoint_voxel);
   node.read("max_correspondences", p.max_correspondences);
   node.read("mutual_filter", p.mutual_filter);
+  node.read("matching_eps", p.matching_eps);
   node.read("noise_bound", p.noise_bound);
   node.read("use_max_clique", p.use_max_clique);
   node.read("max_clique_nodes", p.max_clique_nodes);

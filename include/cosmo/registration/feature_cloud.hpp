@@ -12,9 +12,10 @@
 namespace cosmo {
 
 struct FeatureCloud {
-  std::vector<Eigen::Vector3f> points;   ///< downsampled points that have a valid normal (and a feature)
+  std::vector<Eigen::Vector3f> points;   ///< downsampled points that have a valid normal (used by the ICP)
   std::vector<Eigen::Vector3f> normals;  ///< their unit normals
-  FpfhMatrix features;                   ///< 33 x points.size()
+  std::vector<int> keypoints;            ///< indices into `points` of the points that carry a feature
+  FpfhMatrix features;                   ///< 33 x keypoints.size()
   std::size_t input_points = 0;          ///< points of the scan before downsampling
   std::size_t downsampled_points = 0;    ///< points after downsampling (before the normal filter)
 };

@@ -19,6 +19,8 @@ struct RegistrationResult {
   Pose3 T_target_source = Pose3::Identity();  ///< maps source points into the target frame
   std::size_t source_points = 0;      ///< feature points of the source (downsampled, with a normal)
   std::size_t target_points = 0;      ///< same for the target
+  std::size_t source_keypoints = 0;   ///< source points carrying an FPFH feature (keypoint subsampling)
+  std::size_t target_keypoints = 0;   ///< same for the target
   std::size_t correspondences = 0;    ///< mutual-NN correspondences after the cap
   std::size_t max_core_size = 0;      ///< vertices of the max k-core of the consistency graph
   std::size_t pruned_inliers = 0;     ///< correspondences surviving the pruning (max clique / k-core)

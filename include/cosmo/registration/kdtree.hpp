@@ -4,6 +4,7 @@
 #include <nanoflann.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -19,14 +20,15 @@ class KdTree {
   }
   std::size_t size() const { return adaptor_.count; }
 
-  /// Nearest neighbour: (index, squared distance); (-1, inf) for an empty tree.
-  std::pair<int, float> nearest(const float* query) const {
+  /// Nearest neighbour: (index, squared distance); (-1, inf) for an empty tree. With eps > 0 the search is
+  /// (1+eps)-approximate (still deterministic).
+  std::pair<int, float> nearest(const float* query, float eps = 0.f) const {
     if (adaptor_.count == 0) return {-1, std::numeric_limits<float>::infinity()};
     std::uint32_t idx = 0;
     float d2 = 0.f;
     nanoflann::KNNResultSet<float, std::uint32_t> rs(1);
     rs.init(&idx, &d2);
-    index_.findNeighbors(rs, query, nanoflann::SearchParams());
+    index_.findNeighbors(rs, query, nanoflann::SearchParams(32, eps));
     return {static_cast<int>(idx), d2};
   }
 

@@ -3,6 +3,7 @@
 // Defaults follow KISS-Matcher's gains for a 0.3 m voxel; every value is read from config/registration.yaml.
 #include <cstddef>
 #include <cstdint>
+#include <string>
 
 #include "cosmo/common/config.hpp"
 
@@ -16,14 +17,19 @@ struct RegistrationParams {
   // --- features ------------------------------------------------------------------------------------------
   double normal_radius = 0.9;     ///< radius (m) of the normal estimation (3 x voxel)
   double fpfh_radius = 1.5;       ///< radius (m) of the FPFH neighbourhood (5 x voxel)
+  double spfh_radius = 0.0;       ///< radius (m) of each point's SPFH (fast backend; 0 = fpfh_radius as PCL)
   std::size_t min_normal_neighbors = 5;  ///< points with fewer neighbours get no normal and no feature
+  double max_linearity = 0.99;    ///< drop points whose neighbourhood is this linear, (l1-l2)/l1 (fast backend)
+  double keypoint_voxel = 0.9;    ///< FPFH only for one point per voxel of this size (fast backend; 0 = all)
+  bool fast_features = true;      ///< own single-search normals+FPFH (true) or PCL NormalEstimation+FPFHEstimation
   // --- correspondences -----------------------------------------------------------------------------------
   std::size_t max_correspondences = 5000;  ///< cap on mutual-NN correspondences (best feature distance first)
   bool mutual_filter = true;      ///< keep only mutual nearest neighbours in feature space
+  double matching_eps = 1.0;      ///< (1+eps)-approximate kd-tree search in FPFH space; 0 = exact
   // --- pruning -------------------------------------------------------------------------------------------
   double noise_bound = 0.3;       ///< max residual (m) of an inlier correspondence; edges tolerate 2x this
   bool use_max_clique = true;     ///< max clique inside the max k-core (else the max k-core itself)
-  std::uint64_t max_clique_nodes = 20000;   ///< branch-and-bound node budget (deterministic cut-off)
+  std::uint64_t max_clique_nodes = 1000;    ///< branch-and-bound node budget (deterministic cut-off)
   // --- robust solve --------------------------------------------------------------------------------------
   double gnc_factor = 1.4;        ///< GNC-TLS: growth factor of the control parameter mu
   int gnc_max_iterations = 100;   ///< GNC-TLS: iteration cap
