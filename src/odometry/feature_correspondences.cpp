@@ -72,7 +72,7 @@ void associateFeatures(const std::vector<Eigen::Vector3d>& edges, const std::vec
       map.edges().knn(q, params.num_edge_neighbors, params.max_edge_neighbor_dist, idx);
       nb.clear();
       for (std::size_t k : idx) nb.push_back(map.edges().point(k));
-      if (auto c = fitLineConstraint(nb, q, params)) out.push_back({edges[i], c->normal, c->offset, true});
+      if (auto c = fitLineConstraint(nb, q, params)) out.push_back({edges[i], c->normal, c->offset, true, i, 1.0});
     }
   }
   if (map.planes().size() > 0) {
@@ -81,7 +81,7 @@ void associateFeatures(const std::vector<Eigen::Vector3d>& edges, const std::vec
       map.planes().knn(q, params.num_plane_neighbors, params.max_plane_neighbor_dist, idx);
       nb.clear();
       for (std::size_t k : idx) nb.push_back(map.planes().point(k));
-      if (auto c = fitPlaneConstraint(nb, params)) out.push_back({planes[i], c->normal, c->offset, false});
+      if (auto c = fitPlaneConstraint(nb, params)) out.push_back({planes[i], c->normal, c->offset, false, i, 1.0});
     }
   }
 }

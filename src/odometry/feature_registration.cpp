@@ -1,6 +1,7 @@
 #include "cosmo/odometry/feature_registration.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 #include "cosmo/odometry/dewarp.hpp"
@@ -17,6 +18,7 @@ Vector6 robustGaussNewtonStep(const std::vector<FeatureConstraint>& constraints,
     Vector6 J;
     J.head<3>() = q.cross(c.normal);  // d r / d omega for T <- exp([omega, v]) T
     J.tail<3>() = c.normal;
+    J *= c.jacobian_scale;
     const double a = std::abs(r);
     const double w = a <= huber_delta ? 1.0 : huber_delta / a;
     H.noalias() += w * J * J.transpose();
@@ -101,15 +103,14 @@ RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFea
     f.planar_points = subsample(features.planar_points, st.stride);
     f.edge_time = subsample(features.edge_time, st.stride);
     f.planar_time = subsample(features.planar_time, st.stride);
+    if (do_deskew) {
+      deskewConstantVelocity(f.edge_points, f.edge_time, deskew->delta, deskew->period, edges);
+      deskewConstantVelocity(f.planar_points, f.planar_time, deskew->delta, deskew->period, planes);
+    } else {
+      edges = f.edge_points;
+      planes = f.planar_points;
+    }
     for (int it = 0; it < params.max_icf_iterations; ++it) {
-      if (do_deskew) {
-        const Pose3 delta = deskew->previous_pose.inverse() * res.pose;
-        deskewConstantVelocity(f.edge_points, f.edge_time, delta, deskew->period, edges);
-        deskewConstantVelocity(f.planar_points, f.planar_time, delta, deskew->period, planes);
-      } else {
-        edges = f.edge_points;
-        planes = f.planar_points;
-      }
       associateFeatures(edges, planes, map, res.pose, params, cs);
       ++rounds;
       const Pose3 before = res.pose;

@@ -56,6 +56,8 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
                   std::to_string(scan.size()) + "); odometry starts at identity with an empty map";
     } else {
       map_.add(last_features_.edge_points, last_features_.planar_points);
+      first_features_ = last_features_;
+      first_needs_deskew_ = params_.deskew && (!first_features_.edge_time.empty() || !first_features_.planar_time.empty());
     }
     return r;
   }
@@ -74,7 +76,13 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
   const Pose3 cv_delta = predictMotion(last_delta_, last_period_, period);
   const std::size_t stride = std::max<std::size_t>(1, last_features_.size() / 400);
   Pose3 guess = pose_ * cv_delta;
-  double best = scorePose(last_features_, map_, guess, params_, stride);
+  // The constant-velocity guess is scored with the features deskewed by that motion, zero motion with the raw.
+  LoamFeatures cv_features = last_features_;
+  if (params_.deskew && period > 0.0) {
+    deskewConstantVelocity(last_features_.edge_points, last_features_.edge_time, cv_delta, period, cv_features.edge_points);
+    deskewConstantVelocity(last_features_.planar_points, last_features_.planar_time, cv_delta, period, cv_features.planar_points);
+  }
+  double best = scorePose(cv_features, map_, guess, params_, stride);
   r.initial_guess = "constant_velocity";
   const bool cv_is_zero = logSE3(cv_delta).norm() < 1e-6;
   if (!cv_is_zero && best < 0.9) {
@@ -101,9 +109,34 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
     }
   }
 
+  // Deskewing: features are deskewed with a motion over the sweep, first the constant-velocity prediction,
+  // then (when that was off by more than a few cm / mrad) the estimate, registering again from there.
+  const bool has_times = params_.deskew && period > 0.0 &&
+                         (!last_features_.edge_time.empty() || !last_features_.planar_time.empty());
+  const bool redo_first = first_needs_deskew_ && has_times && map_.numScans() == 1;
   std::optional<DeskewReference> deskew;
-  if (period > 0.0) deskew = DeskewReference{pose_, period};
-  const RegistrationResult reg = registerFeatures(last_features_, map_, guess, params_, deskew);
+  // Second scan against a first scan that could not be deskewed: both are equally distorted, so the first
+  // pass registers them raw; the first scan is then deskewed with that motion.
+  if (has_times && !redo_first) deskew = DeskewReference{cv_delta, period};
+  RegistrationResult reg = registerFeatures(last_features_, map_, guess, params_, deskew);
+  if (redo_first) {
+    const Pose3 delta = pose_.inverse() * reg.pose;
+    std::vector<Eigen::Vector3d> e0, p0;
+    deskewConstantVelocity(first_features_.edge_points, first_features_.edge_time, delta, period, e0);
+    deskewConstantVelocity(first_features_.planar_points, first_features_.planar_time, delta, period, p0);
+    map_.clear();
+    map_.add(transformed(pose_, e0), transformed(pose_, p0));
+  }
+  if (has_times) {
+    for (int pass = 0; pass < 3; ++pass) {
+      const Pose3 estimate = pose_.inverse() * reg.pose;
+      const Vector6 change = deskew ? logSE3(deskew->delta.inverse() * estimate) : Vector6::Constant(1.0);
+      if (change.head<3>().norm() < 1e-3 && change.tail<3>().norm() < 0.01) break;
+      deskew = DeskewReference{estimate, period};
+      reg = registerFeatures(last_features_, map_, reg.pose, params_, deskew);
+    }
+  }
+  first_needs_deskew_ = false;
   r.iterations = reg.iterations;
   r.inlier_fraction = reg.inlier_fraction;
   const std::size_t ncons = reg.num_edge_constraints + reg.num_plane_constraints;
@@ -123,7 +156,7 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
 
   // Insert this scan's (deskewed) features into the local map.
   std::vector<Eigen::Vector3d> edges, planes;
-  if (deskew && params_.deskew) {
+  if (has_times) {
     deskewConstantVelocity(last_features_.edge_points, last_features_.edge_time, r.delta, period, edges);
     deskewConstantVelocity(last_features_.planar_points, last_features_.planar_time, r.delta, period, planes);
   } else {

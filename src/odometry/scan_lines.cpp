@@ -34,12 +34,22 @@ std::vector<std::uint16_t> linesFromOrder(const std::vector<ValidPoint>& pts) {
     else if (std::abs(d) < 5.0f * kDeg) ++small_steps;
   }
   if (small_steps < 0.95 * static_cast<double>(pts.size()) || wraps < 8 || wraps > 256) return {};
+  // A new line at an azimuth wrap once the current line has swept most of a turn (jitter of the points near
+  // the seam can cross it back and forth).
   std::vector<std::uint16_t> line(pts.size(), 0);
   std::uint16_t current = 0;
+  float travel = 0.0f;
   for (std::size_t i = 1; i < pts.size(); ++i) {
-    if (std::abs(pts[i].azimuth - pts[i - 1].azimuth) > kPi) ++current;
+    const float d = pts[i].azimuth - pts[i - 1].azimuth;
+    if (std::abs(d) > kPi && travel > 1.5f * kPi) {
+      ++current;
+      travel = 0.0f;
+    } else {
+      travel += std::abs(wrapAngle(d));
+    }
     line[i] = current;
   }
+  if (current < 8 || current > 256) return {};
   return line;
 }
 

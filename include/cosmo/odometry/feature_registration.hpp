@@ -1,6 +1,7 @@
 #pragma once
-// Scan-to-local-map registration of LOAM features: iterate {deskew with the current motion estimate,
-// associate features with map lines / planes, one robust Gauss-Newton step}; Huber weights on the distances;
+// Scan-to-local-map registration of LOAM features: deskew the features with a given motion (the caller
+// iterates: prediction, then the estimate), then iterate {associate features with map lines / planes, robust
+// Gauss-Newton steps}, coarse (feature subsample) to fine; Huber weights on the distances;
 // directions the constraints do not determine (e.g. along a featureless corridor) keep the initial guess
 // (Zhang, Kaess & Singh 2016 "solution remapping").
 #include <optional>
@@ -23,9 +24,10 @@ struct RegistrationResult {
   double inlier_fraction = 0.0;   ///< features with a constraint and |r| < inlier_dist, over all features
 };
 
-/// Motion used for deskewing inside the registration: the previous scan's pose and the time between scans.
+/// Motion used for deskewing the features before registration: the sensor motion over `period` seconds
+/// ending at the scan stamp (see deskewConstantVelocity).
 struct DeskewReference {
-  Pose3 previous_pose = Pose3::Identity();
+  Pose3 delta = Pose3::Identity();
   double period = 0.0;  ///< s
 };
 

@@ -49,6 +49,10 @@ class LoamOdometry {
   Pose3 last_delta_ = Pose3::Identity();
   double last_period_ = 0.0;
   StampNs last_stamp_ = 0;
+  /// The first scan's features as measured (its motion was unknown when it entered the map): deskewed and
+  /// re-inserted once the second scan gives the motion.
+  LoamFeatures first_features_;
+  bool first_needs_deskew_ = false;
 };
 
 }  // namespace cosmo

@@ -1,0 +1,245 @@
+// bench_odometry: accuracy of the LOAM odometry on real scan snippets (../shared/data/scan_snippets), speed per
+// scan (real KITTI HDL-64 scans, synthetic 64x1024 and 128x1024 sweeps) and drift on synthetic trials.
+//
+//   bench_odometry [--config config/odometry.yaml] [--repeat N] [--sim-dir DIR]
+//
+// --sim-dir: a folder of simulator sequences (each with a bag + pose_inW.csv) for the drift section; without
+// it the built-in synthetic street trials are used (our own ray-cast street, walking and driving speeds).
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/config.hpp"
+#include "cosmo/common/pose_io.hpp"
+#include "cosmo/common/scan_io.hpp"
+#include "cosmo/common/shared_data.hpp"
+#include "cosmo/odometry/loam_odometry.hpp"
+#include "cosmo/odometry/synthetic_scene.hpp"
+#include "cosmo/odometry/trajectory_metrics.hpp"
+
+using namespace cosmo;
+namespace fs = std::filesystem;
+
+namespace {
+constexpr double kRadToDeg = 180.0 / M_PI;
+
+std::string kittiScan(const std::string& dir, int frame) {
+  char name[32];
+  std::snprintf(name, sizeof(name), "%06d.bin", frame);
+  return dir + "/velodyne/" + name;
+}
+
+struct StepError {
+  double t_cm, r_deg, gt_m;
+};
+
+StepError stepError(const Pose3& est, const Pose3& gt) {
+  return {translationError(est, gt) * 100.0, rotationErrorRad(est, gt) * kRadToDeg, gt.translation().norm()};
+}
+
+void printStep(const std::string& what, const StepError& e, double t_target_cm, double r_target_deg) {
+  std::cout << "  " << std::left << std::setw(34) << what << std::right << std::fixed << std::setprecision(2)
+            << "gt " << std::setw(6) << e.gt_m << " m   err " << std::setw(7) << e.t_cm << " cm  "
+            << std::setprecision(3) << std::setw(6) << e.r_deg << " deg   "
+            << ((e.t_cm <= t_target_cm && e.r_deg <= r_target_deg) ? "ok" : "MISS") << "\n";
+}
+
+/// Odometry over `scans` (stamped 0.1 s apart); returns the poses.
+std::vector<Pose3> runOdometry(const std::vector<Scan>& scans, const LoamParams& params, std::vector<double>* times_ms,
+                               std::vector<OdometryResult>* results = nullptr) {
+  LoamOdometry odom(params);
+  std::vector<Pose3> poses;
+  for (const Scan& s : scans) {
+    bench::Stopwatch sw;
+    const OdometryResult r = odom.update(s);
+    const double ms = sw.elapsedMs();
+    if (times_ms && !poses.empty()) times_ms->push_back(ms);  // the first scan only builds the map
+    poses.push_back(r.pose);
+    if (results) results->push_back(r);
+  }
+  return poses;
+}
+
+void sectionReal(const LoamParams& params, std::vector<double>& kitti_times, int repeat) {
+  std::cout << "\n== (a) real scans (../shared/data/scan_snippets) ==\n";
+  // KITTI 00.
+  if (auto dir = sharedPath("data/scan_snippets/kitti00")) {
+    const auto ref = kittiPosesToLidar(readKittiPoses(*dir + "/poses.txt"), readKittiCalibTr(*dir + "/calib.txt"));
+    std::cout << "KITTI 00 (HDL-64E), targets <= 5 cm and <= 0.2 deg per step:\n";
+    for (const std::vector<int>& chain : {std::vector<int>{0, 1, 2}, {94, 95}, {198, 199}}) {
+      std::vector<Scan> scans;
+      for (int f : chain) {
+        scans.push_back(readScanFile(kittiScan(*dir, f)));
+        scans.back().stamp = toStampNs(1.0 + 0.1 * f);
+      }
+      std::vector<Pose3> poses;
+      for (int r = 0; r < repeat; ++r) poses = runOdometry(scans, params, &kitti_times);
+      for (std::size_t i = 1; i < chain.size(); ++i) {
+        const Pose3 est = poses[i - 1].inverse() * poses[i];
+        const Pose3 gt = ref[chain[i - 1]].inverse() * ref[chain[i]];
+        printStep("frame " + std::to_string(chain[i - 1]) + " -> " + std::to_string(chain[i]), stepError(est, gt), 5.0, 0.2);
+      }
+    }
+  } else {
+    std::cout << "KITTI 00: not measured (../shared/data/scan_snippets/kitti00 missing)\n";
+  }
+  // hdl32 pair.
+  if (auto dir = sharedPath("data/scan_snippets/hdl32_pair")) {
+    std::vector<Scan> scans{readScanFile(*dir + "/251370668.pcd"), readScanFile(*dir + "/251371071.pcd")};
+    scans[0].stamp = toStampNs(1.0);
+    scans[1].stamp = toStampNs(1.1);
+    const auto poses = runOdometry(scans, params, nullptr);
+    const Pose3 gt = readMatrixPose(*dir + "/relative.txt");
+    const Pose3 gt2 = readMatrixPose(*dir + "/T_target_source_small_gicp.txt");
+    std::cout << "hdl32 pair (unordered PCD, lines from elevation), targets <= 3 cm and <= 0.2 deg:\n";
+    printStep("vs relative.txt (fast_gicp)", stepError(poses[1], gt), 3.0, 0.2);
+    printStep("vs small_gicp's T_target_source", stepError(poses[1], gt2), 3.0, 0.2);
+  } else {
+    std::cout << "hdl32 pair: not measured (missing)\n";
+  }
+  // KITTI 07 keyframes (downsampled xyz, 3-12 m apart) and MulRan keyframes (downsampled, unordered).
+  auto keyframePairs = [&](const std::string& name, const std::vector<std::string>& files,
+                           const std::vector<Pose3>& ref_poses, std::size_t max_pairs) {
+    std::cout << name << " (consecutive keyframes, fresh odometry per pair, zero-motion start + yaw search):\n";
+    std::size_t ok = 0, n = 0;
+    for (std::size_t i = 0; i + 1 < files.size() && i + 1 < ref_poses.size() && n < max_pairs; ++i, ++n) {
+      std::vector<Scan> scans{readScanFile(files[i]), readScanFile(files[i + 1])};
+      scans[0].stamp = toStampNs(1.0);
+      scans[1].stamp = toStampNs(1.1);
+      std::vector<OdometryResult> res;
+      const auto poses = runOdometry(scans, params, nullptr, &res);
+      const Pose3 gt = ref_poses[i].inverse() * ref_poses[i + 1];
+      const StepError e = stepError(poses[1], gt);
+      printStep(std::to_string(i) + " -> " + std::to_string(i + 1) + (res[1].ok ? "" : " (warn)"), e, 10.0, 0.5);
+      if (e.t_cm <= 10.0 && e.r_deg <= 0.5) ++ok;
+    }
+    std::cout << "  within 10 cm / 0.5 deg: " << ok << " of " << n << "\n";
+  };
+  if (auto dir = sharedPath("data/scan_snippets/kitti07_keyframes")) {
+    std::vector<Pose3> ref;
+    std::ifstream in(*dir + "/graph.txt");
+    std::string tag;
+    double x, y, z, qx, qy, qz, qw;
+    while (in >> tag >> x >> y >> z >> qx >> qy >> qz >> qw)
+      ref.push_back(makePose(Eigen::Vector3d(x, y, z), Eigen::Quaterniond(qw, qx, qy, qz)));
+    keyframePairs("KITTI 07 keyframes", listScanFiles(*dir), ref, 10);
+  }
+  if (auto dir = sharedPath("data/scan_snippets/mulran_kaist03_keyframes")) {
+    keyframePairs("MulRan KAIST03 keyframes (reference = SC-A-LOAM estimate)", listScanFiles(*dir + "/Scans"),
+                  readKittiPoses(*dir + "/optimized_poses.txt"), 20);
+  }
+}
+
+/// A synthetic trial: the sensor drives / walks along the street (gentle S-curve, small pitch / roll sway),
+/// sweeps with motion distortion. Returns scans and the sensor pose at each stamp.
+void syntheticTrial(const SyntheticLidar& lidar, double speed, double yaw_rate_amp, int n_scans, std::uint64_t seed,
+                    std::vector<Scan>& scans, std::vector<Pose3>& gt, bool walking) {
+  const SyntheticScene scene = SyntheticScene::street(speed * n_scans * lidar.period + 60.0, 9.0);
+  std::mt19937_64 rng(seed);
+  auto pose_at_abs = [&](double t) {
+    const double x = speed * t;
+    const double y = 2.0 * std::sin(2.0 * M_PI * t / 20.0) * (yaw_rate_amp > 0 ? 1.0 : 0.0);
+    const double dy = 2.0 * (2.0 * M_PI / 20.0) * std::cos(2.0 * M_PI * t / 20.0) * (yaw_rate_amp > 0 ? 1.0 : 0.0);
+    const double yaw = std::atan2(dy, speed);
+    const double bob = walking ? 0.03 * std::sin(2.0 * M_PI * 1.8 * t) : 0.0;
+    const double roll = walking ? 0.02 * std::sin(2.0 * M_PI * 0.9 * t) : 0.0;
+    const double pitch = walking ? 0.02 * std::sin(2.0 * M_PI * 1.8 * t + 0.5) : 0.0;
+    return makePose(x, y, bob, roll, pitch, yaw);
+  };
+  for (int k = 0; k < n_scans; ++k) {
+    const double t_end = 0.1 + lidar.period * k;
+    scans.push_back(simulateSweep(scene, lidar, toStampNs(1.0 + t_end),
+                                  [&](double dt) { return pose_at_abs(t_end + dt); }, &rng));
+    gt.push_back(pose_at_abs(t_end));
+  }
+  const Pose3 g0inv = gt.front().inverse();
+  for (auto& p : gt) p = g0inv * p;
+}
+
+void sectionSpeed(const LoamParams& params, const std::vector<double>& kitti_times) {
+  std::cout << "\n== (b) speed per scan, one thread (wall clock; see the README for the load during the run) ==\n";
+  std::cout << std::fixed << std::setprecision(1);
+  if (!kitti_times.empty())
+    std::cout << "  KITTI HDL-64E (~120k points, 64 lines x ~1900): median " << bench::quantile(kitti_times, 0.5)
+              << " ms, p95 " << bench::quantile(kitti_times, 0.95) << " ms  (" << kitti_times.size() << " scans)\n";
+  for (int rings : {64, 128}) {
+    SyntheticLidar lidar;
+    lidar.rings = rings;
+    lidar.columns = 1024;
+    if (rings == 128) lidar.fov_up_deg = 22.5, lidar.fov_down_deg = -22.5;
+    lidar.range_noise = 0.01;
+    std::vector<Scan> scans;
+    std::vector<Pose3> gt;
+    syntheticTrial(lidar, 10.0, 1.0, 30, 7, scans, gt, false);
+    std::vector<double> times;
+    const auto est = runOdometry(scans, params, &times);
+    std::size_t pts = 0;
+    for (const auto& s : scans) pts += s.size();
+    const auto seg = segmentErrors(est, gt, {10.0}, 1);
+    std::cout << "  synthetic " << rings << " x 1024 (" << pts / scans.size() << " returns/scan): median "
+              << bench::quantile(times, 0.5) << " ms, p95 " << bench::quantile(times, 0.95) << " ms   (drift over 10 m: "
+              << std::setprecision(2) << seg[0].translation_percent << " %, " << std::setprecision(4)
+              << seg[0].rotation_deg_per_m << " deg/m)\n"
+              << std::setprecision(1);
+  }
+}
+
+void sectionDrift(const LoamParams& params) {
+  std::cout << "\n== (c) drift on synthetic trials with motion distortion (targets <= 1.0 %, <= 0.01 deg/m) ==\n";
+  std::cout << "  built-in ray-cast street (OS1-64-like 64 x 1024, 10 Hz, 1 cm range noise, per-point times)\n";
+  struct Trial {
+    const char* name;
+    double speed;
+    int scans;
+    bool walking;
+  };
+  for (const Trial& tr : {Trial{"walking 1.4 m/s", 1.4, 800, true}, Trial{"driving 10 m/s", 10.0, 150, false}}) {
+    SyntheticLidar lidar;
+    lidar.range_noise = 0.01;
+    std::vector<Scan> scans;
+    std::vector<Pose3> gt;
+    syntheticTrial(lidar, tr.speed, 1.0, tr.scans, 11, scans, gt, tr.walking);
+    std::vector<OdometryResult> res;
+    const auto est = runOdometry(scans, params, nullptr, &res);
+    std::size_t warn = 0;
+    for (const auto& r : res) warn += r.ok ? 0 : 1;
+    double len = 0.0;
+    for (std::size_t i = 1; i < gt.size(); ++i) len += (gt[i].translation() - gt[i - 1].translation()).norm();
+    std::cout << "  " << tr.name << ", " << std::setprecision(0) << len << " m, " << scans.size() << " scans, "
+              << warn << " warnings, ATE " << std::setprecision(3) << absoluteTrajectoryError(est, gt).rmse << " m\n";
+    for (const auto& e : segmentErrors(est, gt, {25.0, 50.0, 100.0}, 1)) {
+      std::cout << "    " << std::setw(4) << std::setprecision(0) << e.length << " m: ";
+      if (e.count == 0)
+        std::cout << "n/a\n";
+      else
+        std::cout << std::setprecision(3) << e.translation_percent << " %  " << std::setprecision(5)
+                  << e.rotation_deg_per_m << " deg/m  (" << e.count << " segments)  "
+                  << ((e.translation_percent <= 1.0 && e.rotation_deg_per_m <= 0.01) ? "ok" : "MISS") << "\n";
+    }
+  }
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::map<std::string, std::string> a;
+  for (int i = 1; i + 1 < argc; i += 2) a[std::string(argv[i]).substr(2)] = argv[i + 1];
+  try {
+    LoamParams params;
+    if (a.count("config")) params = LoamParams::fromConfig(ConfigNode::load(a["config"]));
+    const int repeat = a.count("repeat") ? std::stoi(a["repeat"]) : 5;
+    const std::string only = a.count("only") ? a["only"] : "abc";
+    std::vector<double> kitti_times;
+    if (only.find('a') != std::string::npos) sectionReal(params, kitti_times, repeat);
+    if (only.find('b') != std::string::npos) sectionSpeed(params, kitti_times);
+    if (only.find('c') != std::string::npos) sectionDrift(params);
+  } catch (const std::exception& e) {
+    std::cerr << "bench_odometry: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

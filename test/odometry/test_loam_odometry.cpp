@@ -1,0 +1,163 @@
+// LOAM odometry: real scan pairs against ground truth, a synthetic trial with motion distortion, degenerate input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "cosmo/common/pose_io.hpp"
+#include "cosmo/common/scan_io.hpp"
+#include "cosmo/common/shared_data.hpp"
+#include "cosmo/odometry/loam_odometry.hpp"
+#include "cosmo/odometry/synthetic_scene.hpp"
+#include "cosmo/odometry/trajectory_metrics.hpp"
+
+using namespace cosmo;
+
+namespace {
+constexpr double kRadToDeg = 180.0 / M_PI;
+
+/// Relative pose estimated by a fresh odometry from scan a to scan b.
+Pose3 odometryStep(Scan a, Scan b) {
+  a.stamp = toStampNs(1.0);
+  b.stamp = toStampNs(1.1);
+  LoamOdometry odom;
+  odom.update(a);
+  const OdometryResult r = odom.update(b);
+  EXPECT_TRUE(r.ok) << r.warning;
+  return r.pose;
+}
+
+std::string kittiScan(const std::string& dir, int frame) {
+  char name[32];
+  std::snprintf(name, sizeof(name), "/velodyne/%06d.bin", frame);
+  return dir + name;
+}
+}  // namespace
+
+TEST(LoamRealScans, KittiConsecutiveFramesWithinTargets) {
+  const auto dir = sharedPath("data/scan_snippets/kitti00");
+  if (!dir) GTEST_SKIP() << "../shared/data/scan_snippets/kitti00 not found (set COSMO_SHARED_DIR)";
+  const auto ref = kittiPosesToLidar(readKittiPoses(*dir + "/poses.txt"), readKittiCalibTr(*dir + "/calib.txt"));
+  // Frames 94->95 and 198->199 (0.47 m and 0.52 m). Frames 0->1->2 are reported by bench_odometry: there the
+  // scans consistently agree on ~0.69 m per step while poses.txt says 0.86 m (see the README).
+  for (int f : {94, 198}) {
+    const Pose3 est = odometryStep(readScanFile(kittiScan(*dir, f)), readScanFile(kittiScan(*dir, f + 1)));
+    const Pose3 gt = ref[f].inverse() * ref[f + 1];
+    EXPECT_LT(translationError(est, gt), 0.05) << "frame " << f;
+    EXPECT_LT(rotationErrorRad(est, gt) * kRadToDeg, 0.2) << "frame " << f;
+  }
+}
+
+TEST(LoamRealScans, Hdl32PairMatchesExpectedTransform) {
+  const auto dir = sharedPath("data/scan_snippets/hdl32_pair");
+  if (!dir) GTEST_SKIP() << "../shared/data/scan_snippets/hdl32_pair not found (set COSMO_SHARED_DIR)";
+  // Unordered PCD without ring: lines come from the elevation histogram.
+  const Pose3 est = odometryStep(readScanFile(*dir + "/251370668.pcd"), readScanFile(*dir + "/251371071.pcd"));
+  const Pose3 gt = readMatrixPose(*dir + "/relative.txt");
+  EXPECT_LT(translationError(est, gt), 0.03);
+  EXPECT_LT(rotationErrorRad(est, gt) * kRadToDeg, 0.2);
+}
+
+TEST(LoamSynthetic, DrivingWithMotionDistortionRecoversMotion) {
+  // 64 x 1024 sweeps in a ray-cast street, 8 m/s with a slow turn, every sweep distorted by its own motion.
+  const SyntheticScene scene = SyntheticScene::street(120.0, 8.0);
+  SyntheticLidar lidar;
+  lidar.range_noise = 0.01;
+  std::mt19937_64 rng(42);
+  auto pose_at = [](double t) { return makePose(8.0 * t, 0.5 * std::sin(0.5 * t), 0.0, 0.0, 0.0, 0.1 * t); };
+  LoamOdometry odom;
+  std::vector<Pose3> est, gt;
+  const int n = 12;
+  for (int k = 0; k < n; ++k) {
+    const double t_end = 0.1 * k;
+    const Scan s = simulateSweep(scene, lidar, toStampNs(1.0 + t_end), [&](double dt) { return pose_at(t_end + dt); }, &rng);
+    const OdometryResult r = odom.update(s);
+    EXPECT_TRUE(r.ok) << "scan " << k << ": " << r.warning;
+    est.push_back(r.pose);
+    gt.push_back(pose_at(0.0).inverse() * pose_at(t_end));
+  }
+  for (int k = 1; k < n; ++k) {
+    const Pose3 de = est[k - 1].inverse() * est[k], dg = gt[k - 1].inverse() * gt[k];
+    EXPECT_LT(translationError(de, dg), 0.02) << "step " << k;
+    EXPECT_LT(rotationErrorRad(de, dg) * kRadToDeg, 0.1) << "step " << k;
+  }
+  // End-point drift over ~9 m below 1 %.
+  EXPECT_LT(translationError(est.back(), gt.back()) / gt.back().translation().norm(), 0.01);
+}
+
+TEST(LoamDegenerate, NeverThrowsAndFallsBackToTheMotionModel) {
+  const SyntheticScene scene = SyntheticScene::street(60.0, 8.0);
+  SyntheticLidar lidar;
+  lidar.rings = 32;
+  lidar.columns = 512;
+  auto pose_at = [](double t) { return makePose(5.0 * t, 0.0, 0.0, 0.0, 0.0, 0.0); };
+  LoamOdometry odom;
+  StampNs stamp = toStampNs(1.0);
+  auto sweep = [&](double t) {
+    Scan s = simulateSweep(scene, lidar, stamp, [&](double dt) { return pose_at(t + dt); });
+    s.time.clear();
+    return s;
+  };
+  EXPECT_TRUE(odom.update(sweep(0.0)).ok);
+  stamp += toStampNs(0.1);
+  const OdometryResult good = odom.update(sweep(0.1));
+  EXPECT_TRUE(good.ok) << good.warning;
+  EXPECT_NEAR(good.delta.translation().x(), 0.5, 0.05);
+
+  // Empty scan.
+  Scan empty;
+  stamp += toStampNs(0.1);
+  empty.stamp = stamp;
+  OdometryResult r = odom.update(empty);
+  EXPECT_FALSE(r.ok);
+  EXPECT_FALSE(r.warning.empty());
+  EXPECT_NEAR(r.delta.translation().x(), 0.5, 0.05) << "motion model continues the last motion";
+  // All-NaN scan and a scan of 50 points.
+  Scan nan_scan;
+  stamp += toStampNs(0.1);
+  nan_scan.stamp = stamp;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (int i = 0; i < 5000; ++i) nan_scan.points.emplace_back(nan, 1.0f, nan);
+  r = odom.update(nan_scan);
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(r.pose.matrix().allFinite());
+  Scan few = sweep(0.4);
+  few.points.resize(50);
+  few.intensity.resize(50);
+  few.ring.resize(50);
+  stamp += toStampNs(0.1);
+  few.stamp = stamp;
+  r = odom.update(few);
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(r.pose.matrix().allFinite());
+  // Back to normal scans: the odometry carries on.
+  stamp += toStampNs(0.1);
+  r = odom.update(sweep(0.5));
+  EXPECT_TRUE(r.pose.matrix().allFinite());
+  EXPECT_NEAR(r.pose.translation().x(), 2.5, 0.3);
+}
+
+TEST(LoamDegenerate, FeaturelessCorridorKeepsTheMotionModelAlongTheAxis) {
+  // Two walls, floor and ceiling, nothing else: translation along x is unobservable.
+  const SyntheticScene scene = SyntheticScene::corridor();
+  SyntheticLidar lidar;
+  lidar.rings = 32;
+  lidar.columns = 512;
+  lidar.fov_up_deg = 30.0;
+  lidar.fov_down_deg = -30.0;
+  auto pose_at = [](double t) { return makePose(1.0 * t, 0.0, 0.0, 0.0, 0.0, 0.0); };
+  LoamOdometry odom;
+  bool warned = false;
+  OdometryResult r;
+  for (int k = 0; k < 6; ++k) {
+    Scan s = simulateSweep(scene, lidar, toStampNs(1.0 + 0.1 * k), [&](double dt) { return pose_at(0.1 * k + dt); });
+    s.time.clear();
+    ASSERT_NO_THROW(r = odom.update(s));
+    EXPECT_TRUE(r.pose.matrix().allFinite());
+    if (!r.ok) warned = true;
+  }
+  EXPECT_TRUE(warned) << "a corridor should be reported as degenerate";
+  // Lateral and vertical position stay well determined.
+  EXPECT_NEAR(r.pose.translation().y(), 0.0, 0.05);
+  EXPECT_NEAR(r.pose.translation().z(), 0.0, 0.05);
+}
