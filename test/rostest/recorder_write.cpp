@@ -3,6 +3,11 @@
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 
+#include <ros/master.h>
+#include <ros/network.h>
+#include <xmlrpcpp/XmlRpc.h>
+
+#include <csignal>
 #include <cmath>
 #include <filesystem>
 
@@ -61,6 +66,24 @@ bool writeWhen(const std::string& expect) {
   return false;
 }
 
+// PID of a node through its XML-RPC API (lookupNode at the master, then getPid at the node).
+int pidOf(const std::string& node) {
+  XmlRpc::XmlRpcValue args, result, payload;
+  args[0] = ros::this_node::getName();
+  args[1] = node;
+  if (!ros::master::execute("lookupNode", args, result, payload, true)) return -1;
+  std::string host;
+  std::uint32_t port = 0;
+  if (!ros::network::splitURI(static_cast<std::string>(payload), host, port)) return -1;
+  XmlRpc::XmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
+  XmlRpc::XmlRpcValue request, response;
+  request[0] = ros::this_node::getName();
+  if (!client.execute("getPid", request, response) || response.getType() != XmlRpc::XmlRpcValue::TypeArray ||
+      response.size() < 3)
+    return -1;
+  return static_cast<int>(response[2]);
+}
+
 }  // namespace
 
 TEST(RecorderNode, WritesOnRequest) {
@@ -107,6 +130,21 @@ TEST(RecorderNode, WritesOnRequest) {
   ASSERT_TRUE(writeWhen("keyframes a 6 b 5"));
   ds = cosmo::jrl::readJrl(output);
   EXPECT_EQ(ds.measurements.at('a').size(), 6u);
+
+  // Ctrl-C: what arrived before it is written on the way out.
+  kf['b'].publish(keyframe('b', 5));
+  ros::WallDuration(1.0).sleep();  // delivered (same process pair, one topic)
+  const int pid = pidOf("/recorder");
+  ASSERT_GT(pid, 0);
+  ASSERT_EQ(::kill(pid, SIGINT), 0);
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(15.0);
+  bool written = false;
+  while (!written && ros::WallTime::now() < deadline) {
+    ros::WallDuration(0.2).sleep();
+    written = cosmo::jrl::readJrl(output).measurements.at('b').size() == 6u;
+  }
+  EXPECT_TRUE(written) << "the shutdown write did not include keyframe b5";
+  if (written) std::filesystem::remove_all(std::filesystem::path(output).parent_path());
 }
 
 int main(int argc, char** argv) {
