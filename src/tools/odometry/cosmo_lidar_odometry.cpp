@@ -4,10 +4,14 @@
 //
 //   cosmo_lidar_odometry --scans DIR [--poses KITTI_POSES [--calib CALIB.txt]] [--out-kitti F] [--out-tum F]
 //                  [--config config/odometry.yaml] [--period 0.1] [--first N] [--count M] [--quiet]
-//   cosmo_lidar_odometry --bag FILE --topic T [--reference-tum F | --reference-csv pose_inW.csv] [...]
+//   cosmo_lidar_odometry --bag FILE --topic T [--reference-tum F | --reference-csv pose_inW.csv]
+//                        [--extrinsic "x y z qx qy qz qw"] [...]
+//   --segments 10,20,40,100 (default) sets the segment lengths (m) of the relative errors.
 #include <cosmo/ros/bag_io.hpp>
 
+#include <ctime>
 #include <filesystem>
+#include <sstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -26,11 +30,19 @@ using namespace cosmo;
 namespace fs = std::filesystem;
 
 namespace {
+/// CPU time of this thread (ms): less sensitive to other processes than the wall clock.
+double threadCpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
+}
+
 void usage() {
   std::cerr << "usage: cosmo_lidar_odometry --scans DIR [--poses KITTI_POSES [--calib CALIB.txt]]\n"
                "                            | --bag FILE --topic TOPIC [--reference-tum F | --reference-csv pose_inW.csv]\n"
                "       [--out-kitti F] [--out-tum F] [--config config/odometry.yaml] [--period S]\n"
-               "       [--first N] [--count M] [--quiet]\n"
+               "       [--first N] [--count M] [--segments 10,20,40,100] [--extrinsic \"x y z qx qy qz qw\"] [--quiet]\n"
+               "--extrinsic: T_body_lidar, when the stamped reference is a body trajectory (LiDAR = body * extrinsic).\n"
                "Folder scans are matched to KITTI pose lines by the number in their file name (000094.bin ->\n"
                "line 94) and stamped index * period (default 0.1 s).\n";
 }
@@ -84,6 +96,21 @@ int main(int argc, char** argv) {
       kitti_ref = readKittiPoses(a["poses"]);
       if (a.count("calib")) kitti_ref = kittiPosesToLidar(kitti_ref, readKittiCalibTr(a["calib"]));
     }
+    std::vector<double> segments{10.0, 20.0, 40.0, 100.0};
+    if (a.count("segments")) {
+      segments.clear();
+      std::stringstream ss(a["segments"]);
+      std::string item;
+      while (std::getline(ss, item, ',')) segments.push_back(std::stod(item));
+    }
+    Pose3 extrinsic = Pose3::Identity();
+    if (a.count("extrinsic")) {
+      std::stringstream ss(a["extrinsic"]);
+      std::vector<double> v;
+      double x;
+      while (ss >> x) v.push_back(x);
+      extrinsic = parsePoseNumbers(v, "--extrinsic");
+    }
     Trajectory stamped_ref;
     if (a.count("reference-tum")) stamped_ref = readTumTrajectory(a["reference-tum"]);
     if (a.count("reference-csv")) stamped_ref = readMcdPoseCsv(a["reference-csv"]);
@@ -91,12 +118,14 @@ int main(int argc, char** argv) {
     LoamOdometry odom(params);
     std::vector<Pose3> est, ref;
     Trajectory est_traj;
-    std::vector<double> times_ms;
+    std::vector<double> times_ms, cpu_ms;
     std::size_t warnings = 0;
     auto process = [&](Scan scan, long frame, const std::string& name) {
       bench::Stopwatch sw;
+      const double cpu0 = threadCpuMs();
       const OdometryResult r = odom.update(scan);
       times_ms.push_back(sw.elapsedMs());
+      cpu_ms.push_back(threadCpuMs() - cpu0);
       est.push_back(r.pose);
       if (scan.stamp > 0 && (est_traj.empty() || scan.stamp > est_traj.endStamp())) est_traj.append(scan.stamp, r.pose);
       if (!kitti_ref.empty()) {
@@ -105,7 +134,7 @@ int main(int argc, char** argv) {
         ref.push_back(kitti_ref[frame]);
       } else if (!stamped_ref.empty()) {
         const auto p = stamped_ref.at(scan.stamp);
-        if (p) ref.push_back(*p);
+        if (p) ref.push_back(*p * extrinsic);
       }
       if (!r.ok) {
         ++warnings;
@@ -149,7 +178,8 @@ int main(int argc, char** argv) {
     std::cout << std::fixed << std::setprecision(3);
     std::cout << "scans: " << est.size() << "  warnings: " << warnings << "\n";
     std::cout << "time per scan: median " << bench::quantile(times_ms, 0.5) << " ms, p95 "
-              << bench::quantile(times_ms, 0.95) << " ms (one thread)\n";
+              << bench::quantile(times_ms, 0.95) << " ms wall; CPU time median " << bench::quantile(cpu_ms, 0.5)
+              << " ms, p95 " << bench::quantile(cpu_ms, 0.95) << " ms (one thread)\n";
     if (!ref.empty() && ref.size() == est.size()) {
       // Express the reference relative to its first pose, like the odometry.
       const Pose3 r0inv = ref.front().inverse();
@@ -160,7 +190,7 @@ int main(int argc, char** argv) {
       double path = 0.0;
       for (std::size_t i = 1; i < ref.size(); ++i) path += (ref[i].translation() - ref[i - 1].translation()).norm();
       std::cout << "reference path length " << path << " m\n";
-      for (const auto& e : segmentErrors(est, ref, {10.0, 20.0, 40.0, 100.0})) {
+      for (const auto& e : segmentErrors(est, ref, segments)) {
         std::cout << "segment " << std::setw(5) << e.length << " m: ";
         if (e.count == 0)
           std::cout << "n/a (trajectory too short)\n";
