@@ -12,7 +12,7 @@
 namespace cosmo::sim {
 
 struct TerrainParams {
-  double cell = 2.0;          ///< heightfield cell size (m)
+  double cell = 4.0;          ///< heightfield cell size (m)
   double amplitude = 2.0;     ///< height amplitude of the undulations (m); 0 gives a flat plane
   double wavelength = 220.0;  ///< dominant wavelength (m); slopes ~ 2*pi*amplitude/wavelength
   int waves = 4;              ///< number of superposed sine waves

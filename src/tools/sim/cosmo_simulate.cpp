@@ -131,8 +131,12 @@ int main(int argc, char** argv) {
       generate(params, tmp);
       std::ofstream(tmp / "COMPLETE") << key << "\n";
       if (!no_cache) {
-        fs::remove_all(final_dir);
-        fs::rename(tmp, final_dir);
+        if (fs::exists(final_dir / "COMPLETE")) {
+          fs::remove_all(tmp);  // another run finished the same sequence meanwhile: keep its files
+        } else {
+          fs::remove_all(final_dir);
+          fs::rename(tmp, final_dir);
+        }
       }
     }
     fs::path seq_path = final_dir / seq_name;
