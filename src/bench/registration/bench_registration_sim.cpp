@@ -1,0 +1,192 @@
+// bench_registration_sim: global registration on synthetic loop pairs from DIFFERENT trials of a simulated
+// sequence (written by cosmo_simulate: a sequence yaml with per-robot bags and pose_inW.csv references).
+//
+//   bench_registration_sim <sequence.yaml> [--config registration.yaml] [--pairs N] [--negatives N]
+//                          [--kf 2.0] [--max-offset 10] [--min-separation 100] [--seed S]
+//
+// Keyframes every --kf m of reference motion per trial, dewarped with the reference (per-point times). Loop pairs:
+// keyframes of two different robots whose reference LiDAR positions are within --max-offset m, sampled uniformly
+// (seeded); the source is rotated by a random yaw. Success = accepted by the gate and error < 0.5 m and < 2 deg
+// against the reference relative pose. Non-overlapping pairs: keyframes of different robots more than
+// --min-separation m apart; a gate acceptance there is a false accept. Separate from bench_registration
+// because it links the ROS bag glue.
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cosmo/common/pose_io.hpp"
+#include "cosmo/registration/global_registration.hpp"
+#include "cosmo/registration/pair_evaluation.hpp"
+#include "cosmo/registration/stage_timer.hpp"
+#include "cosmo/ros/bag_io.hpp"
+
+namespace fs = std::filesystem;
+using namespace cosmo;
+
+namespace {
+
+struct Keyframe {
+  int robot = 0;
+  Pose3 pose;  // reference LiDAR pose
+  Scan scan;   // dewarped
+};
+
+Scan dewarp(const Scan& scan, const Trajectory& body, const Pose3& T_body_lidar) {
+  if (!scan.hasTime()) return scan;
+  float t_min = 0.0f, t_max = 0.0f;
+  for (float t : scan.time) t_min = std::min(t_min, t), t_max = std::max(t_max, t);
+  const int slots = 64;
+  const Pose3 end_inv = (body.atClamped(scan.stamp) * T_body_lidar).inverse();
+  std::vector<Eigen::Isometry3f> corr(slots);
+  for (int k = 0; k < slots; ++k) {
+    const double t = t_min + (t_max - t_min) * (k + 0.5) / slots;
+    const auto stamp = static_cast<StampNs>(static_cast<double>(scan.stamp) + t * 1e9);
+    corr[k] = (end_inv * body.atClamped(stamp) * T_body_lidar).cast<float>();
+  }
+  Scan out = scan;
+  const float span = std::max(1e-6f, t_max - t_min);
+  for (std::size_t i = 0; i < out.points.size(); ++i) {
+    const int k = std::min(slots - 1, static_cast<int>((scan.time[i] - t_min) / span * slots));
+    out.points[i] = corr[k] * out.points[i];
+  }
+  return out;
+}
+
+std::vector<Keyframe> loadKeyframes(const std::string& yaml_path, double kf_m) {
+  const YAML::Node root = YAML::LoadFile(yaml_path);
+  const fs::path dir = fs::path(yaml_path).parent_path();
+  auto resolve = [&](const std::string& f) { return fs::path(f).is_absolute() ? fs::path(f) : dir / f; };
+  std::vector<Keyframe> out;
+  int robot = 0;
+  for (const auto& t : root["trials"]) {
+    const fs::path bag = resolve(t["bag"].as<std::string>());
+    const fs::path ref = resolve(t["reference"].as<std::string>());
+    const std::vector<double> e =
+        t["extrinsic"] ? t["extrinsic"].as<std::vector<double>>() : std::vector<double>{0, 0, 0, 0, 0, 0, 1};
+    const Pose3 T_body_lidar = parsePoseNumbers(e, yaml_path + ": extrinsic");
+    const Trajectory body = readMcdPoseCsv(ref.string());
+    const std::string topic = t["topic"] ? t["topic"].as<std::string>() : "/os_cloud_node/points";
+    ros_glue::ScanBagReader reader(bag.string(), topic);
+    Scan scan;
+    std::optional<Eigen::Vector3d> last;
+    std::size_t n = 0;
+    while (reader.next(scan)) {
+      if (!body.covers(scan.stamp)) continue;
+      const Pose3 lidar = body.atClamped(scan.stamp) * T_body_lidar;
+      if (last && (lidar.translation() - *last).norm() <= kf_m) continue;
+      last = lidar.translation();
+      out.push_back({robot, lidar, dewarp(scan, body, T_body_lidar)});
+      ++n;
+    }
+    std::printf("  trial %s: %zu keyframes\n", t["robot"].as<std::string>().c_str(), n);
+    ++robot;
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string seq, config;
+  int n_pairs = 100, n_neg = 50;
+  double kf_m = 2.0, max_offset = 10.0, min_sep = 100.0;
+  std::uint64_t seed = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto val = [&]() { return std::string(i + 1 < argc ? argv[++i] : ""); };
+    if (a == "--config") config = val();
+    else if (a == "--pairs") n_pairs = std::stoi(val());
+    else if (a == "--negatives") n_neg = std::stoi(val());
+    else if (a == "--kf") kf_m = std::stod(val());
+    else if (a == "--max-offset") max_offset = std::stod(val());
+    else if (a == "--min-separation") min_sep = std::stod(val());
+    else if (a == "--seed") seed = std::stoull(val());
+    else if (!a.empty() && a[0] != '-') seq = a;
+    else {
+      std::cerr << "usage: bench_registration_sim <sequence.yaml> [--config f] [--pairs N] [--negatives N] [--kf m] "
+                   "[--max-offset m] [--min-separation m] [--seed S]\n";
+      return 2;
+    }
+  }
+  if (seq.empty()) {
+    std::cerr << "bench_registration_sim: give a sequence yaml (from cosmo_simulate)\n";
+    return 2;
+  }
+  try {
+    const RegistrationParams params =
+        config.empty() ? RegistrationParams{} : RegistrationParams::fromConfig(ConfigNode::load(config));
+    const GlobalRegistration reg(params);
+    std::printf("== %s ==\n", seq.c_str());
+    const auto kfs = loadKeyframes(seq, kf_m);
+    std::vector<std::pair<int, int>> near, far;
+    for (std::size_t i = 0; i < kfs.size(); ++i)
+      for (std::size_t j = 0; j < kfs.size(); ++j) {
+        if (kfs[i].robot == kfs[j].robot || i == j) continue;
+        const double d = (kfs[i].pose.translation() - kfs[j].pose.translation()).norm();
+        if (d <= max_offset) near.emplace_back(static_cast<int>(i), static_cast<int>(j));
+        if (d > min_sep) far.emplace_back(static_cast<int>(i), static_cast<int>(j));
+      }
+    std::mt19937_64 rng(seed);
+    std::shuffle(near.begin(), near.end(), rng);
+    std::shuffle(far.begin(), far.end(), rng);
+    if (static_cast<int>(near.size()) > n_pairs) near.resize(static_cast<std::size_t>(n_pairs));
+    if (static_cast<int>(far.size()) > n_neg) far.resize(static_cast<std::size_t>(n_neg));
+    std::uniform_real_distribution<double> u(-M_PI, M_PI);
+    std::printf("loop pairs (different robots, <= %.0f m apart, random yaw): %zu; success = accepted and < 0.5 m, "
+                "< 2 deg\n", max_offset, near.size());
+    std::printf("%-10s %6s %7s %6s %6s %6s %5s %4s %8s %8s %7s\n", "pair", "dist", "yaw", "corr", "clique", "final",
+                "ovl", "acc", "err_m", "err_deg", "cpu_ms");
+    int ok = 0, acc = 0;
+    std::vector<double> ms;
+    int bins_ok[3] = {0, 0, 0}, bins_n[3] = {0, 0, 0};
+    for (const auto& [s, t] : near) {
+      const double yaw = u(rng);
+      const Pose3 Rz(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+      const Pose3 expected = kfs[t].pose.inverse() * kfs[s].pose * Rz.inverse();
+      StageTimer timer;
+      timer.restart();
+      const RegistrationResult r = reg.align(rotateScanYaw(kfs[s].scan, yaw), kfs[t].scan, &timer);
+      ms.push_back(timer.total());
+      const PoseError e = poseError(r.T_target_source, expected);
+      const bool success = r.valid && e.translation_m < 0.5 && e.rotation_deg < 2.0;
+      const double d = (kfs[s].pose.translation() - kfs[t].pose.translation()).norm();
+      const int b = d < 3.0 ? 0 : (d < 6.0 ? 1 : 2);
+      bins_n[b]++, bins_ok[b] += success;
+      ok += success, acc += r.valid;
+      std::printf("%4d-%-5d %6.2f %7.1f %6zu %6zu %6zu %5.2f %4s %8.3f %8.3f %7.1f %s\n", s, t, d, yaw * 180 / M_PI,
+                  r.correspondences, r.pruned_inliers, r.final_inliers, r.overlap, r.valid ? "yes" : "no", e.translation_m,
+                  e.rotation_deg, timer.total(), success ? "OK" : "FAIL");
+      std::fflush(stdout);
+    }
+    std::printf("success: %d / %zu (%.1f %%), accepted %d; by offset 0-3 m %d/%d, 3-6 m %d/%d, 6-10 m %d/%d; "
+                "median cpu %.1f ms\n", ok, near.size(), near.empty() ? 0.0 : 100.0 * ok / near.size(), acc, bins_ok[0],
+                bins_n[0], bins_ok[1], bins_n[1], bins_ok[2], bins_n[2], bench::quantile(ms, 0.5));
+    int false_acc = 0;
+    std::vector<double> neg_final, neg_overlap;
+    for (const auto& [s, t] : far) {
+      const RegistrationResult r = reg.align(rotateScanYaw(kfs[s].scan, u(rng)), kfs[t].scan);
+      false_acc += r.valid;
+      neg_final.push_back(static_cast<double>(r.final_inliers));
+      neg_overlap.push_back(r.overlap);
+      if (r.valid)
+        std::printf("  false accept %d-%d: %.0f m apart, final inliers %zu\n", s, t,
+                    (kfs[s].pose.translation() - kfs[t].pose.translation()).norm(), r.final_inliers);
+    }
+    std::printf("non-overlapping pairs: final inliers median %.0f max %.0f; overlap median %.2f max %.2f\n",
+                bench::quantile(neg_final, 0.5), bench::quantile(neg_final, 1.0), bench::quantile(neg_overlap, 0.5),
+                bench::quantile(neg_overlap, 1.0));
+    std::printf("non-overlapping pairs (> %.0f m apart): %d / %zu accepted by the gate (false-accept rate %.1f %%)\n",
+                min_sep, false_acc, far.size(), far.empty() ? 0.0 : 100.0 * false_acc / far.size());
+  } catch (const std::exception& e) {
+    std::cerr << "bench_registration_sim: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
