@@ -72,13 +72,15 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
     return r;
   }
 
-  // Initial guesses: constant velocity and zero motion; a coarse yaw search when both fit poorly.
+  // Initial guesses: constant velocity and zero motion (scored on a feature subsample).
   const Pose3 cv_delta = predictMotion(last_delta_, last_period_, period);
   const std::size_t stride = std::max<std::size_t>(1, last_features_.size() / 400);
   Pose3 guess = pose_ * cv_delta;
+  const bool has_times = params_.deskew && period > 0.0 &&
+                         (!last_features_.edge_time.empty() || !last_features_.planar_time.empty());
   // The constant-velocity guess is scored with the features deskewed by that motion, zero motion with the raw.
   LoamFeatures cv_features = last_features_;
-  if (params_.deskew && period > 0.0) {
+  if (has_times) {
     deskewConstantVelocity(last_features_.edge_points, last_features_.edge_time, cv_delta, period, cv_features.edge_points);
     deskewConstantVelocity(last_features_.planar_points, last_features_.planar_time, cv_delta, period, cv_features.planar_points);
   }
@@ -93,50 +95,64 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
       r.initial_guess = "zero_motion";
     }
   }
-  if (best < params_.min_guess_inlier_fraction && params_.yaw_search_step_deg > 0.0) {
-    const Pose3 centre = guess;
-    for (double yaw = params_.yaw_search_step_deg; yaw <= params_.yaw_search_max_deg + 1e-9;
-         yaw += params_.yaw_search_step_deg) {
-      for (double sign : {1.0, -1.0}) {
-        const Pose3 cand = centre * makePose(0, 0, 0, 0, 0, sign * yaw * kPi / 180.0);
-        const double s = scorePose(last_features_, map_, cand, params_, stride);
-        if (s > best) {
-          best = s;
-          guess = cand;
-          r.initial_guess = "yaw_search";
-        }
-      }
-    }
-  }
 
-  // Deskewing: features are deskewed with a motion over the sweep, first the constant-velocity prediction,
-  // then (when that was off by more than a few cm / mrad) the estimate, registering again from there.
-  const bool has_times = params_.deskew && period > 0.0 &&
-                         (!last_features_.edge_time.empty() || !last_features_.planar_time.empty());
-  const bool redo_first = first_needs_deskew_ && has_times && map_.numScans() == 1;
-  std::optional<DeskewReference> deskew;
-  // Second scan against a first scan that could not be deskewed: both are equally distorted, so the first
-  // pass registers them raw; the first scan is then deskewed with that motion.
-  if (has_times && !redo_first) deskew = DeskewReference{cv_delta, period};
-  RegistrationResult reg = registerFeatures(last_features_, map_, guess, params_, deskew);
-  if (redo_first) {
-    const Pose3 delta = pose_.inverse() * reg.pose;
+  // Second scan against a first scan that could not be deskewed: both are equally distorted, so register them
+  // raw first and deskew the first scan with that motion.
+  if (first_needs_deskew_ && has_times && map_.numScans() == 1) {
+    const RegistrationResult raw = registerFeatures(last_features_, map_, guess, params_, std::nullopt);
+    const Pose3 delta = pose_.inverse() * raw.pose;
     std::vector<Eigen::Vector3d> e0, p0;
     deskewConstantVelocity(first_features_.edge_points, first_features_.edge_time, delta, period, e0);
     deskewConstantVelocity(first_features_.planar_points, first_features_.planar_time, delta, period, p0);
     map_.clear();
     map_.add(transformed(pose_, e0), transformed(pose_, p0));
+    guess = raw.pose;
   }
-  if (has_times) {
-    for (int pass = 0; pass < 3; ++pass) {
+  first_needs_deskew_ = false;
+
+  // Registration from a guess. Deskewing: the features are deskewed with a motion over the sweep, first the
+  // guess's, then (while that differs from the estimate by more than 1 cm / 1 mrad) the estimate's,
+  // registering again from there (at most 3 extra passes).
+  auto registerFrom = [&](const Pose3& start) {
+    std::optional<DeskewReference> deskew;
+    if (has_times) deskew = DeskewReference{pose_.inverse() * start, period};
+    RegistrationResult reg = registerFeatures(last_features_, map_, start, params_, deskew);
+    for (int pass = 0; has_times && pass < 3; ++pass) {
       const Pose3 estimate = pose_.inverse() * reg.pose;
-      const Vector6 change = deskew ? logSE3(deskew->delta.inverse() * estimate) : Vector6::Constant(1.0);
+      const Vector6 change = logSE3(deskew->delta.inverse() * estimate);
       if (change.head<3>().norm() < 1e-3 && change.tail<3>().norm() < 0.01) break;
       deskew = DeskewReference{estimate, period};
       reg = registerFeatures(last_features_, map_, reg.pose, params_, deskew);
     }
+    return reg;
+  };
+  RegistrationResult reg = registerFrom(guess);
+
+  // Large unexpected motion (fast turns, low scan rates): when the result fits poorly, try a coarse yaw
+  // search around the guess and keep its registration only if it clearly fits better.
+  if (reg.inlier_fraction < params_.min_guess_inlier_fraction && params_.yaw_search_step_deg > 0.0) {
+    const double base = scorePose(last_features_, map_, reg.pose, params_, stride);
+    double best_yaw_score = base;
+    Pose3 best_yaw = guess;
+    for (double yaw = params_.yaw_search_step_deg; yaw <= params_.yaw_search_max_deg + 1e-9;
+         yaw += params_.yaw_search_step_deg) {
+      for (double sign : {1.0, -1.0}) {
+        const Pose3 cand = guess * makePose(0, 0, 0, 0, 0, sign * yaw * kPi / 180.0);
+        const double sc = scorePose(last_features_, map_, cand, params_, stride);
+        if (sc > best_yaw_score) {
+          best_yaw_score = sc;
+          best_yaw = cand;
+        }
+      }
+    }
+    if (best_yaw_score > base + 0.05) {
+      const RegistrationResult alt = registerFrom(best_yaw);
+      if (alt.inlier_fraction > reg.inlier_fraction + 0.1) {
+        reg = alt;
+        r.initial_guess = "yaw_search";
+      }
+    }
   }
-  first_needs_deskew_ = false;
   r.iterations = reg.iterations;
   r.inlier_fraction = reg.inlier_fraction;
   const std::size_t ncons = reg.num_edge_constraints + reg.num_plane_constraints;
@@ -156,7 +172,7 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
 
   // Insert this scan's (deskewed) features into the local map.
   std::vector<Eigen::Vector3d> edges, planes;
-  if (has_times) {
+  if (has_times) {  // deskewed with the final motion
     deskewConstantVelocity(last_features_.edge_points, last_features_.edge_time, r.delta, period, edges);
     deskewConstantVelocity(last_features_.planar_points, last_features_.planar_time, r.delta, period, planes);
   } else {
