@@ -25,6 +25,12 @@ std::optional<Pose3> RobotFrontend::referenceAt(StampNs stamp) const {
   return std::nullopt;
 }
 
+void RobotFrontend::appendReference(StampNs stamp, const Pose3& sensor_in_world) {
+  if (!sensor_in_world.matrix().allFinite()) return;
+  if (!reference_.empty() && stamp <= reference_.endStamp()) return;
+  reference_.append(stamp, sensor_in_world);
+}
+
 ScanOutcome RobotFrontend::processScan(const Scan& scan) { return afterOdometry(scan, odometry_.update(scan)); }
 
 ScanOutcome RobotFrontend::processScan(const Scan& scan, const Pose3& external_odom_pose) {

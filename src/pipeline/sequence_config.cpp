@@ -40,6 +40,10 @@ SequenceConfig SequenceConfig::load(const std::string& path) {
   root.read("source", cfg.source);
   root.read("seed", cfg.seed);
   root.read("time_offset_sigma", cfg.time_offset_sigma);
+  root.read("environment", cfg.environment);
+  std::string noise;
+  root.read("noise_models", noise);
+  cfg.noise_models = resolvePath(dir, noise);
   if (!(cfg.time_offset_sigma >= 0.0)) throw std::runtime_error(path + ": time_offset_sigma: must be >= 0");
 
   if (!root.has("trials") || !root.node["trials"].IsSequence() || root.node["trials"].size() == 0)

@@ -152,3 +152,18 @@ TEST(SequenceTiming, BadInputThrows) {
   EXPECT_THROW(SequenceTiming::synchronize(threeSpans(), 'z', 40.0, 1), std::runtime_error);
   EXPECT_THROW(SequenceTiming::synchronize({{'a', 10, 5}}, 'a', 40.0, 1), std::runtime_error);
 }
+
+TEST(SequenceConfig, TheTwelveCosmoBenchSequencesLoad) {
+  const std::vector<std::pair<std::string, std::size_t>> expected{
+      {"ntu_r3_00", 3}, {"ntu_r3_01", 3}, {"ntu_r3_02", 3}, {"ntu_r4_00", 4}, {"ntu_r5_00", 5}, {"kth_r3_00", 3},
+      {"kth_r3_01", 3}, {"kth_r4_00", 4}, {"tuhh_r3_00", 3}, {"tuhh_r3_01", 3}, {"kittredge_loop", 4},
+      {"main_campus", 4}};
+  for (const auto& [name, robots] : expected) {
+    const auto cfg = SequenceConfig::load(std::string(COSMO_SOURCE_DIR) + "/config/sequences/" + name + ".yaml");
+    EXPECT_EQ(cfg.name, name);
+    EXPECT_EQ(cfg.trials.size(), robots) << name;
+    EXPECT_TRUE(std::filesystem::exists(cfg.noise_models)) << cfg.noise_models;
+  }
+  EXPECT_EQ(SequenceConfig::load(std::string(COSMO_SOURCE_DIR) + "/config/sequences/ntu_r3_00.yaml").trials[1].name,
+            "ntu_night_04");
+}

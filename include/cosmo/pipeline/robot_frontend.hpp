@@ -78,6 +78,9 @@ class RobotFrontend {
   std::vector<LoopClosureAttempt> receiveTeammateScan(char teammate, std::size_t index,
                                                       std::shared_ptr<const Scan> scan, StampNs received_at);
 
+  /// Appends a reference (world) sensor pose as it arrives (live use); stamps not after the last are ignored.
+  void appendReference(StampNs stamp, const Pose3& sensor_in_world);
+
   char robot() const { return robot_; }
   const FrontendParams& params() const { return params_; }
   /// Dewarped keyframe scan (points only, stamp = keyframe stamp); nullptr for an unknown index.

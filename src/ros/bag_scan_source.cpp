@@ -1,0 +1,56 @@
+#include "cosmo/ros/bag_scan_source.hpp"
+
+#include <ros/time.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/PointCloud2.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace cosmo::ros_glue {
+
+pipeline::TrialSpan readTrialSpan(const std::string& bag_path, const std::string& topic, char robot) {
+  if (!ros::Time::isValid()) ros::Time::init();
+  rosbag::Bag bag;
+  try {
+    bag.open(bag_path, rosbag::bagmode::Read);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(bag_path + ": cannot open bag: " + e.what());
+  }
+  rosbag::View all(bag, rosbag::TopicQuery(topic));
+  if (all.size() == 0) throw std::runtime_error(bag_path + " " + topic + ": no messages on this topic");
+  auto stampOf = [&](const rosbag::MessageInstance& m) {
+    auto msg = m.instantiate<sensor_msgs::PointCloud2>();
+    if (!msg)
+      throw std::runtime_error(bag_path + " " + topic + ": message type " + m.getDataType() +
+                               " is not sensor_msgs/PointCloud2");
+    return static_cast<StampNs>(msg->header.stamp.toNSec());
+  };
+  pipeline::TrialSpan span;
+  span.robot = robot;
+  span.first = stampOf(*all.begin());
+  // The last header stamp: scan the messages received in the bag's last 5 s (header stamps may lag).
+  const ros::Time end = all.getEndTime();
+  const ros::Time from = end.toSec() > 5.0 ? end - ros::Duration(5.0) : ros::Time(0, 1);
+  rosbag::View tail(bag, rosbag::TopicQuery(topic), from, end + ros::Duration(1.0));
+  span.last = span.first;
+  for (const auto& m : tail) span.last = std::max(span.last, stampOf(m));
+  return span;
+}
+
+pipeline::SequenceTiming synchronizeSequence(const pipeline::SequenceConfig& config) {
+  std::vector<pipeline::TrialSpan> spans;
+  for (const auto& t : config.trials) spans.push_back(readTrialSpan(t.bag, t.topic, t.robot));
+  return pipeline::SequenceTiming::synchronize(spans, config.anchor, config.time_offset_sigma, config.seed);
+}
+
+pipeline::MergedScanStream openSequenceStream(const pipeline::SequenceConfig& config,
+                                              const pipeline::SequenceTiming& timing) {
+  std::map<char, std::unique_ptr<pipeline::ScanSource>> sources;
+  for (const auto& t : config.trials)
+    sources[t.robot] = std::make_unique<BagScanSource>(t.bag, t.topic, t.stamp_at_end);
+  return pipeline::MergedScanStream(std::move(sources), timing);
+}
+
+}  // namespace cosmo::ros_glue
