@@ -166,6 +166,9 @@ int main(int argc, char** argv) {
         for (const auto& y : robots) {
           if (&x == &y) continue;
           const auto o = evaluateAgainst(x.descriptors, x.positions, y.descriptors, y.positions, dbp);
+          const PrPoint d = precisionRecallAt(o, params.threshold, 5.0);
+          std::printf("  inter %s -> %s: %zu queries, %zu revisits (5 m), %zu detections, %zu true\n", x.robot.c_str(),
+                      y.robot.c_str(), o.size(), d.revisits, d.detections, d.true_positives);
           inter.insert(inter.end(), o.begin(), o.end());
         }
       printTable("intra-robot", intra, params.threshold);
