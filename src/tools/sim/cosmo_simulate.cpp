@@ -2,6 +2,7 @@
 // sequence config) from a generation config, cached by a hash of all parameters and the code version.
 //
 //   cosmo_simulate [--config config/sim/default.yaml | --small] [--out DIR] [--cache-dir DIR] [--no-cache] [--force]
+//                  [--plan-only]
 //
 // The last line printed is the path of the sequence config.
 #include <unistd.h>
@@ -32,7 +33,8 @@ void usage() {
                "  --out DIR        put the sequence here (symlinks into the cache, or real files with --no-cache)\n"
                "  --cache-dir DIR  cache root (default: $COSMO_SIM_CACHE, else ~/.cache/cosmo/sim)\n"
                "  --no-cache       generate straight into --out, do not read or fill the cache\n"
-               "  --force          regenerate even when the cache holds this sequence\n";
+               "  --force          regenerate even when the cache holds this sequence\n"
+               "  --plan-only      write only the reference trajectories and the sequence config into --out (preview)\n";
 }
 
 fs::path defaultCacheDir() {
@@ -42,7 +44,7 @@ fs::path defaultCacheDir() {
   return fs::temp_directory_path() / "cosmo_sim_cache";
 }
 
-void generate(const sim::SimulationParams& params, const fs::path& dir) {
+void generate(const sim::SimulationParams& params, const fs::path& dir, bool plan_only) {
   bench::Stopwatch total;
   std::cout << "planning world and routes (seed " << params.seed << ")..." << std::endl;
   const auto seq = sim::planSequence(params);
@@ -58,8 +60,12 @@ void generate(const sim::SimulationParams& params, const fs::path& dir) {
     std::printf("trial %s (robot %s, %s): %zu junctions, %.0f m, %.1f s, %zu scans\n", tp.name.c_str(), tp.robot.c_str(),
                 tp.platform.c_str(), t.route.size(), t.body.length(), toSeconds(t.body.endStamp() - t.body.startStamp()),
                 t.scan_stamps.size());
+    std::printf("  route:");
+    for (int n : t.route) std::printf(" %d", n);
+    std::printf("\n");
     std::fflush(stdout);
     writeMcdPoseCsv((dir / (tp.name + "_pose_inW.csv")).string(), t.body);
+    if (plan_only) continue;
     ros_glue::ScanBagWriter bag((dir / (tp.name + ".bag")).string());
     const Pose3 extrinsic = tp.extrinsicPose();
     bench::Stopwatch sw;
@@ -92,7 +98,7 @@ void generate(const sim::SimulationParams& params, const fs::path& dir) {
 
 int main(int argc, char** argv) {
   std::string config, out, cache_dir;
-  bool small = false, no_cache = false, force = false;
+  bool small = false, no_cache = false, force = false, plan_only = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -108,18 +114,20 @@ int main(int argc, char** argv) {
     else if (a == "--small") small = true;
     else if (a == "--no-cache") no_cache = true;
     else if (a == "--force") force = true;
+    else if (a == "--plan-only") plan_only = true;
     else if (a == "-h" || a == "--help") { usage(); return 0; }
     else { std::cerr << "unknown argument " << a << "\n"; usage(); return 2; }
   }
   if (config.empty()) config = std::string(COSMO_SOURCE_DIR) + (small ? "/config/sim/ci.yaml" : "/config/sim/default.yaml");
-  if (no_cache && out.empty()) {
-    std::cerr << "--no-cache needs --out DIR\n";
+  if ((no_cache || plan_only) && out.empty()) {
+    std::cerr << "--no-cache and --plan-only need --out DIR\n";
     return 2;
   }
   try {
     const auto params = sim::SimulationParams::load(config);
     const std::string key = params.name + "-" + params.hash();
     const fs::path cache = cache_dir.empty() ? defaultCacheDir() : fs::path(cache_dir);
+    if (plan_only) no_cache = true;
     const fs::path final_dir = no_cache ? fs::path(out) : cache / key;
     const std::string seq_name = params.name + ".yaml";
     if (!no_cache && !force && fs::exists(final_dir / "COMPLETE")) {
@@ -128,8 +136,8 @@ int main(int argc, char** argv) {
       fs::path tmp = no_cache ? final_dir : fs::path(final_dir.string() + ".tmp-" + std::to_string(::getpid()));
       fs::create_directories(tmp);
       std::cout << "generating " << params.name << " (" << config << ") into " << final_dir.string() << std::endl;
-      generate(params, tmp);
-      std::ofstream(tmp / "COMPLETE") << key << "\n";
+      generate(params, tmp, plan_only);
+      if (!plan_only) std::ofstream(tmp / "COMPLETE") << key << "\n";
       if (!no_cache) {
         if (fs::exists(final_dir / "COMPLETE")) {
           fs::remove_all(tmp);  // another run finished the same sequence meanwhile: keep its files
