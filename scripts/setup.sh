@@ -25,9 +25,10 @@ export PATH=/usr/bin:$PATH          # system python3 (catkin_pkg, rospkg) before
 export CCACHE_BASEDIR=$PWD CCACHE_NOHASHDIR=true
 B=${COSMO_BUILD_DIR:-_build}
 J=${JOBS:-$(nproc)}
+mkdir -p "$B"
 cmake -S . -B "$B" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCATKIN_ENABLE_TESTING=ON \
   -DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 \
-  -DCMAKE_CXX_COMPILER_LAUNCHER=ccache > "$B.cmake.log" 2>&1 || { cat "$B.cmake.log"; exit 1; }
+  -DCMAKE_CXX_COMPILER_LAUNCHER=ccache > "$B/cmake.log" 2>&1 || { cat "$B/cmake.log"; exit 1; }
 targets="all"
 [ -n "$COSMO_BUILD_TESTS" ] && targets="all tests"
 # gcc 12 sporadically crashes (ICE) on ROS headers: retry once.
