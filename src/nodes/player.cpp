@@ -1,0 +1,314 @@
+// player: replays the trials of a sequence config as one team (spec section 3 synchronization) on ROS topics.
+//
+// Publishes  /clock                  (rosgraph_msgs/Clock) sequence time
+//            /<r>/points             (sensor_msgs/PointCloud2, frame <r>/base_link = the LiDAR) each scan
+//            /<r>/reference_pose     (geometry_msgs/PoseStamped, frame world) the LiDAR's reference pose, about
+//                                    every 20 ms of the reference trajectory up to each scan
+//            TF world -> <r>/reference (the reference LiDAR pose)
+//            /player/progress        (std_msgs/String) "t / total" once per second of wall time
+// Lockstep (~mode lockstep, default): a scan of robot r is published only when r's front-end has acknowledged
+//   the previous one (/<r>/ack, std_msgs/Header: stamp = last scan processed, seq = teammate scans processed),
+//   and, when ~wait_for_broker, after the comm_broker has stepped through the scan's time (/comm/stats "time")
+//   and every front-end has processed every delivered scan. Real time (~mode realtime): scans at ~rate x wall
+//   speed, nothing waited for (results may depend on CPU speed).
+// Params: ~sequence (config path), ~mode, ~rate, ~seed (-1: the config's), ~max_seconds (0: all),
+//         ~ack_timeout (s wall; a front-end silent this long is skipped with a warning), ~wait_for_broker,
+//         ~end_linger (s wall after the last scan, radio still stepping), ~world_frame.
+//         With an empty ~sequence the built-in synthetic sequence is used: cosmo_simulate --config
+//         ~simulate_config --out ~simulate_out (cached by its parameters, so only the first run generates it).
+// When done it publishes /player/done (latched std_msgs/Empty) and exits (the launch marks it required).
+#include <geometry_msgs/PoseStamped.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Clock.h>
+#include <std_msgs/Empty.h>
+#include <std_msgs/Header.h>
+#include <std_msgs/String.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "cosmo/pipeline/sequence_config.hpp"
+#include "cosmo/sim/simulation_params.hpp"
+#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/ros/bag_scan_source.hpp"
+#include "cosmo/ros/point_cloud.hpp"
+
+using namespace cosmo;
+
+namespace {
+
+ros::Time toRos(StampNs t) {
+  ros::Time r;
+  r.fromNSec(t);
+  return r;
+}
+
+geometry_msgs::Pose toMsg(const Pose3& T) {
+  geometry_msgs::Pose p;
+  const Eigen::Quaterniond q(T.rotation());
+  p.position.x = T.translation().x();
+  p.position.y = T.translation().y();
+  p.position.z = T.translation().z();
+  p.orientation.w = q.w();
+  p.orientation.x = q.x();
+  p.orientation.y = q.y();
+  p.orientation.z = q.z();
+  return p;
+}
+
+struct Acks {
+  std::mutex mutex;
+  std::map<char, StampNs> last_scan;
+  std::map<char, std::uint32_t> received;
+  double broker_time = -1.0;
+  std::uint64_t broker_delivered = 0;
+  std::uint32_t receivedTotal() {
+    std::uint32_t n = 0;
+    for (const auto& [r, c] : received) n += c;
+    return n;
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "player");
+  ros::NodeHandle nh, pnh("~");
+  std::string sequence_path, mode, world_frame;
+  double rate, max_seconds, ack_timeout, end_linger;
+  int seed;
+  bool wait_for_broker;
+  pnh.param<std::string>("sequence", sequence_path, "");
+  pnh.param<std::string>("mode", mode, "lockstep");
+  pnh.param("rate", rate, 1.0);
+  pnh.param("seed", seed, -1);
+  pnh.param("max_seconds", max_seconds, 0.0);
+  pnh.param("ack_timeout", ack_timeout, 30.0);
+  pnh.param("wait_for_broker", wait_for_broker, true);
+  pnh.param("end_linger", end_linger, 3.0);
+  pnh.param<std::string>("world_frame", world_frame, "world");
+  std::string simulate_config, simulate_out;
+  pnh.param<std::string>("simulate_config", simulate_config, "");
+  pnh.param<std::string>("simulate_out", simulate_out, "/tmp/cosmo_builtin_sequence");
+  if (sequence_path.empty()) {
+    try {
+      if (simulate_config.empty()) simulate_config = std::string(COSMO_SOURCE_DIR) + "/config/sim/default.yaml";
+      const std::string name = sim::SimulationParams::load(simulate_config).name;
+      char exe[4096] = {0};
+      const ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+      const std::string dir = n > 0 ? std::filesystem::path(std::string(exe, n)).parent_path().string() : ".";
+      const std::string cmd = "'" + dir + "/cosmo_simulate' --config '" + simulate_config + "' --out '" + simulate_out + "'";
+      ROS_INFO("player: built-in sequence: %s (generated on the first run; several minutes)", cmd.c_str());
+      if (std::system(cmd.c_str()) != 0) throw std::runtime_error("cosmo_simulate failed: " + cmd);
+      sequence_path = simulate_out + "/" + name + ".yaml";
+    } catch (const std::exception& e) {
+      ROS_FATAL("player: %s", e.what());
+      return 1;
+    }
+  }
+  if (mode != "lockstep" && mode != "realtime") {
+    ROS_FATAL("player: ~mode must be lockstep or realtime, got '%s'", mode.c_str());
+    return 1;
+  }
+  const bool lockstep = mode == "lockstep";
+  if (!(rate > 0)) rate = 1.0;
+
+  pipeline::SequenceConfig config;
+  pipeline::SequenceTiming timing;
+  std::map<char, Trajectory> refs;
+  try {
+    config = pipeline::SequenceConfig::load(sequence_path);
+    if (seed >= 0) config.seed = static_cast<unsigned long long>(seed);
+    timing = ros_glue::synchronizeSequence(config);
+    for (const auto& t : config.trials) refs[t.robot] = pipeline::loadSensorReference(t, timing.of(t.robot));
+  } catch (const std::exception& e) {
+    ROS_FATAL("player: %s", e.what());
+    return 1;
+  }
+  const StampNs end =
+      max_seconds > 0 ? std::min(timing.end(), timing.start() + toStampNs(max_seconds)) : timing.end();
+  const double total = toSeconds(end - timing.start());
+  ROS_INFO("player: sequence %s, %zu robots, %.1f s, mode %s%s", config.name.c_str(), config.trials.size(), total,
+           mode.c_str(), lockstep ? "" : (" x" + std::to_string(rate)).c_str());
+
+  ros::Publisher clock_pub = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  ros::Publisher progress_pub = nh.advertise<std_msgs::String>("/player/progress", 10);
+  ros::Publisher done_pub = nh.advertise<std_msgs::Empty>("/player/done", 1, true);
+  std::map<char, ros::Publisher> points_pub, pose_pub;
+  std::vector<ros::Subscriber> subs;
+  Acks acks;
+  for (const auto& t : config.trials) {
+    const char r = t.robot;
+    const std::string ns = std::string("/") + r;
+    points_pub[r] = nh.advertise<sensor_msgs::PointCloud2>(ns + "/points", 5);
+    pose_pub[r] = nh.advertise<geometry_msgs::PoseStamped>(ns + "/reference_pose", 200);
+    subs.push_back(nh.subscribe<std_msgs::Header>(ns + "/ack", 100, [&acks, r](const std_msgs::Header::ConstPtr& m) {
+      std::lock_guard<std::mutex> lock(acks.mutex);
+      acks.last_scan[r] = m->stamp.toNSec();
+      acks.received[r] = m->seq;
+    }));
+  }
+  subs.push_back(nh.subscribe<std_msgs::String>("/comm/stats", 100, [&acks](const std_msgs::String::ConstPtr& m) {
+    try {
+      const auto j = nlohmann::json::parse(m->data);
+      std::lock_guard<std::mutex> lock(acks.mutex);
+      acks.broker_time = j.value("time", -1.0);
+      acks.broker_delivered = j.value("delivered", std::uint64_t{0});
+    } catch (const std::exception&) {
+    }
+  }));
+  tf2_ros::TransformBroadcaster tf;
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+
+  // Wait for the front-ends to subscribe (lockstep needs every robot's ack).
+  const ros::WallTime wait_start = ros::WallTime::now();
+  auto waitSubscribers = [&](ros::Publisher& pub) {
+    while (ros::ok() && pub.getNumSubscribers() == 0 && (ros::WallTime::now() - wait_start).toSec() < ack_timeout)
+      ros::WallDuration(0.05).sleep();
+  };
+  for (auto& [r, pub] : points_pub) waitSubscribers(pub);
+  for (auto& [r, pub] : pose_pub)
+    if (!refs[r].empty()) waitSubscribers(pub);
+  auto publishClock = [&](StampNs t) {
+    rosgraph_msgs::Clock c;
+    c.clock = toRos(t);
+    clock_pub.publish(c);
+  };
+  publishClock(timing.start());
+  ros::WallDuration(0.5).sleep();
+
+  std::map<char, StampNs> last_pose_sent;
+  std::map<char, StampNs> expected_ack;
+  auto waitFor = [&](const char* what, const std::function<bool()>& done) {
+    const ros::WallTime start = ros::WallTime::now();
+    while (ros::ok() && !done()) {
+      if ((ros::WallTime::now() - start).toSec() > ack_timeout) {
+        ROS_WARN("player: no %s within %.0f s; continuing", what, ack_timeout);
+        return false;
+      }
+      ros::WallDuration(0.0005).sleep();
+    }
+    return true;
+  };
+
+  try {
+    pipeline::MergedScanStream stream = ros_glue::openSequenceStream(config, timing);
+    char robot;
+    Scan scan;
+    const ros::WallTime wall_start = ros::WallTime::now();
+    ros::WallTime last_progress = wall_start;
+    std::size_t published = 0;
+    bool broker_seen = false;
+    while (ros::ok() && stream.next(robot, scan)) {
+      if (scan.stamp > end) break;
+      const double t_rel = toSeconds(scan.stamp - timing.start());
+      if (!lockstep) {
+        const ros::WallTime due = wall_start + ros::WallDuration(t_rel / rate);
+        const ros::WallTime now = ros::WallTime::now();
+        if (due > now) (due - now).sleep();
+      } else {
+        // the previous scan of this robot must be acknowledged
+        if (expected_ack.count(robot)) {
+          const StampNs want = expected_ack[robot];
+          if (!waitFor("front-end ack", [&] {
+                std::lock_guard<std::mutex> lock(acks.mutex);
+                return acks.last_scan.count(robot) && acks.last_scan[robot] >= want;
+              }))
+            expected_ack.erase(robot);
+        }
+      }
+      publishClock(scan.stamp);
+      if (lockstep && wait_for_broker) {
+        // the broker steps through this time and its deliveries are processed by the front-ends
+        const double t = scan.stamp * 1e-9;
+        {
+          std::lock_guard<std::mutex> lock(acks.mutex);
+          broker_seen = broker_seen || acks.broker_time >= 0;
+        }
+        if (broker_seen) {
+          waitFor("comm_broker step", [&] {
+            std::lock_guard<std::mutex> lock(acks.mutex);
+            return acks.broker_time + 0.1 + 1e-6 > t;
+          });
+          waitFor("delivered scans processed", [&] {
+            std::lock_guard<std::mutex> lock(acks.mutex);
+            return acks.receivedTotal() >= acks.broker_delivered;
+          });
+        }
+      }
+      // reference poses up to the scan (about every 20 ms), then the scan
+      const Trajectory& ref = refs[robot];
+      if (!ref.empty()) {
+        const StampNs from = last_pose_sent.count(robot) ? last_pose_sent[robot] : scan.stamp - std::min<StampNs>(scan.stamp, 200000000ULL);
+        std::vector<StampNs> stamps;
+        for (const auto& p : ref.poses())
+          if (p.stamp > from && p.stamp < scan.stamp && (stamps.empty() || p.stamp - stamps.back() >= 20000000ULL))
+            stamps.push_back(p.stamp);
+        stamps.push_back(scan.stamp);
+        for (StampNs s : stamps) {
+          geometry_msgs::PoseStamped ps;
+          ps.header.stamp = toRos(s);
+          ps.header.frame_id = world_frame;
+          ps.pose = toMsg(ref.atClamped(s));
+          pose_pub[robot].publish(ps);
+        }
+        last_pose_sent[robot] = scan.stamp;
+        geometry_msgs::TransformStamped tfm;
+        tfm.header.stamp = toRos(scan.stamp);
+        tfm.header.frame_id = world_frame;
+        tfm.child_frame_id = std::string(1, robot) + "/reference";
+        const Pose3 T = ref.atClamped(scan.stamp);
+        const auto p = toMsg(T);
+        tfm.transform.translation.x = p.position.x;
+        tfm.transform.translation.y = p.position.y;
+        tfm.transform.translation.z = p.position.z;
+        tfm.transform.rotation = p.orientation;
+        tf.sendTransform(tfm);
+      }
+      sensor_msgs::PointCloud2 msg = ros_glue::toPointCloud2(scan, std::string(1, robot) + "/base_link");
+      points_pub[robot].publish(msg);
+      expected_ack[robot] = scan.stamp;
+      ++published;
+      const ros::WallTime now = ros::WallTime::now();
+      if ((now - last_progress).toSec() >= 1.0) {
+        last_progress = now;
+        char line[160];
+        std::snprintf(line, sizeof line, "sequence time %.1f / %.1f s, %zu scans, %.1f s wall", t_rel, total, published,
+                      (now - wall_start).toSec());
+        std_msgs::String s;
+        s.data = line;
+        progress_pub.publish(s);
+        ROS_INFO("player: %s", line);
+      }
+    }
+    // last acks, then let the radio run to the end of the sequence
+    for (const auto& [r, want] : expected_ack)
+      waitFor("front-end ack", [&, r = r, want = want] {
+        std::lock_guard<std::mutex> lock(acks.mutex);
+        return acks.last_scan.count(r) && acks.last_scan[r] >= want;
+      });
+    publishClock(end);
+    const ros::WallTime linger = ros::WallTime::now();
+    while (ros::ok() && (ros::WallTime::now() - linger).toSec() < end_linger) {
+      publishClock(end + toStampNs((ros::WallTime::now() - linger).toSec() * 1e-3));
+      ros::WallDuration(0.05).sleep();
+    }
+    ROS_INFO("player: done, %zu scans in %.1f s wall for %.1f s of sequence", published,
+             (ros::WallTime::now() - wall_start).toSec(), total);
+  } catch (const std::exception& e) {
+    ROS_FATAL("player: %s", e.what());
+    return 1;
+  }
+  done_pub.publish(std_msgs::Empty());
+  ros::WallDuration(0.5).sleep();
+  return 0;
+}

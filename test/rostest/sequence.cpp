@@ -1,0 +1,98 @@
+// rostest gtest node for sequence.test: waits for the player to finish, makes the recorder write, and checks
+// the JRL: `cosmo_jrl validate` passes, every robot has a complete odometry chain, and the outlier labels
+// follow the default (fidelity) chi^2 rule, recomputed here from the file's own ground truth and covariances.
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <std_msgs/Empty.h>
+#include <std_srvs/Trigger.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+
+#include "cosmo/dataset/outlier_rule.hpp"
+#include "cosmo/jrl/io.hpp"
+#include "cosmo/jrl/stats.hpp"
+#include "cosmo/jrl/validate.hpp"
+
+namespace {
+
+std::string siblingProgram(const std::string& name) {
+  char exe[4096] = {0};
+  const ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+  if (n > 0) {
+    const auto p = std::filesystem::path(std::string(exe, n)).parent_path() / name;
+    if (std::filesystem::exists(p)) return p.string();
+  }
+  return name;
+}
+
+}  // namespace
+
+TEST(SequenceLaunch, WritesAValidJrl) {
+  ros::NodeHandle nh;
+  std::string jrl_path;
+  ASSERT_TRUE(nh.getParam("/jrl_path", jrl_path));
+  std::atomic<bool> done{false};
+  auto sub = nh.subscribe<std_msgs::Empty>("/player/done", 1, [&](const std_msgs::Empty::ConstPtr&) { done = true; });
+  const ros::WallTime start = ros::WallTime::now();
+  while (ros::ok() && !done && (ros::WallTime::now() - start).toSec() < 540.0) {
+    ros::spinOnce();
+    ros::WallDuration(0.1).sleep();
+  }
+  ASSERT_TRUE(done) << "the player did not finish";
+  ASSERT_TRUE(ros::service::waitForService("/recorder/write", ros::Duration(30.0)));
+  std_srvs::Trigger trigger;
+  ASSERT_TRUE(ros::service::call("/recorder/write", trigger));
+  EXPECT_TRUE(trigger.response.success) << trigger.response.message;
+  ASSERT_TRUE(std::filesystem::exists(jrl_path)) << jrl_path;
+
+  const std::string cmd = "'" + siblingProgram("cosmo_jrl") + "' validate '" + jrl_path + "'";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+
+  const cosmo::jrl::Dataset ds = cosmo::jrl::readJrl(jrl_path);
+  const auto violations = cosmo::jrl::validate(ds);
+  for (const auto& v : violations) ADD_FAILURE() << v.str();
+  const auto stats = cosmo::jrl::computeStats(ds);
+  std::cout << cosmo::jrl::formatStats(stats) << std::endl;
+  EXPECT_EQ(stats.robots.size(), 3u);
+  EXPECT_EQ(stats.priors, 3u);
+  EXPECT_GT(stats.odometry, 10u);
+  EXPECT_TRUE(stats.has_groundtruth);
+  EXPECT_TRUE(stats.has_outlier_labels);
+  EXPECT_LE(stats.lc_outliers, stats.lc_count);
+  EXPECT_LE(stats.irlc_outliers, stats.irlc_count);
+
+  // Outlier labels: a loop closure is listed as an outlier iff it fails the default (fidelity) chi^2 rule
+  // against the file's own ground truth and covariance.
+  ASSERT_TRUE(ds.groundtruth && ds.outliers && ds.potential_outliers);
+  auto listed = [](const std::map<char, std::set<cosmo::jrl::FactorId>>& m, char r, const cosmo::jrl::FactorId& id) {
+    auto it = m.find(r);
+    return it != m.end() && it->second.count(id) > 0;
+  };
+  std::size_t checked = 0;
+  for (char r : ds.robots) {
+    const auto& entries = ds.measurements.at(r);
+    for (std::size_t e = 0; e < entries.size(); ++e)
+      for (std::size_t f = 0; f < entries[e].factors.size(); ++f) {
+        const auto& factor = entries[e].factors[f];
+        const cosmo::jrl::FactorId id{e, f};
+        if (!factor.isBetweenPose3() || !listed(*ds.potential_outliers, r, id)) continue;
+        const auto& gt = ds.groundtruth->at(r);
+        const cosmo::Pose3 truth =
+            cosmo::jrl::pose3At(gt, factor.keys[0]).inverse() * cosmo::jrl::pose3At(gt, factor.keys[1]);
+        const cosmo::Matrix6 cov = factor.covarianceMatrix();
+        const bool outlier = cosmo::isOutlier(factor.pose3(), truth, cov, cosmo::OutlierRule::Fidelity);
+        EXPECT_EQ(outlier, listed(*ds.outliers, r, id)) << r << " entry " << e << " factor " << f;
+        ++checked;
+      }
+  }
+  std::cout << "checked the labels of " << checked << " loop closures" << std::endl;
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "sequence_test");
+  ros::NodeHandle nh;
+  return RUN_ALL_TESTS();
+}
