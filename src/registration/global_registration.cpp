@@ -99,6 +99,11 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
       r.refined = true;
     }
     r.overlap = src.points.empty() ? 0.0 : static_cast<double>(icp.matched) / static_cast<double>(src.points.size());
+  } else if (solved && p.min_overlap > 0.0) {
+    // Overlap at the global solution (one ICP iteration counts the matches; its update is not used).
+    const IcpResult probe = refinePointToPlane(src.points, tgt.points, tgt.normals, r.T_target_source,
+                                               p.icp_max_distance, 1);
+    r.overlap = src.points.empty() ? 0.0 : static_cast<double>(probe.matched) / static_cast<double>(src.points.size());
   }
   notifyStage(observer, "refine");
 

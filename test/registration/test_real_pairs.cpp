@@ -53,6 +53,16 @@ TEST(RealPairs, MulranKaist03Consecutive) {
   expectRegistered(named(*all, "kaist03_0-1"), 0.0);
 }
 
+TEST(RealPairs, GateRejectsDifferentPlaces) {
+  // KITTI 00 frames 0 and 198 are hundreds of metres apart: no overlap, the gate must say no.
+  const auto root = sharedPath("data/scan_snippets/kitti00/velodyne");
+  if (!root) GTEST_SKIP() << "../shared/data/scan_snippets not found (set COSMO_SHARED_DIR)";
+  const GlobalRegistration reg;
+  const RegistrationResult r = reg.align(readScanFile(*root + "/000000.bin"), readScanFile(*root + "/000198.bin"));
+  EXPECT_FALSE(r.valid) << "final inliers " << r.final_inliers << ", overlap " << r.overlap;
+  EXPECT_LT(r.overlap, 0.7);
+}
+
 TEST(RealPairs, DeterministicResult) {
   const auto all = pairs();
   if (!all) GTEST_SKIP() << "../shared/data/scan_snippets not found (set COSMO_SHARED_DIR)";

@@ -42,10 +42,10 @@ struct RegistrationParams {
   double icp_max_correction_m = 1.0;    ///< a refinement that moves farther than this is discarded (m)
   double icp_max_correction_deg = 5.0;  ///< ... or rotates more than this (deg)
   // --- validity gate (never looks at ground truth) -------------------------------------------------------
-  std::size_t min_final_inliers = 20;  ///< accept only with at least this many consistent inliers
+  std::size_t min_final_inliers = 5;   ///< accept only with at least this many consistent inliers
   std::size_t min_correspondences = 10; ///< below this the problem is declared degenerate
   double min_inlier_ratio = 0.0;  ///< final inliers / correspondences must reach this (0 = off)
-  double min_overlap = 0.0;       ///< fraction of source points within icp_max_distance after refinement (0 = off)
+  double min_overlap = 0.7;       ///< fraction of source points within icp_max_distance after the solve (0 = off)
 
   static RegistrationParams fromConfig(const ConfigNode& node);
 };
