@@ -96,10 +96,10 @@ Scan densify(const Scan& s, std::mt19937_64& rng) {
   return out;
 }
 
-/// A synthetic loop pair cut from one real scan: source = the points within `keep` m of a point offset by
-/// `offset` (m, random direction in the plane) from the sensor... expressed in a virtual sensor frame at that
-/// offset with random yaw, target = the original scan cropped to `keep` m around its sensor; 2 cm noise added
-/// to both, a different random 20 % of points dropped from each.
+/// A synthetic loop pair cut from one real scan (used by --synthetic when no simulator is at hand): a virtual
+/// source sensor `offset` m from the real one (direction `dir`) with heading `yaw`; target = the scan's points
+/// within `keep` m (horizontal) of the real sensor, source = the points within `keep` m of the virtual sensor
+/// expressed in its frame; 2 cm Gaussian noise and an independent random 20 % drop for each.
 struct SynthPair {
   Scan source, target;
   Pose3 T_target_source;
