@@ -131,6 +131,7 @@ TEST(PlaceRecognizer, TimeBasedExclusion) {
 
 TEST(PlaceRecognizer, InterRobotSearchBothWays) {
   PlaceRecognitionParams p;
+  p.threshold = 0.35;  // the toy scene's pillars change faster with a 0.5 m offset than real scenes
   PlaceRecognizer rec('b', p);
   const auto poses = path(30);
   for (std::size_t i = 0; i < 20; ++i)

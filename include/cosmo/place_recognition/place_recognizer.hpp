@@ -25,7 +25,7 @@ struct PlaceRecognitionParams {
   /// Ring-key nearest neighbours scored with the full distance (Kim's code: 10).
   int num_candidates = 10;
   /// Accept a candidate when its descriptor distance is below this (see config/place_recognition.yaml).
-  double threshold = 0.35;
+  double threshold = 0.30;
   /// Own keyframes excluded from the own-database search: the most recent `exclude_recent` ones (30 keyframes
   /// = 60 m of travel at the 2 m keyframe spacing, within the 80 m descriptor range)...
   int exclude_recent = 30;
