@@ -78,11 +78,19 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
   Pose3 guess = pose_ * cv_delta;
   const bool has_times = params_.deskew && period > 0.0 &&
                          (!last_features_.edge_time.empty() || !last_features_.planar_time.empty());
+  // With deskew_planar_only, only the x / y / yaw part of the motion deskews (see LoamParams).
+  auto deskewMotion = [&](const Pose3& delta) {
+    if (!params_.deskew_planar_only) return delta;
+    Vector6 xi = logSE3(delta);
+    xi[0] = xi[1] = 0.0;  // roll, pitch rates
+    xi[5] = 0.0;          // vertical velocity
+    return expSE3(xi);
+  };
   // The constant-velocity guess is scored with the features deskewed by that motion, zero motion with the raw.
   LoamFeatures cv_features = last_features_;
   if (has_times) {
-    deskewConstantVelocity(last_features_.edge_points, last_features_.edge_time, cv_delta, period, cv_features.edge_points);
-    deskewConstantVelocity(last_features_.planar_points, last_features_.planar_time, cv_delta, period, cv_features.planar_points);
+    deskewConstantVelocity(last_features_.edge_points, last_features_.edge_time, deskewMotion(cv_delta), period, cv_features.edge_points);
+    deskewConstantVelocity(last_features_.planar_points, last_features_.planar_time, deskewMotion(cv_delta), period, cv_features.planar_points);
   }
   double best = scorePose(cv_features, map_, guess, params_, stride);
   r.initial_guess = "constant_velocity";
@@ -100,7 +108,7 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
   // raw first and deskew the first scan with that motion.
   if (first_needs_deskew_ && has_times && map_.numScans() == 1) {
     const RegistrationResult raw = registerFeatures(last_features_, map_, guess, params_, std::nullopt);
-    const Pose3 delta = pose_.inverse() * raw.pose;
+    const Pose3 delta = deskewMotion(pose_.inverse() * raw.pose);
     std::vector<Eigen::Vector3d> e0, p0;
     deskewConstantVelocity(first_features_.edge_points, first_features_.edge_time, delta, period, e0);
     deskewConstantVelocity(first_features_.planar_points, first_features_.planar_time, delta, period, p0);
@@ -115,10 +123,10 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
   // registering again from there (at most 3 extra passes).
   auto registerFrom = [&](const Pose3& start) {
     std::optional<DeskewReference> deskew;
-    if (has_times) deskew = DeskewReference{pose_.inverse() * start, period};
+    if (has_times) deskew = DeskewReference{deskewMotion(pose_.inverse() * start), period};
     RegistrationResult reg = registerFeatures(last_features_, map_, start, params_, deskew);
     for (int pass = 0; has_times && pass < 3; ++pass) {
-      const Pose3 estimate = pose_.inverse() * reg.pose;
+      const Pose3 estimate = deskewMotion(pose_.inverse() * reg.pose);
       const Vector6 change = logSE3(deskew->delta.inverse() * estimate);
       if (change.head<3>().norm() < 1e-3 && change.tail<3>().norm() < 0.01) break;
       deskew = DeskewReference{estimate, period};
@@ -173,8 +181,8 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
   // Insert this scan's (deskewed) features into the local map.
   std::vector<Eigen::Vector3d> edges, planes;
   if (has_times) {  // deskewed with the final motion
-    deskewConstantVelocity(last_features_.edge_points, last_features_.edge_time, r.delta, period, edges);
-    deskewConstantVelocity(last_features_.planar_points, last_features_.planar_time, r.delta, period, planes);
+    deskewConstantVelocity(last_features_.edge_points, last_features_.edge_time, deskewMotion(r.delta), period, edges);
+    deskewConstantVelocity(last_features_.planar_points, last_features_.planar_time, deskewMotion(r.delta), period, planes);
   } else {
     edges = last_features_.edge_points;
     planes = last_features_.planar_points;

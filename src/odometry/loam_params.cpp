@@ -36,6 +36,7 @@ LoamParams LoamParams::fromConfig(const ConfigNode& root) {
   c.read("yaw_search_max_deg", p.yaw_search_max_deg);
   c.read("min_correspondences", p.min_correspondences);
   c.read("deskew", p.deskew);
+  c.read("deskew_planar_only", p.deskew_planar_only);
   return p;
 }
 

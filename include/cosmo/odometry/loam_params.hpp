@@ -58,6 +58,10 @@ struct LoamParams {
   int min_correspondences = 30;
   /// Deskew features with the current motion estimate when the scan carries per-point times.
   bool deskew = true;
+  /// Deskew with the x / y / yaw part of the motion only. The full 6-DoF deskew couples vertical velocity and
+  /// roll / pitch rate (a vertical drift over the sweep looks like a tilt) and oscillated on hilly synthetic
+  /// terrain; ground robots and walkers move mostly in the plane within a 0.1 s sweep.
+  bool deskew_planar_only = true;
 
   /// Reads the keys above (same names) from `cfg` (its `odometry` child when present).
   static LoamParams fromConfig(const ConfigNode& cfg);
