@@ -15,7 +15,8 @@
 //             identity without a reference)
 // Params      ~robot (default: the namespace), ~config_dir (frontend/odometry/place_recognition/registration
 //             .yaml), ~odometry loam|reference|external, ~noise_models (YAML, for the inlier/outlier colours),
-//             ~world_frame (world)
+//             ~world_frame (world), ~reference_wait (s of message time a scan waits for its reference pose; without
+//             any reference, live use, scans are processed this much later)
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -102,6 +103,7 @@ class FrontendNode {
     pnh.param<std::string>("odometry", odometry_mode_, "loam");
     pnh.param<std::string>("noise_models", noise, "");
     pnh.param<std::string>("world_frame", world_frame_, "world");
+    pnh.param("reference_wait", reference_wait_, 0.5);
     if (odometry_mode_ != "loam" && odometry_mode_ != "reference" && odometry_mode_ != "external")
       throw std::runtime_error("~odometry must be loam, reference or external, got '" + odometry_mode_ + "'");
     if (!noise.empty()) noise_ = NoiseModels::load(noise);
@@ -124,6 +126,23 @@ class FrontendNode {
  private:
   void onReference(const geometry_msgs::PoseStamped::ConstPtr& m) {
     frontend_->appendReference(m->header.stamp.toNSec(), fromMsg(m->pose));
+    drainPending();
+  }
+
+  // Scans wait (in order) until the reference covers their stamp: the reference pose and the scan come on two
+  // topics whose messages may arrive in either order. A scan older than the newest by more than
+  // ~reference_wait seconds of message time goes ahead without (its keyframe then has no reference pose).
+  void drainPending() {
+    while (!pending_.empty()) {
+      const StampNs stamp = pending_.front()->header.stamp.toNSec();
+      const bool covered = frontend_->hasReference() && frontend_->reference().endStamp() >= stamp;
+      const StampNs newest = pending_.back()->header.stamp.toNSec();
+      const bool too_old = newest > stamp && newest - stamp > toStampNs(reference_wait_);
+      if (!covered && !too_old) return;
+      auto m = pending_.front();
+      pending_.pop_front();
+      process(m);
+    }
   }
 
   void onOdom(const nav_msgs::Odometry::ConstPtr& m) {
@@ -145,6 +164,11 @@ class FrontendNode {
   }
 
   void onPoints(const sensor_msgs::PointCloud2::ConstPtr& m) {
+    pending_.push_back(m);
+    drainPending();
+  }
+
+  void process(const sensor_msgs::PointCloud2::ConstPtr& m) {
     const StampNs stamp = m->header.stamp.toNSec();
     try {
       Scan scan = ros_glue::fromPointCloud2(*m, true, points_sub_.getTopic());
@@ -232,6 +256,7 @@ class FrontendNode {
       ++received_dropped_;
       ROS_ERROR("frontend %c: %s: %s", robot_, recv_sub_.getTopic().c_str(), e.what());
     }
+    ack(frontend_->lastStamp());  // the player's lockstep counts processed deliveries
   }
 
   void loopClosure(const pipeline::LoopClosureAttempt& a) {
@@ -342,6 +367,8 @@ class FrontendNode {
   std::vector<Eigen::Vector3d> trajectory_;
   std::vector<Marked> closures_;
   std::size_t received_dropped_ = 0;
+  std::deque<sensor_msgs::PointCloud2::ConstPtr> pending_;
+  double reference_wait_ = 0.5;
   ros::Publisher offer_pub_, kf_pub_, lc_pub_, ack_pub_, marker_pub_;
   ros::Subscriber points_sub_, ref_sub_, recv_sub_, odom_sub_;
   tf2_ros::TransformBroadcaster tf_;
