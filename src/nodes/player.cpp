@@ -281,9 +281,14 @@ int main(int argc, char** argv) {
       const ros::WallTime now = ros::WallTime::now();
       if ((now - last_progress).toSec() >= 1.0) {
         last_progress = now;
-        char line[160];
-        std::snprintf(line, sizeof line, "sequence time %.1f / %.1f s, %zu scans, %.1f s wall", t_rel, total, published,
-                      (now - wall_start).toSec());
+        std::uint64_t delivered = 0;
+        {
+          std::lock_guard<std::mutex> lock(acks.mutex);
+          delivered = acks.broker_delivered;
+        }
+        char line[200];
+        std::snprintf(line, sizeof line, "sequence time %.1f / %.1f s, %zu scans, %llu transfers delivered, %.1f s wall",
+                      t_rel, total, published, static_cast<unsigned long long>(delivered), (now - wall_start).toSec());
         std_msgs::String s;
         s.data = line;
         progress_pub.publish(s);
