@@ -226,7 +226,7 @@ void sectionDrift(const LoamParams& params) {
     for (const auto& r : res) warn += r.ok ? 0 : 1;
     double len = 0.0;
     for (std::size_t i = 1; i < gt.size(); ++i) len += (gt[i].translation() - gt[i - 1].translation()).norm();
-    std::cout << "  " << tr.name << ", " << std::setprecision(0) << len << " m, " << scans.size() << " scans, "
+    std::cout << "  " << tr.name << ", " << std::fixed << std::setprecision(0) << len << " m, " << scans.size() << " scans, "
               << warn << " warnings, ATE " << std::setprecision(3) << absoluteTrajectoryError(est, gt).rmse << " m\n";
     for (const auto& e : segmentErrors(est, gt, {25.0, 50.0, 100.0}, 1)) {
       std::cout << "    " << std::setw(4) << std::setprecision(0) << e.length << " m: ";
