@@ -75,7 +75,6 @@ RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFea
   res.pose = guess;
   const bool do_deskew = deskew && params.deskew && deskew->period > 0.0 &&
                          (!features.edge_time.empty() || !features.planar_time.empty());
-  constexpr double kMinEigenvaluePerConstraint = 1e-3;
   constexpr int kInnerSteps = 4;  // Gauss-Newton steps per association
   std::vector<FeatureConstraint> cs;
   std::vector<Eigen::Vector3d> edges, planes;
@@ -117,7 +116,7 @@ RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFea
       for (int k = 0; k < kInnerSteps; ++k) {
         int degenerate = 0;
         const Vector6 dx =
-            robustGaussNewtonStep(cs, res.pose, params.huber_delta, kMinEigenvaluePerConstraint, degenerate);
+            robustGaussNewtonStep(cs, res.pose, params.huber_delta, params.min_eigenvalue_per_constraint, degenerate);
         res.degenerate_directions = degenerate;
         res.pose = orthonormalized(expSE3(dx) * res.pose);
         if (dx.head<3>().norm() < params.rotation_convergence_thresh &&

@@ -35,6 +35,7 @@ LoamParams LoamParams::fromConfig(const ConfigNode& root) {
   c.read("yaw_search_step_deg", p.yaw_search_step_deg);
   c.read("yaw_search_max_deg", p.yaw_search_max_deg);
   c.read("min_correspondences", p.min_correspondences);
+  c.read("min_eigenvalue_per_constraint", p.min_eigenvalue_per_constraint);
   c.read("deskew", p.deskew);
   c.read("deskew_planar_only", p.deskew_planar_only);
   return p;

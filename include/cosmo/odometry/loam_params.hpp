@@ -54,6 +54,9 @@ struct LoamParams {
   double inlier_dist = 0.3;           ///< (m) residual counted as an inlier when scoring guesses
   double yaw_search_step_deg = 10.0;  ///< yaw step of the coarse search
   double yaw_search_max_deg = 50.0;   ///< yaw range (+-) of the coarse search
+  /// Degeneracy: directions of the Gauss-Newton system with an eigenvalue below this times the number of
+  /// constraints keep the initial guess (solution remapping) and the result is flagged.
+  double min_eigenvalue_per_constraint = 1e-3;
   /// Fewer usable correspondences than this after registration: degenerate, the motion model is used.
   int min_correspondences = 30;
   /// Deskew features with the current motion estimate when the scan carries per-point times.
