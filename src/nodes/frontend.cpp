@@ -28,6 +28,7 @@
 #include <deque>
 #include <map>
 
+#include "cosmo/ros/pose_msg.hpp"
 #include "cosmo/Keyframe.h"
 #include "cosmo/RecorderKeyframe.h"
 #include "cosmo/RecorderLoopClosure.h"
@@ -40,29 +41,6 @@ using namespace cosmo;
 
 namespace {
 
-geometry_msgs::Pose toMsg(const Pose3& T) {
-  geometry_msgs::Pose p;
-  const Eigen::Quaterniond q(T.rotation());
-  p.position.x = T.translation().x();
-  p.position.y = T.translation().y();
-  p.position.z = T.translation().z();
-  p.orientation.w = q.w();
-  p.orientation.x = q.x();
-  p.orientation.y = q.y();
-  p.orientation.z = q.z();
-  return p;
-}
-
-Pose3 fromMsg(const geometry_msgs::Pose& p) {
-  return makePose(Eigen::Vector3d(p.position.x, p.position.y, p.position.z),
-                  Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z));
-}
-
-ros::Time toRos(StampNs t) {
-  ros::Time r;
-  r.fromNSec(t);
-  return r;
-}
 
 geometry_msgs::Point point(const Eigen::Vector3d& v) {
   geometry_msgs::Point p;
@@ -125,7 +103,7 @@ class FrontendNode {
 
  private:
   void onReference(const geometry_msgs::PoseStamped::ConstPtr& m) {
-    frontend_->appendReference(m->header.stamp.toNSec(), fromMsg(m->pose));
+    frontend_->appendReference(m->header.stamp.toNSec(), ros_glue::poseFromMsg(m->pose));
     drainPending();
   }
 
@@ -146,7 +124,7 @@ class FrontendNode {
   }
 
   void onOdom(const nav_msgs::Odometry::ConstPtr& m) {
-    odom_.emplace_back(m->header.stamp.toNSec(), fromMsg(m->pose.pose));
+    odom_.emplace_back(m->header.stamp.toNSec(), ros_glue::poseFromMsg(m->pose.pose));
     while (odom_.size() > 2000) odom_.pop_front();
   }
 
@@ -203,7 +181,7 @@ class FrontendNode {
 
   void ack(StampNs stamp) {
     std_msgs::Header h;
-    h.stamp = toRos(stamp);
+    h.stamp = ros_glue::stampToRos(stamp);
     h.seq = static_cast<std::uint32_t>(frontend_->teammateScansReceived() + received_dropped_);
     h.frame_id = std::string(1, robot_);
     ack_pub_.publish(h);
@@ -217,17 +195,17 @@ class FrontendNode {
     if (out.keyframe) {
       const auto& kf = *out.keyframe;
       cosmo::RecorderKeyframe km;
-      km.header.stamp = toRos(kf.stamp);
+      km.header.stamp = ros_glue::stampToRos(kf.stamp);
       km.header.frame_id = world_frame_;
       km.robot = std::string(1, robot_);
       km.index = static_cast<std::uint32_t>(kf.index);
-      km.odometry_from_previous = toMsg(kf.relative);
+      km.odometry_from_previous = ros_glue::poseToMsg(kf.relative);
       km.has_reference = kf.reference.has_value();
-      if (kf.reference) km.reference = toMsg(*kf.reference);
+      if (kf.reference) km.reference = ros_glue::poseToMsg(*kf.reference);
       kf_pub_.publish(km);
       const Scan* s = frontend_->keyframeScan(kf.index);
       cosmo::Keyframe offer;
-      offer.header.stamp = toRos(kf.stamp);
+      offer.header.stamp = ros_glue::stampToRos(kf.stamp);
       offer.header.frame_id = base_frame_;
       offer.robot = km.robot;
       offer.index = km.index;
@@ -247,8 +225,8 @@ class FrontendNode {
       if (m->robot.size() != 1 || m->robot[0] == robot_) throw std::runtime_error("bad robot field '" + m->robot + "'");
       Scan scan = ros_glue::fromPointCloud2(m->cloud, true, recv_sub_.getTopic());
       scan.stamp = m->header.stamp.toNSec();
-      if (m->has_reference) positions_[{m->robot[0], m->index}] = fromMsg(m->reference).translation();
-      if (m->has_reference) references_[{m->robot[0], m->index}] = fromMsg(m->reference);
+      if (m->has_reference) positions_[{m->robot[0], m->index}] = ros_glue::poseFromMsg(m->reference).translation();
+      if (m->has_reference) references_[{m->robot[0], m->index}] = ros_glue::poseFromMsg(m->reference);
       const StampNs now = ros::Time::now().toNSec();
       for (const auto& a : frontend_->receiveTeammateScan(m->robot[0], m->index, scan, now)) loopClosure(a);
       publishMarkers(ros::Time::now());
@@ -263,14 +241,14 @@ class FrontendNode {
     Marked mk{a, 0};
     if (a.accepted) {
       cosmo::RecorderLoopClosure lc;
-      lc.header.stamp = toRos(a.computed_at);
+      lc.header.stamp = ros_glue::stampToRos(a.computed_at);
       lc.header.frame_id = world_frame_;
       lc.owner = std::string(1, a.owner);
       lc.robot1 = std::string(1, a.robot1);
       lc.index1 = static_cast<std::uint32_t>(a.index1);
       lc.robot2 = std::string(1, a.robot2);
       lc.index2 = static_cast<std::uint32_t>(a.index2);
-      lc.measurement = toMsg(a.measurement);
+      lc.measurement = ros_glue::poseToMsg(a.measurement);
       lc_pub_.publish(lc);
       // inlier / outlier against the reference when both poses have one
       const auto r1 = referenceOf(a.robot1, a.index1), r2 = referenceOf(a.robot2, a.index2);
@@ -297,7 +275,7 @@ class FrontendNode {
       t.header.stamp = stamp;
       t.header.frame_id = parent;
       t.child_frame_id = child;
-      const auto p = toMsg(T);
+      const auto p = ros_glue::poseToMsg(T);
       t.transform.translation.x = p.position.x;
       t.transform.translation.y = p.position.y;
       t.transform.translation.z = p.position.z;

@@ -35,6 +35,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "cosmo/ros/pose_msg.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/sim/simulation_params.hpp"
 #include "cosmo/pipeline/sequence_references.hpp"
@@ -45,24 +46,6 @@ using namespace cosmo;
 
 namespace {
 
-ros::Time toRos(StampNs t) {
-  ros::Time r;
-  r.fromNSec(t);
-  return r;
-}
-
-geometry_msgs::Pose toMsg(const Pose3& T) {
-  geometry_msgs::Pose p;
-  const Eigen::Quaterniond q(T.rotation());
-  p.position.x = T.translation().x();
-  p.position.y = T.translation().y();
-  p.position.z = T.translation().z();
-  p.orientation.w = q.w();
-  p.orientation.x = q.x();
-  p.orientation.y = q.y();
-  p.orientation.z = q.z();
-  return p;
-}
 
 struct Acks {
   std::mutex mutex;
@@ -180,7 +163,7 @@ int main(int argc, char** argv) {
     if (!refs[r].empty()) waitSubscribers(pub);
   auto publishClock = [&](StampNs t) {
     rosgraph_msgs::Clock c;
-    c.clock = toRos(t);
+    c.clock = ros_glue::stampToRos(t);
     clock_pub.publish(c);
   };
   publishClock(timing.start());
@@ -256,18 +239,18 @@ int main(int argc, char** argv) {
         stamps.push_back(scan.stamp);
         for (StampNs s : stamps) {
           geometry_msgs::PoseStamped ps;
-          ps.header.stamp = toRos(s);
+          ps.header.stamp = ros_glue::stampToRos(s);
           ps.header.frame_id = world_frame;
-          ps.pose = toMsg(ref.atClamped(s));
+          ps.pose = ros_glue::poseToMsg(ref.atClamped(s));
           pose_pub[robot].publish(ps);
         }
         last_pose_sent[robot] = scan.stamp;
         geometry_msgs::TransformStamped tfm;
-        tfm.header.stamp = toRos(scan.stamp);
+        tfm.header.stamp = ros_glue::stampToRos(scan.stamp);
         tfm.header.frame_id = world_frame;
         tfm.child_frame_id = std::string(1, robot) + "/reference";
         const Pose3 T = ref.atClamped(scan.stamp);
-        const auto p = toMsg(T);
+        const auto p = ros_glue::poseToMsg(T);
         tfm.transform.translation.x = p.position.x;
         tfm.transform.translation.y = p.position.y;
         tfm.transform.translation.z = p.position.z;

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "cosmo/odometry/dewarp.hpp"
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/place_recognition/place_recognizer.hpp"
@@ -42,28 +43,8 @@ struct Keyframes {
 
 /// Points moved to the sensor frame at the scan stamp using the reference LiDAR trajectory (times binned into
 /// 64 slots between the earliest and latest point time).
-Scan dewarp(const Scan& scan, const Trajectory& body, const Pose3& T_body_lidar) {
-  if (!scan.hasTime()) return scan;
-  float t_min = 0.0f, t_max = 0.0f;
-  for (float t : scan.time) {
-    t_min = std::min(t_min, t);
-    t_max = std::max(t_max, t);
-  }
-  const int slots = 64;
-  const Pose3 end_inv = (body.atClamped(scan.stamp) * T_body_lidar).inverse();
-  std::vector<Eigen::Isometry3f> corr(slots);
-  for (int k = 0; k < slots; ++k) {
-    const double t = t_min + (t_max - t_min) * (k + 0.5) / slots;
-    const auto stamp = static_cast<StampNs>(static_cast<double>(scan.stamp) + t * 1e9);
-    corr[k] = (end_inv * body.atClamped(stamp) * T_body_lidar).cast<float>();
-  }
-  Scan out = scan;
-  const float span = std::max(1e-6f, t_max - t_min);
-  for (std::size_t i = 0; i < out.points.size(); ++i) {
-    const int k = std::min(slots - 1, static_cast<int>((scan.time[i] - t_min) / span * slots));
-    out.points[i] = corr[k] * out.points[i];
-  }
-  return out;
+Scan dewarpWithReference(const Scan& scan, const Trajectory& body, const Pose3& T_body_lidar) {
+  return cosmo::dewarp(scan, [&](StampNs t) { return body.atClamped(t) * T_body_lidar; });
 }
 
 std::vector<Keyframes> loadSequence(const std::string& yaml_path, const PlaceRecognitionParams& params, double kf_m,
@@ -97,7 +78,7 @@ std::vector<Keyframes> loadSequence(const std::string& yaml_path, const PlaceRec
       const Pose3 lidar = body.atClamped(scan.stamp) * T_body_lidar;
       if (last && (lidar.translation() - *last).norm() <= kf_m) continue;
       last = lidar.translation();
-      kf.descriptors.push_back(makeScanContext(dewarp(scan, body, T_body_lidar), params.sc));
+      kf.descriptors.push_back(makeScanContext(dewarpWithReference(scan, body, T_body_lidar), params.sc));
       kf.positions.push_back(lidar.translation());
     }
     std::printf("  trial %s: %zu scans read, %zu keyframes (%.1f s)\n", kf.robot.c_str(), scans,

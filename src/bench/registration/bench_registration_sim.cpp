@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "cosmo/odometry/dewarp.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/registration/global_registration.hpp"
 #include "cosmo/registration/pair_evaluation.hpp"
@@ -38,25 +39,8 @@ struct Keyframe {
   Scan scan;   // dewarped
 };
 
-Scan dewarp(const Scan& scan, const Trajectory& body, const Pose3& T_body_lidar) {
-  if (!scan.hasTime()) return scan;
-  float t_min = 0.0f, t_max = 0.0f;
-  for (float t : scan.time) t_min = std::min(t_min, t), t_max = std::max(t_max, t);
-  const int slots = 64;
-  const Pose3 end_inv = (body.atClamped(scan.stamp) * T_body_lidar).inverse();
-  std::vector<Eigen::Isometry3f> corr(slots);
-  for (int k = 0; k < slots; ++k) {
-    const double t = t_min + (t_max - t_min) * (k + 0.5) / slots;
-    const auto stamp = static_cast<StampNs>(static_cast<double>(scan.stamp) + t * 1e9);
-    corr[k] = (end_inv * body.atClamped(stamp) * T_body_lidar).cast<float>();
-  }
-  Scan out = scan;
-  const float span = std::max(1e-6f, t_max - t_min);
-  for (std::size_t i = 0; i < out.points.size(); ++i) {
-    const int k = std::min(slots - 1, static_cast<int>((scan.time[i] - t_min) / span * slots));
-    out.points[i] = corr[k] * out.points[i];
-  }
-  return out;
+Scan dewarpWithReference(const Scan& scan, const Trajectory& body, const Pose3& T_body_lidar) {
+  return cosmo::dewarp(scan, [&](StampNs t) { return body.atClamped(t) * T_body_lidar; });
 }
 
 std::vector<Keyframe> loadKeyframes(const std::string& yaml_path, double kf_m) {
@@ -82,7 +66,7 @@ std::vector<Keyframe> loadKeyframes(const std::string& yaml_path, double kf_m) {
       const Pose3 lidar = body.atClamped(scan.stamp) * T_body_lidar;
       if (last && (lidar.translation() - *last).norm() <= kf_m) continue;
       last = lidar.translation();
-      out.push_back({robot, lidar, dewarp(scan, body, T_body_lidar)});
+      out.push_back({robot, lidar, dewarpWithReference(scan, body, T_body_lidar)});
       ++n;
     }
     std::printf("  trial %s: %zu keyframes\n", t["robot"].as<std::string>().c_str(), n);
