@@ -18,7 +18,7 @@ void writeTransferCsv(std::ostream& out, const std::vector<Transfer>& transfers)
         << ',' << toString(x.outcome) << '\n';
 }
 
-std::string transferSummaryJson(const RadioStats& s, const RadioParams& p) {
+nlohmann::json transferSummary(const RadioStats& s, const RadioParams& p) {
   nlohmann::json j;
   j["steps"] = s.steps;
   j["keyframes_offered"] = s.keyframes_offered;
@@ -34,8 +34,10 @@ std::string transferSummaryJson(const RadioStats& s, const RadioParams& p) {
                  {"p_max", p.p_max},                   {"alpha", p.alpha},       {"beta", p.beta},
                  {"r_max", p.r_max},                   {"step", p.step},         {"timeout", p.timeout},
                  {"timeout_mode", toString(p.timeout_mode)}, {"size_model", toString(p.size_model)}};
-  return j.dump();
+  return j;
 }
+
+std::string transferSummaryJson(const RadioStats& s, const RadioParams& p) { return transferSummary(s, p).dump(); }
 
 namespace {
 void writeAtomically(const std::string& path, const std::string& text) {

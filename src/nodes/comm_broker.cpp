@@ -279,16 +279,8 @@ class CommBroker {
   }
 
   void publishStats(double t) {
-    const cosmo::RadioStats& s = sim_->stats();
-    nlohmann::json j;
+    nlohmann::json j = cosmo::transferSummary(sim_->stats(), sim_->params());
     j["time"] = t;
-    j["steps"] = s.steps;
-    j["keyframes_offered"] = s.keyframes_offered;
-    j["initiated"] = s.initiated;
-    j["delivered"] = s.delivered;
-    j["timed_out"] = s.timed_out;
-    j["bytes_delivered"] = s.bytes_delivered;
-    j["bytes_transmitted"] = s.bytes_transmitted;
     j["active"] = nlohmann::json::array();
     for (const auto& c : sim_->activeCommunications())
       j["active"].push_back({{"sender", std::string(1, c.sender)},
