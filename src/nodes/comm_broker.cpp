@@ -28,6 +28,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "cosmo/ros/robot_list.hpp"
 #include "cosmo/Keyframe.h"
 #include "cosmo/comm/radio_simulator.hpp"
 #include "cosmo/comm/scan_compression.hpp"
@@ -35,35 +36,6 @@
 #include "cosmo/ros/point_cloud.hpp"
 
 namespace {
-
-std::vector<char> readRobots(ros::NodeHandle& pnh) {
-  std::vector<std::string> names;
-  XmlRpc::XmlRpcValue v;
-  if (pnh.getParam("robots", v)) {
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeArray) {
-      for (int i = 0; i < v.size(); ++i) {
-        if (v[i].getType() != XmlRpc::XmlRpcValue::TypeString)
-          throw std::runtime_error("~robots: entry " + std::to_string(i) + " is not a string");
-        names.push_back(static_cast<std::string>(v[i]));
-      }
-    } else if (v.getType() == XmlRpc::XmlRpcValue::TypeString) {
-      std::string s = static_cast<std::string>(v);
-      for (char& c : s)
-        if (c == ',' || c == '[' || c == ']' || c == '\'' || c == '"') c = ' ';
-      std::istringstream in(s);
-      for (std::string n; in >> n;) names.push_back(n);
-    } else {
-      throw std::runtime_error("~robots: expected a list of robot ids, e.g. [a, b, c]");
-    }
-  }
-  if (names.empty()) throw std::runtime_error("~robots: no robots given (e.g. _robots:='[a, b, c]')");
-  std::vector<char> ids;
-  for (const auto& n : names) {
-    if (n.size() != 1) throw std::runtime_error("~robots: robot id '" + n + "' must be a single character");
-    ids.push_back(n[0]);
-  }
-  return ids;
-}
 
 std_msgs::ColorRGBA throughputColor(double fraction) {
   std_msgs::ColorRGBA c;
@@ -78,7 +50,7 @@ std_msgs::ColorRGBA throughputColor(double fraction) {
 class CommBroker {
  public:
   CommBroker(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
-    const std::vector<char> robots = readRobots(pnh);
+    const std::vector<char> robots = cosmo::ros_glue::readRobotsParam(pnh);
     std::string comm = "wifi", config, size_model, timeout_mode;
     pnh.param<std::string>("comm", comm, comm);
     pnh.param<std::string>("config", config, "");

@@ -17,6 +17,8 @@
 #include <optional>
 #include <sstream>
 
+#include "cosmo/ros/pose_msg.hpp"
+#include "cosmo/ros/robot_list.hpp"
 #include "cosmo/RecorderKeyframe.h"
 #include "cosmo/RecorderLoopClosure.h"
 #include "cosmo/dataset/dataset_recorder.hpp"
@@ -27,39 +29,10 @@ namespace {
 volatile std::sig_atomic_t g_stop = 0;
 void onSignal(int) { g_stop = 1; }
 
-cosmo::Pose3 toPose(const geometry_msgs::Pose& p) {
-  return cosmo::makePose(Eigen::Vector3d(p.position.x, p.position.y, p.position.z),
-                         Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z));
-}
-
-std::vector<char> readRobots(const ros::NodeHandle& pnh) {
-  std::vector<std::string> list;
-  std::string text = "a,b,c";
-  if (!pnh.getParam("robots", list)) {
-    pnh.getParam("robots", text);
-    std::string token;
-    for (const char c : text + ",") {
-      if (c == ',' || c == ' ') {
-        if (!token.empty()) list.push_back(token);
-        token.clear();
-      } else {
-        token += c;
-      }
-    }
-  }
-  std::vector<char> robots;
-  for (const auto& r : list) {
-    if (r.size() != 1) throw std::runtime_error("~robots: robot ids are single characters, got '" + r + "'");
-    robots.push_back(r[0]);
-  }
-  if (robots.empty()) throw std::runtime_error("~robots: empty");
-  return robots;
-}
-
 class RecorderNode {
  public:
   RecorderNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
-    const std::vector<char> robots = readRobots(pnh);
+    const std::vector<char> robots = cosmo::ros_glue::readRobotsParam(pnh, "a,b,c");
     std::string name = "cosmo", output_dir = ".", noise_path, rule_name = "fidelity";
     pnh.param("name", name, name);
     pnh.param("output_dir", output_dir, output_dir);
@@ -122,8 +95,8 @@ class RecorderNode {
     const char robot = m.robot.size() == 1 ? m.robot[0] : topic_robot;
     try {
       std::optional<cosmo::Pose3> reference;
-      if (m.has_reference) reference = toPose(m.reference);
-      const cosmo::Pose3 odometry = m.index == 0 ? cosmo::Pose3::Identity() : toPose(m.odometry_from_previous);
+      if (m.has_reference) reference = cosmo::ros_glue::poseFromMsg(m.reference);
+      const cosmo::Pose3 odometry = m.index == 0 ? cosmo::Pose3::Identity() : cosmo::ros_glue::poseFromMsg(m.odometry_from_previous);
       recorder_->addKeyframe(robot, m.index, m.header.stamp.toNSec(), odometry, reference);
       changed_ = true;
     } catch (const std::exception& e) {
@@ -140,7 +113,7 @@ class RecorderNode {
       lc.computed_at = m.header.stamp.toNSec();
       lc.key1 = cosmo::jrl::symbol(m.robot1[0], m.index1);
       lc.key2 = cosmo::jrl::symbol(m.robot2[0], m.index2);
-      lc.measurement = toPose(m.measurement);
+      lc.measurement = cosmo::ros_glue::poseFromMsg(m.measurement);
       recorder_->addLoopClosure(lc);
       changed_ = true;
     } catch (const std::exception& e) {
