@@ -1,18 +1,22 @@
 #include "cosmo/sim/route_planner.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <queue>
 #include <set>
 #include <stdexcept>
+#include <string>
 
 namespace cosmo::sim {
 
 namespace {
 bool usable(const PathNetwork& net, int e, bool streets_only) { return !streets_only || net.edges[e].street; }
 
-std::vector<double> distancesTo(const PathNetwork& net, int target, bool streets_only) {
+/// Dijkstra from `target`; `next` (when given) receives each node's neighbour on its shortest way to target.
+std::vector<double> distancesTo(const PathNetwork& net, int target, bool streets_only, std::vector<int>* next = nullptr) {
   std::vector<double> dist(net.nodes.size(), std::numeric_limits<double>::infinity());
+  if (next) next->assign(net.nodes.size(), -1);
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> q;
   dist[target] = 0.0;
@@ -26,16 +30,50 @@ std::vector<double> distancesTo(const PathNetwork& net, int target, bool streets
       const double nd = d + net.edgeLength(e);
       if (nd < dist[v]) {
         dist[v] = nd;
+        if (next) (*next)[v] = u;
         q.push({nd, v});
       }
     }
   }
   return dist;
 }
+
+std::vector<int> waypointRoute(const PathNetwork& net, const RouteParams& p) {
+  const int n = static_cast<int>(net.nodes.size());
+  std::vector<int> stops;
+  if (p.start_node >= 0) stops.push_back(p.start_node);
+  stops.insert(stops.end(), p.waypoints.begin(), p.waypoints.end());
+  for (int s : stops)
+    if (s < 0 || s >= n)
+      throw std::invalid_argument("planRoute: waypoint " + std::to_string(s) + " is not a junction (0.." +
+                                  std::to_string(n - 1) + ")");
+  std::vector<int> route{stops.front()};
+  for (std::size_t k = 1; k < stops.size(); ++k) {
+    if (stops[k] == route.back()) continue;
+    const auto leg = shortestPath(net, route.back(), stops[k], p.streets_only);
+    if (leg.empty())
+      throw std::invalid_argument("planRoute: no path from junction " + std::to_string(route.back()) + " to " +
+                                  std::to_string(stops[k]));
+    route.insert(route.end(), leg.begin() + 1, leg.end());
+  }
+  return route;
+}
 }  // namespace
+
+std::vector<int> shortestPath(const PathNetwork& net, int from, int to, bool streets_only) {
+  const int n = static_cast<int>(net.nodes.size());
+  if (from < 0 || from >= n || to < 0 || to >= n) return {};
+  std::vector<int> next;
+  const auto dist = distancesTo(net, to, streets_only, &next);
+  if (!std::isfinite(dist[from])) return {};
+  std::vector<int> path{from};
+  while (path.back() != to) path.push_back(next[path.back()]);
+  return path;
+}
 
 std::vector<int> planRoute(const PathNetwork& net, const RouteParams& p, std::mt19937_64& rng) {
   if (net.nodes.empty() || net.edges.empty()) throw std::invalid_argument("planRoute: empty path network");
+  if (!p.waypoints.empty()) return waypointRoute(net, p);
   const int n = static_cast<int>(net.nodes.size());
   int start = p.start_node;
   if (start < 0 || start >= n) {

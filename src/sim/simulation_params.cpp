@@ -20,6 +20,10 @@ std::string TrialParams::describe() const {
      << ";length=" << length << ";duration=" << duration << ";start_node=" << start_node
      << ";streets_only=" << route.streets_only << ";return_fraction=" << route.return_fraction << ";extrinsic=";
   for (double v : extrinsic) os << v << ',';
+  if (!route.waypoints.empty()) {  // only when used: the cache keys of configs without waypoints stay valid
+    os << ";waypoints=";
+    for (int w : route.waypoints) os << w << ',';
+  }
   os << ';' << motion.describe();
   return os.str();
 }
@@ -59,6 +63,7 @@ SimulationParams SimulationParams::fromConfig(const ConfigNode& node) {
     tp.route.streets_only = tp.platform == "car";
     t.read("streets_only", tp.route.streets_only);
     t.read("return_fraction", tp.route.return_fraction);
+    t.read("waypoints", tp.route.waypoints);
     if (tp.extrinsic.size() != 7) throw std::runtime_error(t.where + ".extrinsic: expected 7 numbers (x y z qx qy qz qw)");
     if (!robots.insert(tp.robot).second) throw std::runtime_error(t.where + ".robot: duplicate robot id " + tp.robot);
     if (!names.insert(tp.name).second) throw std::runtime_error(t.where + ".name: duplicate trial name " + tp.name);

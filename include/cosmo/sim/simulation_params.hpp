@@ -21,10 +21,10 @@ struct TrialParams {
   std::string robot = "a";          ///< robot id
   std::string name = "trial_a";     ///< trial name: <name>.bag, <name>_pose_inW.csv
   std::string platform = "atv";     ///< handheld | atv | car (motion preset)
-  double length = 500.0;            ///< route length along the network, m (when duration <= 0)
+  double length = 500.0;            ///< route length along the network, m (when duration <= 0 and no waypoints)
   double duration = 0.0;            ///< s; > 0 sets the route length to about duration * cruise speed
   int start_node = -1;              ///< junction to start from (-1: seeded random)
-  RouteParams route;
+  RouteParams route;                ///< streets_only, return_fraction, waypoints (start_node is copied in)
   MotionParams motion;
   /// T_body_lidar as x y z qx qy qz qw (LiDAR pose = body pose * extrinsic).
   std::vector<double> extrinsic{0.0, 0.0, 0.25, 0.0, 0.0, 0.0, 1.0};

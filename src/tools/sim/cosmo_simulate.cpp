@@ -12,7 +12,9 @@
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <iomanip>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 
 #include "cosmo/bench/stopwatch.hpp"
@@ -34,7 +36,8 @@ void usage() {
                "  --cache-dir DIR  cache root (default: $COSMO_SIM_CACHE, else ~/.cache/cosmo/sim)\n"
                "  --no-cache       generate straight into --out, do not read or fill the cache\n"
                "  --force          regenerate even when the cache holds this sequence\n"
-               "  --plan-only      write only the reference trajectories and the sequence config into --out (preview)\n";
+               "  --plan-only      write only the reference trajectories, the sequence config and network.csv (junctions and\n"
+               "                   paths, for choosing start_node / waypoints) into --out (preview)\n";
 }
 
 fs::path defaultCacheDir() {
@@ -42,6 +45,19 @@ fs::path defaultCacheDir() {
   if (const char* x = std::getenv("XDG_CACHE_HOME")) return fs::path(x) / "cosmo" / "sim";
   if (const char* h = std::getenv("HOME")) return fs::path(h) / ".cache" / "cosmo" / "sim";
   return fs::temp_directory_path() / "cosmo_sim_cache";
+}
+
+// Junctions and paths of the world, for choosing start nodes and waypoints:
+// "junction,<index>,<x>,<y>" and "path,<junction a>,<junction b>,street|footpath,<length m>".
+void writeNetworkCsv(const std::string& path, const sim::PathNetwork& net) {
+  std::ofstream out(path);
+  out << std::fixed << std::setprecision(1);
+  for (std::size_t i = 0; i < net.nodes.size(); ++i)
+    out << "junction," << i << ',' << net.nodes[i].x() << ',' << net.nodes[i].y() << '\n';
+  for (std::size_t e = 0; e < net.edges.size(); ++e)
+    out << "path," << net.edges[e].a << ',' << net.edges[e].b << ',' << (net.edges[e].street ? "street" : "footpath")
+        << ',' << net.edgeLength(static_cast<int>(e)) << '\n';
+  if (!out) throw std::runtime_error(path + ": write failed");
 }
 
 void generate(const sim::SimulationParams& params, const fs::path& dir, bool plan_only) {
@@ -55,6 +71,7 @@ void generate(const sim::SimulationParams& params, const fs::path& dir, bool pla
               total.elapsedMs() * 1e-3);
   sim::ScanSimulator simulator(world, params.lidar);
   sim::writeSequenceConfig((dir / (params.name + ".yaml")).string(), params);
+  if (plan_only) writeNetworkCsv((dir / "network.csv").string(), world.network());
   for (const auto& t : seq.trials) {
     const auto& tp = t.params;
     std::printf("trial %s (robot %s, %s): %zu junctions, %.0f m, %.1f s, %zu scans\n", tp.name.c_str(), tp.robot.c_str(),
