@@ -8,15 +8,25 @@
 
 namespace cosmo {
 
+Pose3 applyCentredUpdate(const Vector6& dx, const Pose3& T) {
+  Pose3 to_centre = Pose3::Identity();
+  to_centre.translation() = T.translation();
+  return orthonormalized(to_centre * expSE3(dx) * to_centre.inverse() * T);
+}
+
 Vector6 robustGaussNewtonStep(const std::vector<FeatureConstraint>& constraints, const Pose3& T,
                               double huber_delta, double min_eigenvalue_per_constraint, int& degenerate) {
   Matrix6 H = Matrix6::Zero();
   Vector6 g = Vector6::Zero();
+  // Perturbation about the sensor position (see applyCentredUpdate): lever arms are the features' ranges, not
+  // their distances from the odometry origin, so the eigenvalues (degeneracy test) do not depend on how far
+  // the robot has travelled.
+  const Eigen::Vector3d centre = T.translation();
   for (const auto& c : constraints) {
     const Eigen::Vector3d q = T * c.point;
     const double r = c.normal.dot(q) - c.offset;
     Vector6 J;
-    J.head<3>() = q.cross(c.normal);  // d r / d omega for T <- exp([omega, v]) T
+    J.head<3>() = (q - centre).cross(c.normal);  // d r / d omega for a rotation about the sensor position
     J.tail<3>() = c.normal;
     J *= c.jacobian_scale;
     const double a = std::abs(r);
@@ -118,7 +128,7 @@ RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFea
         const Vector6 dx =
             robustGaussNewtonStep(cs, res.pose, params.huber_delta, params.min_eigenvalue_per_constraint, degenerate);
         res.degenerate_directions = degenerate;
-        res.pose = orthonormalized(expSE3(dx) * res.pose);
+        res.pose = applyCentredUpdate(dx, res.pose);
         if (dx.head<3>().norm() < params.rotation_convergence_thresh &&
             dx.tail<3>().norm() < params.position_convergence_thresh)
           break;

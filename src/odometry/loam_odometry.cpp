@@ -104,6 +104,14 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
     }
   }
 
+  // Deskew motion of this scan: the constant-velocity prediction (the previous scan's estimated motion), not
+  // the scan's own estimate. Deskewing with the own estimate, iterated to self-consistency, feeds the deskew
+  // errors of the map's scans back into the estimate: a period-2 oscillation of the scan-to-scan motion that
+  // grew without bound on fast trials (test LoamSynthetic.AcceleratingTrialDoesNotOscillate). With the
+  // prediction, this scan and the previous one (inserted with its final estimate = this prediction) share the
+  // same deskew error, which cancels in the registration.
+  Pose3 deskew_delta = deskewMotion(cv_delta);
+
   // Second scan against a first scan that could not be deskewed: both are equally distorted, so register them
   // raw first and deskew the first scan with that motion.
   if (first_needs_deskew_ && has_times && map_.numScans() == 1) {
@@ -115,20 +123,23 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
     map_.clear();
     map_.add(transformed(pose_, e0), transformed(pose_, p0));
     guess = raw.pose;
+    deskew_delta = delta;
   }
   first_needs_deskew_ = false;
 
-  // Registration from a guess. Deskewing: the features are deskewed with a motion over the sweep, first the
-  // guess's, then (while that differs from the estimate by more than 1 cm / 1 mrad) the estimate's,
-  // registering again from there (at most 3 extra passes).
+  // Registration from a guess, the features deskewed with deskew_delta. Only when the estimate differs from
+  // that motion by more than deskew_reestimate_translation / _rotation (an unexpected motion: a sudden turn or
+  // stop, a dropped scan) is it registered again, deskewed with the estimate.
   auto registerFrom = [&](const Pose3& start) {
     std::optional<DeskewReference> deskew;
-    if (has_times) deskew = DeskewReference{deskewMotion(pose_.inverse() * start), period};
+    if (has_times) deskew = DeskewReference{deskew_delta, period};
     RegistrationResult reg = registerFeatures(last_features_, map_, start, params_, deskew);
-    for (int pass = 0; has_times && pass < 3; ++pass) {
+    for (int pass = 0; has_times && pass < 2; ++pass) {
       const Pose3 estimate = deskewMotion(pose_.inverse() * reg.pose);
       const Vector6 change = logSE3(deskew->delta.inverse() * estimate);
-      if (change.head<3>().norm() < 1e-3 && change.tail<3>().norm() < 0.01) break;
+      if (change.head<3>().norm() < params_.deskew_reestimate_rotation_deg * kPi / 180.0 &&
+          change.tail<3>().norm() < params_.deskew_reestimate_translation)
+        break;
       deskew = DeskewReference{estimate, period};
       reg = registerFeatures(last_features_, map_, reg.pose, params_, deskew);
     }

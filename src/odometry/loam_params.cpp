@@ -38,6 +38,8 @@ LoamParams LoamParams::fromConfig(const ConfigNode& root) {
   c.read("min_eigenvalue_per_constraint", p.min_eigenvalue_per_constraint);
   c.read("deskew", p.deskew);
   c.read("deskew_planar_only", p.deskew_planar_only);
+  c.read("deskew_reestimate_translation", p.deskew_reestimate_translation);
+  c.read("deskew_reestimate_rotation_deg", p.deskew_reestimate_rotation_deg);
   return p;
 }
 

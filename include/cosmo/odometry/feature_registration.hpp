@@ -31,10 +31,16 @@ struct DeskewReference {
   double period = 0.0;  ///< s
 };
 
-/// One robust Gauss-Newton step for the constraints at pose T (left perturbation, [rot, trans]); returns the
-/// update and the number of degenerate directions through `degenerate`.
+/// One robust Gauss-Newton step for the constraints at pose T; returns the update [rot, trans] as a perturbation
+/// about the sensor position (apply with applyCentredUpdate) and the number of degenerate directions through
+/// `degenerate`. (A left perturbation about the odometry origin made the degeneracy test depend on the
+/// distance travelled: far from the origin, rotation and translation mix and a direction fell below the
+/// threshold -- the continuous "1 of 6 directions unconstrained" of the 481 m demo trial.)
 Vector6 robustGaussNewtonStep(const std::vector<FeatureConstraint>& constraints, const Pose3& T,
                               double huber_delta, double min_eigenvalue_per_constraint, int& degenerate);
+
+/// T <- C exp(dx) C^-1 T with C the translation to T's position.
+Pose3 applyCentredUpdate(const Vector6& dx, const Pose3& T);
 
 /// Registers `features` (sensor frame) to `map` starting at `guess`.
 RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFeatureMap& map, const Pose3& guess,

@@ -61,6 +61,10 @@ struct LoamParams {
   int min_correspondences = 30;
   /// Deskew features with the current motion estimate when the scan carries per-point times.
   bool deskew = true;
+  /// The features are deskewed with the predicted (previous) motion; only when the registered motion differs
+  /// from it by more than these (m, deg) are they deskewed again with the estimate and re-registered.
+  double deskew_reestimate_translation = 0.1;
+  double deskew_reestimate_rotation_deg = 1.0;
   /// Deskew with the x / y / yaw part of the motion only. The full 6-DoF deskew couples vertical velocity and
   /// roll / pitch rate (a vertical drift over the sweep looks like a tilt) and oscillated on hilly synthetic
   /// terrain; ground robots and walkers move mostly in the plane within a 0.1 s sweep.
