@@ -16,12 +16,21 @@
 //             ~compress_payload (default true; false with size_model paper skips xz, about 0.25 s of CPU per
 //             64 x 1024 scan, and forwards the x y z points as they came, which xz's losslessness makes identical)
 // Steps: every delta of ROS time (/clock under use_sim_time) on the grid k * delta, catching up when time jumps.
+//   Each delivery carries its step time (Keyframe.received_at).
+// Lockstep (~lockstep true, sequence.launch mode:=lockstep): no timer; the player drives the radio through
+//   /comm/step_request (cosmo/RadioStepRequest: step through t once the listed keyframe offers arrived, with
+//   these robots on) and the broker answers on /comm/step_done (cosmo/RadioStepDone: deliveries per receiver so
+//   far) after publishing the deliveries. Grid, robot states and seed are the offline driver's
+//   (pipeline::advanceRadio, the shared rule): radio time 0 at the sequence start rounded down to k * delta,
+//   positions from the sequence's reference trajectories at the step time (ros_glue::readResolvedSequence),
+//   seed deriveSeed(sequence seed, "radio") (~seed is not used).
 #include <geometry_msgs/PoseStamped.h>
 #include <ros/ros.h>
 #include <std_msgs/String.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <cmath>
+#include <deque>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -30,6 +39,12 @@
 
 #include "cosmo/ros/robot_list.hpp"
 #include "cosmo/Keyframe.h"
+#include "cosmo/RadioStepDone.h"
+#include "cosmo/RadioStepRequest.h"
+#include "cosmo/pipeline/seed_streams.hpp"
+#include "cosmo/pipeline/team_radio.hpp"
+#include "cosmo/ros/pose_msg.hpp"
+#include "cosmo/ros/resolved_sequence.hpp"
 #include "cosmo/comm/radio_simulator.hpp"
 #include "cosmo/comm/scan_compression.hpp"
 #include "cosmo/comm/transfer_log.hpp"
@@ -68,6 +83,7 @@ class CommBroker {
     pnh.param("compress_payload", compress_, true);
     if (!compress_ && params.size_model == cosmo::RadioParams::SizeModel::RealCompressed)
       throw std::runtime_error("~compress_payload false needs ~size_model paper (the real size needs xz)");
+    pnh.param("lockstep", lockstep_, false);
     sim_ = std::make_unique<cosmo::RadioSimulator>(params, robots, static_cast<std::uint64_t>(seed));
 
     for (char r : sim_->robots()) {
@@ -80,10 +96,18 @@ class CommBroker {
     }
     links_pub_ = nh.advertise<visualization_msgs::MarkerArray>("comm/links", 2);
     stats_pub_ = nh.advertise<std_msgs::String>("comm/stats", 10);
-    timer_ = nh.createWallTimer(ros::WallDuration(0.01), [this](const ros::WallTimerEvent&) { onTimer(); });
-    ROS_INFO("comm_broker: %zu robots, B %.0f kB/s, d_init %.0f m, d_intf %.0f m, P_max %.2f, seed %d, sizes %s, timeout %s",
-             robots.size(), params.bandwidth_kBps, params.d_init, params.d_intf, params.p_max, seed,
-             cosmo::toString(params.size_model).c_str(), cosmo::toString(params.timeout_mode).c_str());
+    if (lockstep_) {
+      step_done_pub_ = nh.advertise<cosmo::RadioStepDone>("comm/step_done", 100);
+      step_request_sub_ = nh.subscribe<cosmo::RadioStepRequest>(
+          "comm/step_request", 100, [this](const cosmo::RadioStepRequest::ConstPtr& m) { onStepRequest(*m); });
+    } else {
+      timer_ = nh.createWallTimer(ros::WallDuration(0.01), [this](const ros::WallTimerEvent&) { onTimer(); });
+    }
+    ROS_INFO("comm_broker: %zu robots, B %.0f kB/s, d_init %.0f m, d_intf %.0f m, P_max %.2f, seed %s, sizes %s, timeout %s%s",
+             robots.size(), params.bandwidth_kBps, params.d_init, params.d_intf, params.p_max,
+             lockstep_ ? "from the sequence" : std::to_string(seed).c_str(),
+             cosmo::toString(params.size_model).c_str(), cosmo::toString(params.timeout_mode).c_str(),
+             lockstep_ ? ", lockstep (driven by the player)" : "");
   }
 
   ~CommBroker() { writeLog(); }
@@ -123,6 +147,9 @@ class CommBroker {
       }
     } catch (const std::exception& e) {
       ROS_ERROR("comm_broker: dropping keyframe %u: %s", m.index, e.what());
+      std::lock_guard<std::mutex> lock(mutex_);
+      ++offers_received_[r];  // counted, so that a lockstep step waiting for it goes on
+      runPendingSteps();
       return;
     }
     s.header = m.header;
@@ -130,11 +157,19 @@ class CommBroker {
     s.reference = m.reference;
     s.has_reference = m.has_reference;
     std::lock_guard<std::mutex> lock(mutex_);
+    if (lockstep_) initLockstep();
     sim_->offerKeyframe(r, m.index, compress_ ? s.payload.size() : raw, raw);
     store_[{r, m.index}] = std::move(s);
+    ++offers_received_[r];
+    runPendingSteps();
   }
 
   void onPose(char r, const geometry_msgs::PoseStamped& m) {
+    if (lockstep_) {  // positions from the sequence's references; kept for robots without one
+      std::lock_guard<std::mutex> lock(mutex_);
+      last_position_[r] = Eigen::Vector3d(m.pose.position.x, m.pose.position.y, m.pose.position.z);
+      return;
+    }
     const auto& p = m.pose.position;
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
       ROS_WARN_THROTTLE(5.0, "comm_broker: /%c/reference_pose: non-finite position ignored", r);
@@ -148,7 +183,7 @@ class CommBroker {
     const ros::Time now_ros = ros::Time::now();
     if (now_ros.isZero()) return;  // sim time before the first /clock
     const double now = now_ros.toSec();
-    std::vector<cosmo::Transfer> ended;
+    std::vector<std::pair<double, cosmo::Transfer>> ended;  // (step time, transfer)
     double t_last = 0.0;
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -165,13 +200,12 @@ class CommBroker {
       std::map<std::pair<char, char>, cosmo::ActiveCommunication> links;  // links of this batch of steps
       while (sim_->nextStepTime() <= now + 1e-9) {
         t_last = sim_->nextStepTime();
-        const auto e = sim_->step(t_last);
-        ended.insert(ended.end(), e.begin(), e.end());
+        for (const cosmo::Transfer& x : sim_->step(t_last)) ended.emplace_back(t_last, x);
         for (const auto& c : sim_->lastStepCommunications()) links[{c.sender, c.receiver}] = c;
         ++steps;
       }
       if (steps == 0) return;
-      for (const cosmo::Transfer& x : ended) deliver(x);
+      for (const auto& [t, x] : ended) deliver(x, ros::Time(t));
       publishLinks(now_ros, t_last, links);
       publishStats(t_last);
       if (!log_file_.empty() && t_last - last_log_write_ >= 30.0) {
@@ -185,8 +219,97 @@ class CommBroker {
     }
   }
 
-  // Called with the mutex held.
-  void deliver(const cosmo::Transfer& x) {
+  // Lockstep, with the mutex held: the sequence's references, grid origin and radio seed (once).
+  void initLockstep() {
+    if (lockstep_ready_) return;
+    lockstep_ready_ = true;
+    // every front-end's offers and deliveries connected (a message sent before its connection exists is lost)
+    const ros::WallTime wait_start = ros::WallTime::now();
+    auto connected = [&] {
+      for (const auto& sub : keyframe_subs_)
+        if (sub.getNumPublishers() == 0) return false;
+      for (const auto& [r, pub] : received_pubs_)
+        if (pub.getNumSubscribers() == 0) return false;
+      return true;
+    };
+    while (ros::ok() && !connected() && (ros::WallTime::now() - wait_start).toSec() < 30.0) ros::WallDuration(0.05).sleep();
+    if (!connected()) ROS_WARN("comm_broker: lockstep: not every front-end is connected; going on");
+    try {
+      const cosmo::ros_glue::ResolvedSequence seq = cosmo::ros_glue::readResolvedSequence(30.0);
+      for (char r : sim_->robots()) references_[r] = seq.reference(r);
+      origin_ = cosmo::pipeline::radioGridOrigin(seq.timing.start(), sim_->params().step);
+      const std::uint64_t seed = cosmo::pipeline::deriveSeed(seq.config.seed, "radio");
+      sim_ = std::make_unique<cosmo::RadioSimulator>(sim_->params(), sim_->robots(), seed);
+      ROS_INFO("comm_broker: lockstep on sequence %s (seed %llu): radio seed %llu, grid origin %.3f s",
+               seq.config.name.c_str(), static_cast<unsigned long long>(seq.config.seed),
+               static_cast<unsigned long long>(seed), cosmo::toSeconds(origin_));
+    } catch (const std::exception& e) {
+      ROS_ERROR("comm_broker: lockstep: %s; radio time 0 at the first request, positions from reference_pose", e.what());
+      origin_ = 0;
+    }
+  }
+
+  void onStepRequest(const cosmo::RadioStepRequest& m) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    initLockstep();
+    if (origin_ == 0) origin_ = cosmo::pipeline::radioGridOrigin(m.stamp.toNSec(), sim_->params().step);
+    pending_steps_.push_back(m);
+    runPendingSteps();
+  }
+
+  // Lockstep, with the mutex held: runs the pending requests, in order, whose keyframe offers all arrived.
+  void runPendingSteps() {
+    while (!pending_steps_.empty()) {
+      const cosmo::RadioStepRequest& m = pending_steps_.front();
+      std::map<char, bool> on;
+      for (std::size_t i = 0; i < m.robots.size(); ++i) {
+        const char r = m.robots[i];
+        if (i < m.keyframes.size() && offers_received_[r] < m.keyframes[i]) return;  // an offer is on its way
+        on[r] = i < m.on.size() && m.on[i];
+      }
+      cosmo::StampNs last_step = 0;
+      const auto state = [&](char r, cosmo::StampNs step_stamp) {
+        last_step = step_stamp;
+        cosmo::pipeline::RadioRobotState s;
+        s.on = on.count(r) && on[r];
+        const auto last = last_position_.find(r);
+        s.position = cosmo::pipeline::radioPosition(references_[r], step_stamp,
+                                                    last == last_position_.end() ? Eigen::Vector3d::Zero() : last->second);
+        return s;
+      };
+      const auto on_transfer = [&](cosmo::StampNs step_stamp, const cosmo::Transfer& x) {
+        deliver(x, cosmo::ros_glue::stampToRos(step_stamp));
+      };
+      if (cosmo::pipeline::advanceRadio(*sim_, origin_, m.stamp.toNSec(), state, on_transfer) > 0) {
+        std::map<std::pair<char, char>, cosmo::ActiveCommunication> links;  // of the last step
+        for (const auto& c : sim_->lastStepCommunications()) links[{c.sender, c.receiver}] = c;
+        const double radio_time = cosmo::toSeconds(last_step - origin_);
+        publishLinks(cosmo::ros_glue::stampToRos(last_step), radio_time, links);
+        publishStats(cosmo::toSeconds(last_step));
+        last_step_ = last_step;
+        if (!log_file_.empty() && radio_time - last_log_write_ >= 30.0) {
+          last_log_write_ = radio_time;
+          try {
+            cosmo::writeTransferLog(log_file_, sim_->transferLog(), sim_->stats(), sim_->params());
+          } catch (const std::exception& ex) {
+            ROS_ERROR_THROTTLE(30.0, "comm_broker: %s", ex.what());
+          }
+        }
+      }
+      cosmo::RadioStepDone done;
+      done.seq = m.seq;
+      done.stamp = cosmo::ros_glue::stampToRos(last_step_);
+      for (char r : sim_->robots()) {
+        done.robots.push_back(r);
+        done.delivered.push_back(delivered_[r]);
+      }
+      step_done_pub_.publish(done);
+      pending_steps_.pop_front();
+    }
+  }
+
+  // Called with the mutex held. `when`: the step the transfer ended in.
+  void deliver(const cosmo::Transfer& x, const ros::Time& when) {
     if (x.outcome != cosmo::Transfer::Outcome::Delivered) {
       ROS_DEBUG("comm_broker: %c -> %c keyframe %zu timed out", x.sender, x.receiver, x.keyframe);
       return;
@@ -209,7 +332,9 @@ class CommBroker {
     out.reference = s.reference;
     out.has_reference = s.has_reference;
     out.sender = std::string(1, x.sender);
+    out.received_at = when;
     received_pubs_.at(x.receiver).publish(out);
+    ++delivered_[x.receiver];
     ROS_DEBUG("comm_broker: delivered %c%zu to %c (%zu bytes, %.1f s)", x.sender, x.keyframe, x.receiver, x.bytes,
               x.end - x.start);
   }
@@ -279,6 +404,15 @@ class CommBroker {
   std::map<char, ros::Publisher> received_pubs_;
   ros::Publisher links_pub_, stats_pub_;
   ros::WallTimer timer_;
+  // lockstep
+  bool lockstep_ = false, lockstep_ready_ = false;
+  cosmo::StampNs origin_ = 0, last_step_ = 0;
+  std::map<char, cosmo::Trajectory> references_;
+  std::map<char, Eigen::Vector3d> last_position_;
+  std::map<char, std::uint32_t> offers_received_, delivered_;
+  std::deque<cosmo::RadioStepRequest> pending_steps_;
+  ros::Subscriber step_request_sub_;
+  ros::Publisher step_done_pub_;
   int xz_preset_ = 6;
   bool compress_ = true;
   std::string log_file_, frame_id_;

@@ -6,8 +6,8 @@
 //             received_scans  (cosmo/Keyframe) teammates' scans delivered by the comm_broker
 // Publishes   keyframe_scans  (cosmo/Keyframe) keyframe scans offered to the comm_broker
 //             keyframes_meas  (cosmo/RecorderKeyframe), loop_closures (cosmo/RecorderLoopClosure) for the recorder
-//             ack             (std_msgs/Header: stamp = last scan processed, seq = teammate scans processed) for
-//                             the player's lockstep mode
+//             ack             (cosmo/FrontendAck: last scan processed, scans / teammate scans processed,
+//                             keyframes offered) after every scan and delivery, for the player's lockstep mode
 //             markers         (visualization_msgs/MarkerArray, frame world): trajectory, keyframes, loop closures
 //                             (green accepted inlier, orange accepted outlier vs. the reference, red rejected;
 //                             blue accepted when there is no reference)
@@ -16,12 +16,16 @@
 // Params      ~robot (default: the namespace), ~config_dir (frontend/odometry/place_recognition/registration
 //             .yaml), ~odometry loam|reference|external, ~noise_models (YAML, for the inlier/outlier colours),
 //             ~world_frame (world), ~reference_wait (s of message time a scan waits for its reference pose; without
-//             any reference, live use, scans are processed this much later)
+//             any reference, live use, scans are processed this much later), ~lockstep (false)
+// Lockstep (~lockstep true, sequence.launch mode:=lockstep): the reference trajectory is the player's sequence's
+//   own (ros_glue::readResolvedSequence: the CSV as the offline driver reads it, not the rounded reference_pose
+//   messages, which are ignored), reference odometry takes it held at the ends as TeamRun does, and loop
+//   closures on delivered scans are stamped with the broker's delivery step (Keyframe.received_at); with the
+//   bit-exact pose fields of the recorder messages this makes the JRL byte-identical to cosmo_generate's.
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
-#include <std_msgs/Header.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -29,6 +33,8 @@
 #include <map>
 
 #include "cosmo/ros/pose_msg.hpp"
+#include "cosmo/ros/resolved_sequence.hpp"
+#include "cosmo/FrontendAck.h"
 #include "cosmo/Keyframe.h"
 #include "cosmo/RecorderKeyframe.h"
 #include "cosmo/RecorderLoopClosure.h"
@@ -82,27 +88,31 @@ class FrontendNode {
     pnh.param<std::string>("noise_models", noise, "");
     pnh.param<std::string>("world_frame", world_frame_, "world");
     pnh.param("reference_wait", reference_wait_, 0.5);
+    pnh.param("lockstep", lockstep_, false);
+    frontend_params_ = pipeline::FrontendParams::loadDir(config_dir);
     if (odometry_mode_ != "loam" && odometry_mode_ != "reference" && odometry_mode_ != "external")
       throw std::runtime_error("~odometry must be loam, reference or external, got '" + odometry_mode_ + "'");
     if (!noise.empty()) noise_ = NoiseModels::load(noise);
-    frontend_ = std::make_unique<pipeline::RobotFrontend>(robot_, pipeline::FrontendParams::loadDir(config_dir));
+    frontend_ = std::make_unique<pipeline::RobotFrontend>(robot_, frontend_params_);
     odom_frame_ = std::string(1, robot_) + "/odom";
     base_frame_ = std::string(1, robot_) + "/base_link";
 
     offer_pub_ = nh.advertise<cosmo::Keyframe>("keyframe_scans", 100);
     kf_pub_ = nh.advertise<cosmo::RecorderKeyframe>("keyframes_meas", 1000);
     lc_pub_ = nh.advertise<cosmo::RecorderLoopClosure>("loop_closures", 1000);
-    ack_pub_ = nh.advertise<std_msgs::Header>("ack", 100);
+    ack_pub_ = nh.advertise<cosmo::FrontendAck>("ack", 100);
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("markers", 5);
     points_sub_ = nh.subscribe("points", 5, &FrontendNode::onPoints, this);
     ref_sub_ = nh.subscribe("reference_pose", 1000, &FrontendNode::onReference, this);
     recv_sub_ = nh.subscribe("received_scans", 100, &FrontendNode::onReceived, this);
     if (odometry_mode_ == "external") odom_sub_ = nh.subscribe("odom", 1000, &FrontendNode::onOdom, this);
-    ROS_INFO("frontend %c: odometry %s, config %s", robot_, odometry_mode_.c_str(), config_dir.c_str());
+    ROS_INFO("frontend %c: odometry %s, config %s%s", robot_, odometry_mode_.c_str(), config_dir.c_str(),
+             lockstep_ ? ", lockstep (reference from the player's sequence)" : "");
   }
 
  private:
   void onReference(const geometry_msgs::PoseStamped::ConstPtr& m) {
+    if (lockstep_) return;  // the sequence's own reference (loadSequenceReference)
     frontend_->appendReference(m->header.stamp.toNSec(), ros_glue::poseFromMsg(m->pose));
     drainPending();
   }
@@ -116,7 +126,7 @@ class FrontendNode {
       const bool covered = frontend_->hasReference() && frontend_->reference().endStamp() >= stamp;
       const StampNs newest = pending_.back()->header.stamp.toNSec();
       const bool too_old = newest > stamp && newest - stamp > toStampNs(reference_wait_);
-      if (!covered && !too_old) return;
+      if (!covered && !too_old && !lockstep_) return;  // lockstep: the reference is all there (or there is none)
       auto m = pending_.front();
       pending_.pop_front();
       process(m);
@@ -141,7 +151,21 @@ class FrontendNode {
     return std::nullopt;
   }
 
+  // Lockstep: before the first scan, the front-end is rebuilt with the sequence's reference trajectory.
+  void loadSequenceReference() {
+    if (sequence_loaded_) return;
+    sequence_loaded_ = true;
+    try {
+      Trajectory reference = ros_glue::readResolvedSequence(30.0).reference(robot_);
+      if (reference.empty()) ROS_WARN("frontend %c: the sequence has no reference for this robot", robot_);
+      frontend_ = std::make_unique<pipeline::RobotFrontend>(robot_, frontend_params_, std::move(reference));
+    } catch (const std::exception& e) {
+      ROS_ERROR("frontend %c: lockstep: %s; no reference", robot_, e.what());
+    }
+  }
+
   void onPoints(const sensor_msgs::PointCloud2::ConstPtr& m) {
+    if (lockstep_) loadSequenceReference();
     pending_.push_back(m);
     drainPending();
   }
@@ -155,7 +179,11 @@ class FrontendNode {
         ROS_WARN_THROTTLE(5.0, "frontend %c: %s: stamp not increasing, scan dropped", robot_, points_sub_.getTopic().c_str());
       } else {
         pipeline::ScanOutcome out;
-        if (odometry_mode_ == "reference") {
+        if (odometry_mode_ == "reference" && lockstep_) {
+          // as TeamRun: the reference held at its ends, LOAM without one
+          out = frontend_->hasReference() ? frontend_->processScan(scan, frontend_->reference().atClamped(stamp))
+                                          : frontend_->processScan(scan);
+        } else if (odometry_mode_ == "reference") {
           const auto ref = frontend_->referenceAt(stamp);
           if (!ref) ROS_WARN_THROTTLE(5.0, "frontend %c: no reference pose at the scan stamp; using LOAM", robot_);
           out = ref ? frontend_->processScan(scan, *ref) : frontend_->processScan(scan);
@@ -180,11 +208,14 @@ class FrontendNode {
   }
 
   void ack(StampNs stamp) {
-    std_msgs::Header h;
-    h.stamp = ros_glue::stampToRos(stamp);
-    h.seq = static_cast<std::uint32_t>(frontend_->teammateScansReceived() + received_dropped_);
-    h.frame_id = std::string(1, robot_);
-    ack_pub_.publish(h);
+    cosmo::FrontendAck a;
+    a.header.stamp = ros_glue::stampToRos(stamp);
+    a.header.frame_id = std::string(1, robot_);
+    a.robot = a.header.frame_id;
+    a.scans = static_cast<std::uint32_t>(frontend_->scansProcessed());
+    a.received = static_cast<std::uint32_t>(frontend_->teammateScansReceived() + received_dropped_);
+    a.keyframes = static_cast<std::uint32_t>(frontend_->keyframes().size());
+    ack_pub_.publish(a);
   }
 
   void handle(const pipeline::ScanOutcome& out, const ros::Time& stamp) {
@@ -200,8 +231,12 @@ class FrontendNode {
       km.robot = std::string(1, robot_);
       km.index = static_cast<std::uint32_t>(kf.index);
       km.odometry_from_previous = ros_glue::poseToMsg(kf.relative);
+      km.odometry_from_previous_exact = ros_glue::poseToExact(kf.relative);
       km.has_reference = kf.reference.has_value();
-      if (kf.reference) km.reference = ros_glue::poseToMsg(*kf.reference);
+      if (kf.reference) {
+        km.reference = ros_glue::poseToMsg(*kf.reference);
+        km.reference_exact = ros_glue::poseToExact(*kf.reference);
+      }
       kf_pub_.publish(km);
       const Scan* s = frontend_->keyframeScan(kf.index);
       cosmo::Keyframe offer;
@@ -227,7 +262,8 @@ class FrontendNode {
       scan.stamp = m->header.stamp.toNSec();
       if (m->has_reference) positions_[{m->robot[0], m->index}] = ros_glue::poseFromMsg(m->reference).translation();
       if (m->has_reference) references_[{m->robot[0], m->index}] = ros_glue::poseFromMsg(m->reference);
-      const StampNs now = ros::Time::now().toNSec();
+      // computed at the delivery's radio step (the offline driver's time); a broker without it: now
+      const StampNs now = m->received_at.isZero() ? ros::Time::now().toNSec() : m->received_at.toNSec();
       for (const auto& a : frontend_->receiveTeammateScan(m->robot[0], m->index, scan, now)) loopClosure(a);
       publishMarkers(ros::Time::now());
     } catch (const std::exception& e) {
@@ -249,6 +285,7 @@ class FrontendNode {
       lc.robot2 = std::string(1, a.robot2);
       lc.index2 = static_cast<std::uint32_t>(a.index2);
       lc.measurement = ros_glue::poseToMsg(a.measurement);
+      lc.measurement_exact = ros_glue::poseToExact(a.measurement);
       lc_pub_.publish(lc);
       // inlier / outlier against the reference when both poses have one
       const auto r1 = referenceOf(a.robot1, a.index1), r2 = referenceOf(a.robot2, a.index2);
@@ -347,6 +384,8 @@ class FrontendNode {
   std::size_t received_dropped_ = 0;
   std::deque<sensor_msgs::PointCloud2::ConstPtr> pending_;
   double reference_wait_ = 0.5;
+  bool lockstep_ = false, sequence_loaded_ = false;
+  pipeline::FrontendParams frontend_params_;
   ros::Publisher offer_pub_, kf_pub_, lc_pub_, ack_pub_, marker_pub_;
   ros::Subscriber points_sub_, ref_sub_, recv_sub_, odom_sub_;
   tf2_ros::TransformBroadcaster tf_;

@@ -6,14 +6,18 @@
 //                                    every 20 ms of the reference trajectory up to each scan
 //            TF world -> <r>/reference (the reference LiDAR pose)
 //            /player/progress        (std_msgs/String) "t / total" once per second of wall time
-// Lockstep (~mode lockstep, default): a scan of robot r is published only when r's front-end has acknowledged
-//   the previous one (/<r>/ack, std_msgs/Header: stamp = last scan processed, seq = teammate scans processed),
-//   and, when ~wait_for_broker, after the comm_broker has stepped through the scan's time (/comm/stats "time")
-//   and every front-end has processed every delivered scan. Real time (~mode realtime): scans at ~rate x wall
-//   speed, nothing waited for (results may depend on CPU speed).
+// Lockstep (~mode lockstep, default): the offline driver's event order (TeamRun), one event at a time, so the
+//   JRL is byte-identical to cosmo_generate's. Per scan of the merged stream: every scan published so far is
+//   acknowledged (/<r>/ack, cosmo/FrontendAck); then, with a comm_broker (~wait_for_broker), the player asks it
+//   to step the radio through the scan's time (/comm/step_request: robots on = processed a scan, keyframes
+//   offered so far, which the broker waits for) and waits for /comm/step_done and for every delivered scan to be
+//   processed by its receiver; then the scan is published (per-point times as float seconds, exact). At the end
+//   the radio is stepped through the sequence end the same way. The resolved sequence path and seed are set on
+//   the parameter server first (ros_glue::publishResolvedSequence) for the lockstep front-ends and broker.
+//   Real time (~mode realtime): scans at ~rate x wall speed, nothing waited for (results may depend on CPU speed).
 // Params: ~sequence (config path), ~mode, ~rate, ~seed (-1: the config's), ~max_seconds (0: all),
 //         ~ack_timeout (s wall; a front-end silent this long is skipped with a warning), ~wait_for_broker,
-//         ~end_linger (s wall after the last scan, radio still stepping), ~world_frame.
+//         ~end_linger (s wall after the last scan, radio still stepping; default 3 realtime, 1 lockstep), ~world_frame.
 //         With an empty ~sequence the built-in synthetic sequence is used: cosmo_simulate --config
 //         ~simulate_config --out ~simulate_out (cached by its parameters, so only the first run generates it).
 // When done it publishes /player/done (latched std_msgs/Empty) and exits (the launch marks it required).
@@ -22,7 +26,6 @@
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 #include <std_msgs/Empty.h>
-#include <std_msgs/Header.h>
 #include <std_msgs/String.h>
 #include <tf2_ros/transform_broadcaster.h>
 
@@ -35,7 +38,11 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "cosmo/FrontendAck.h"
+#include "cosmo/RadioStepDone.h"
+#include "cosmo/RadioStepRequest.h"
 #include "cosmo/ros/pose_msg.hpp"
+#include "cosmo/ros/resolved_sequence.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/sim/simulation_params.hpp"
 #include "cosmo/pipeline/sequence_references.hpp"
@@ -49,15 +56,12 @@ namespace {
 
 struct Acks {
   std::mutex mutex;
-  std::map<char, StampNs> last_scan;
-  std::map<char, std::uint32_t> received;
-  double broker_time = -1.0;
-  std::uint64_t broker_delivered = 0;
-  std::uint32_t receivedTotal() {
-    std::uint32_t n = 0;
-    for (const auto& [r, c] : received) n += c;
-    return n;
-  }
+  std::map<char, StampNs> last_scan;         ///< latest scan stamp acknowledged, per robot
+  std::map<char, cosmo::FrontendAck> latest;  ///< latest ack, per robot
+  std::uint64_t broker_delivered = 0;         ///< /comm/stats
+  bool step_done = false;                     ///< /comm/step_done of the latest request seen
+  std::uint32_t step_done_seq = 0;
+  std::map<char, std::uint32_t> delivered;    ///< from /comm/step_done, per receiver
 };
 
 }  // namespace
@@ -76,7 +80,7 @@ int main(int argc, char** argv) {
   pnh.param("max_seconds", max_seconds, 0.0);
   pnh.param("ack_timeout", ack_timeout, 30.0);
   pnh.param("wait_for_broker", wait_for_broker, true);
-  pnh.param("end_linger", end_linger, 3.0);
+  pnh.param("end_linger", end_linger, -1.0);
   pnh.param<std::string>("world_frame", world_frame, "world");
   std::string simulate_config, simulate_out;
   pnh.param<std::string>("simulate_config", simulate_config, "");
@@ -103,6 +107,7 @@ int main(int argc, char** argv) {
   }
   const bool lockstep = mode == "lockstep";
   if (!(rate > 0)) rate = 1.0;
+  if (end_linger < 0) end_linger = lockstep ? 1.0 : 3.0;
 
   pipeline::SequenceConfig config;
   pipeline::SequenceTiming timing;
@@ -112,6 +117,7 @@ int main(int argc, char** argv) {
     if (seed >= 0) config.seed = static_cast<unsigned long long>(seed);
     timing = ros_glue::synchronizeSequence(config);
     for (const auto& t : config.trials) refs[t.robot] = pipeline::loadSensorReference(t, timing.of(t.robot));
+    ros_glue::publishResolvedSequence(std::filesystem::absolute(sequence_path).string(), config.seed);
   } catch (const std::exception& e) {
     ROS_FATAL("player: %s", e.what());
     return 1;
@@ -126,24 +132,32 @@ int main(int argc, char** argv) {
   ros::Publisher progress_pub = nh.advertise<std_msgs::String>("/player/progress", 10);
   ros::Publisher done_pub = nh.advertise<std_msgs::Empty>("/player/done", 1, true);
   std::map<char, ros::Publisher> points_pub, pose_pub;
-  std::vector<ros::Subscriber> subs;
+  std::vector<ros::Subscriber> subs, ack_subs;
   Acks acks;
   for (const auto& t : config.trials) {
     const char r = t.robot;
     const std::string ns = std::string("/") + r;
     points_pub[r] = nh.advertise<sensor_msgs::PointCloud2>(ns + "/points", 5);
     pose_pub[r] = nh.advertise<geometry_msgs::PoseStamped>(ns + "/reference_pose", 200);
-    subs.push_back(nh.subscribe<std_msgs::Header>(ns + "/ack", 100, [&acks, r](const std_msgs::Header::ConstPtr& m) {
+    ack_subs.push_back(nh.subscribe<cosmo::FrontendAck>(ns + "/ack", 1000, [&acks, r](const cosmo::FrontendAck::ConstPtr& m) {
       std::lock_guard<std::mutex> lock(acks.mutex);
-      acks.last_scan[r] = m->stamp.toNSec();
-      acks.received[r] = m->seq;
+      acks.last_scan[r] = std::max(acks.last_scan[r], static_cast<StampNs>(m->header.stamp.toNSec()));
+      acks.latest[r] = *m;
     }));
   }
+  ros::Publisher step_pub = nh.advertise<cosmo::RadioStepRequest>("/comm/step_request", 10);
+  ros::Subscriber step_done_sub =
+      nh.subscribe<cosmo::RadioStepDone>("/comm/step_done", 100, [&acks](const cosmo::RadioStepDone::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(acks.mutex);
+        acks.step_done = true;
+        acks.step_done_seq = m->seq;
+        for (std::size_t i = 0; i < m->robots.size() && i < m->delivered.size(); ++i)
+          acks.delivered[m->robots[i]] = m->delivered[i];
+      });
   subs.push_back(nh.subscribe<std_msgs::String>("/comm/stats", 100, [&acks](const std_msgs::String::ConstPtr& m) {
     try {
       const auto j = nlohmann::json::parse(m->data);
       std::lock_guard<std::mutex> lock(acks.mutex);
-      acks.broker_time = j.value("time", -1.0);
       acks.broker_delivered = j.value("delivered", std::uint64_t{0});
     } catch (const std::exception&) {
     }
@@ -161,6 +175,21 @@ int main(int argc, char** argv) {
   for (auto& [r, pub] : points_pub) waitSubscribers(pub);
   for (auto& [r, pub] : pose_pub)
     if (!refs[r].empty()) waitSubscribers(pub);
+  // Lockstep: every front-end's ack and the broker's step topics connected (a message sent before its
+  // connection exists is lost, and the lockstep would wait for it).
+  bool use_broker = false;
+  if (lockstep) {
+    for (auto& sub : ack_subs)
+      while (ros::ok() && sub.getNumPublishers() == 0 && (ros::WallTime::now() - wait_start).toSec() < ack_timeout)
+        ros::WallDuration(0.05).sleep();
+    if (wait_for_broker) {
+      waitSubscribers(step_pub);
+      while (ros::ok() && step_done_sub.getNumPublishers() == 0 && (ros::WallTime::now() - wait_start).toSec() < ack_timeout)
+        ros::WallDuration(0.05).sleep();
+      use_broker = step_pub.getNumSubscribers() > 0 && step_done_sub.getNumPublishers() > 0;
+      if (!use_broker) ROS_WARN("player: lockstep without a lockstep comm_broker (no /comm/step_request subscriber)");
+    }
+  }
   auto publishClock = [&](StampNs t) {
     rosgraph_msgs::Clock c;
     c.clock = ros_glue::stampToRos(t);
@@ -171,6 +200,7 @@ int main(int argc, char** argv) {
 
   std::map<char, StampNs> last_pose_sent;
   std::map<char, StampNs> expected_ack;
+  std::uint32_t step_seq = 0;
   auto waitFor = [&](const char* what, const std::function<bool()>& done) {
     const ros::WallTime start = ros::WallTime::now();
     while (ros::ok() && !done()) {
@@ -182,6 +212,51 @@ int main(int argc, char** argv) {
     }
     return true;
   };
+  // Lockstep: every published scan acknowledged (a robot silent for ~ack_timeout is skipped with a warning).
+  auto waitAcks = [&] {
+    for (auto it = expected_ack.begin(); it != expected_ack.end();) {
+      const char r = it->first;
+      const StampNs want = it->second;
+      const bool ok = waitFor("front-end ack", [&] {
+        std::lock_guard<std::mutex> lock(acks.mutex);
+        return acks.last_scan.count(r) && acks.last_scan[r] >= want;
+      });
+      it = ok ? std::next(it) : expected_ack.erase(it);
+    }
+  };
+  // Lockstep: the broker runs every radio step <= t once the offered keyframes reached it; its deliveries are
+  // processed by their receivers before anything else happens.
+  auto stepRadio = [&](StampNs t) {
+    if (!use_broker) return;
+    cosmo::RadioStepRequest req;
+    req.seq = ++step_seq;
+    req.stamp = ros_glue::stampToRos(t);
+    {
+      std::lock_guard<std::mutex> lock(acks.mutex);
+      for (const auto& trial : config.trials) {
+        const char r = trial.robot;
+        const auto it = acks.latest.find(r);
+        req.robots.push_back(r);
+        req.on.push_back(it != acks.latest.end() && it->second.scans > 0);
+        req.keyframes.push_back(it != acks.latest.end() ? it->second.keyframes : 0);
+      }
+    }
+    step_pub.publish(req);
+    const std::uint32_t seq = req.seq;
+    if (!waitFor("comm_broker step", [&] {
+          std::lock_guard<std::mutex> lock(acks.mutex);
+          return acks.step_done && acks.step_done_seq >= seq;
+        }))
+      return;
+    waitFor("delivered scans processed", [&] {
+      std::lock_guard<std::mutex> lock(acks.mutex);
+      for (const auto& [r, n] : acks.delivered) {
+        const auto it = acks.latest.find(r);
+        if (n > 0 && (it == acks.latest.end() || it->second.received < n)) return false;
+      }
+      return true;
+    });
+  };
 
   try {
     pipeline::MergedScanStream stream = ros_glue::openSequenceStream(config, timing);
@@ -190,7 +265,6 @@ int main(int argc, char** argv) {
     const ros::WallTime wall_start = ros::WallTime::now();
     ros::WallTime last_progress = wall_start;
     std::size_t published = 0;
-    bool broker_seen = false;
     while (ros::ok() && stream.next(robot, scan)) {
       if (scan.stamp > end) break;
       const double t_rel = toSeconds(scan.stamp - timing.start());
@@ -199,35 +273,11 @@ int main(int argc, char** argv) {
         const ros::WallTime now = ros::WallTime::now();
         if (due > now) (due - now).sleep();
       } else {
-        // the previous scan of this robot must be acknowledged
-        if (expected_ack.count(robot)) {
-          const StampNs want = expected_ack[robot];
-          if (!waitFor("front-end ack", [&] {
-                std::lock_guard<std::mutex> lock(acks.mutex);
-                return acks.last_scan.count(robot) && acks.last_scan[robot] >= want;
-              }))
-            expected_ack.erase(robot);
-        }
+        // every scan published so far processed, then the radio stepped through this scan's time
+        waitAcks();
+        stepRadio(scan.stamp);
       }
       publishClock(scan.stamp);
-      if (lockstep && wait_for_broker) {
-        // the broker steps through this time and its deliveries are processed by the front-ends
-        const double t = scan.stamp * 1e-9;
-        {
-          std::lock_guard<std::mutex> lock(acks.mutex);
-          broker_seen = broker_seen || acks.broker_time >= 0;
-        }
-        if (broker_seen) {
-          waitFor("comm_broker step", [&] {
-            std::lock_guard<std::mutex> lock(acks.mutex);
-            return acks.broker_time + 0.1 + 1e-6 > t;
-          });
-          waitFor("delivered scans processed", [&] {
-            std::lock_guard<std::mutex> lock(acks.mutex);
-            return acks.receivedTotal() >= acks.broker_delivered;
-          });
-        }
-      }
       // reference poses up to the scan (about every 20 ms), then the scan
       const Trajectory& ref = refs[robot];
       if (!ref.empty()) {
@@ -257,7 +307,9 @@ int main(int argc, char** argv) {
         tfm.transform.rotation = p.orientation;
         tf.sendTransform(tfm);
       }
-      sensor_msgs::PointCloud2 msg = ros_glue::toPointCloud2(scan, std::string(1, robot) + "/base_link");
+      sensor_msgs::PointCloud2 msg = ros_glue::toPointCloud2(
+          scan, std::string(1, robot) + "/base_link",
+          lockstep ? ros_glue::PointTimeEncoding::RelativeSeconds : ros_glue::PointTimeEncoding::OusterNs);
       points_pub[robot].publish(msg);
       expected_ack[robot] = scan.stamp;
       ++published;
@@ -279,11 +331,8 @@ int main(int argc, char** argv) {
       }
     }
     // last acks, then let the radio run to the end of the sequence
-    for (const auto& [r, want] : expected_ack)
-      waitFor("front-end ack", [&, r = r, want = want] {
-        std::lock_guard<std::mutex> lock(acks.mutex);
-        return acks.last_scan.count(r) && acks.last_scan[r] >= want;
-      });
+    waitAcks();
+    if (lockstep) stepRadio(end);
     publishClock(end);
     const ros::WallTime linger = ros::WallTime::now();
     while (ros::ok() && (ros::WallTime::now() - linger).toSec() < end_linger) {

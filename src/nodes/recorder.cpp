@@ -95,8 +95,10 @@ class RecorderNode {
     const char robot = m.robot.size() == 1 ? m.robot[0] : topic_robot;
     try {
       std::optional<cosmo::Pose3> reference;
-      if (m.has_reference) reference = cosmo::ros_glue::poseFromMsg(m.reference);
-      const cosmo::Pose3 odometry = m.index == 0 ? cosmo::Pose3::Identity() : cosmo::ros_glue::poseFromMsg(m.odometry_from_previous);
+      if (m.has_reference) reference = cosmo::ros_glue::poseFromExactOrMsg(m.reference_exact, m.reference);
+      const cosmo::Pose3 odometry =
+          m.index == 0 ? cosmo::Pose3::Identity()
+                       : cosmo::ros_glue::poseFromExactOrMsg(m.odometry_from_previous_exact, m.odometry_from_previous);
       recorder_->addKeyframe(robot, m.index, m.header.stamp.toNSec(), odometry, reference);
       changed_ = true;
     } catch (const std::exception& e) {
@@ -113,7 +115,7 @@ class RecorderNode {
       lc.computed_at = m.header.stamp.toNSec();
       lc.key1 = cosmo::jrl::symbol(m.robot1[0], m.index1);
       lc.key2 = cosmo::jrl::symbol(m.robot2[0], m.index2);
-      lc.measurement = cosmo::ros_glue::poseFromMsg(m.measurement);
+      lc.measurement = cosmo::ros_glue::poseFromExactOrMsg(m.measurement_exact, m.measurement);
       recorder_->addLoopClosure(lc);
       changed_ = true;
     } catch (const std::exception& e) {

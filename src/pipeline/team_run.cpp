@@ -5,6 +5,7 @@
 
 #include "cosmo/comm/scan_compression.hpp"
 #include "cosmo/jrl/dataset.hpp"
+#include "cosmo/pipeline/team_radio.hpp"
 
 namespace cosmo::pipeline {
 
@@ -34,10 +35,6 @@ const RobotFrontend& TeamRun::frontend(char robot) const {
   return *it->second;
 }
 
-StampNs TeamRun::toStamp(double radio_time) const {
-  return origin_ + static_cast<StampNs>(std::llround(radio_time * 1e9));
-}
-
 void TeamRun::record(const LoopClosureAttempt& a) {
   if (on_loop_closure) on_loop_closure(a);
   if (a.inter()) {
@@ -61,35 +58,30 @@ void TeamRun::record(const LoopClosureAttempt& a) {
 }
 
 void TeamRun::advanceRadioTo(StampNs t) {
-  if (t < origin_) return;
-  const double t_rel = static_cast<double>(t - origin_) * 1e-9;
-  while (radio_.nextStepTime() <= t_rel + 1e-9) {
-    const double step_time = radio_.nextStepTime();
-    const StampNs step_stamp = toStamp(step_time);
-    for (auto& [robot, fe] : frontends_) {
-      const bool on = fe->scansProcessed() > 0;
-      const Eigen::Vector3d position = fe->hasReference() ? Eigen::Vector3d(fe->reference().atClamped(step_stamp).translation())
-                                                          : Eigen::Vector3d(fe->lastOdomPose().translation());
-      radio_.setRobotState(robot, position, on);
+  const auto state = [this](char robot, StampNs step_stamp) {
+    const RobotFrontend& fe = *frontends_.at(robot);
+    RadioRobotState s;
+    s.on = fe.scansProcessed() > 0;
+    s.position = radioPosition(fe.reference(), step_stamp, fe.lastOdomPose().translation());
+    return s;
+  };
+  const auto deliver = [this](StampNs step_stamp, const Transfer& tr) {
+    if (tr.outcome != Transfer::Outcome::Delivered) {
+      ++counts_.transfers_timed_out;
+      return;
     }
-    const std::vector<Transfer> transfers = radio_.step(step_time);
-    for (const auto& tr : transfers) {
-      if (tr.outcome != Transfer::Outcome::Delivered) {
-        ++counts_.transfers_timed_out;
-        continue;
-      }
-      ++counts_.transfers_delivered;
-      std::shared_ptr<const Scan> scan = frontends_.at(tr.sender)->keyframeScanShared(tr.keyframe);
-      if (!scan) continue;
-      if (params_.radio.size_model == RadioParams::SizeModel::RealCompressed) {
-        Scan received = decompressScan(compressScan(*scan));
-        received.stamp = scan->stamp;
-        scan = std::make_shared<const Scan>(std::move(received));
-      }
-      for (const auto& a : frontends_.at(tr.receiver)->receiveTeammateScan(tr.sender, tr.keyframe, scan, step_stamp))
-        record(a);
+    ++counts_.transfers_delivered;
+    std::shared_ptr<const Scan> scan = frontends_.at(tr.sender)->keyframeScanShared(tr.keyframe);
+    if (!scan) return;
+    if (params_.radio.size_model == RadioParams::SizeModel::RealCompressed) {
+      Scan received = decompressScan(compressScan(*scan));
+      received.stamp = scan->stamp;
+      scan = std::make_shared<const Scan>(std::move(received));
     }
-  }
+    for (const auto& a : frontends_.at(tr.receiver)->receiveTeammateScan(tr.sender, tr.keyframe, scan, step_stamp))
+      record(a);
+  };
+  advanceRadio(radio_, origin_, t, state, deliver);
 }
 
 void TeamRun::addScan(char robot, const Scan& scan) {

@@ -88,7 +88,8 @@ Scan fromPointCloud2(const sensor_msgs::PointCloud2& msg, bool stamp_at_end, con
   return scan;
 }
 
-sensor_msgs::PointCloud2 toPointCloud2(const Scan& scan, const std::string& frame_id) {
+sensor_msgs::PointCloud2 toPointCloud2(const Scan& scan, const std::string& frame_id, PointTimeEncoding time_encoding) {
+  const bool ouster_time = time_encoding == PointTimeEncoding::OusterNs;
   sensor_msgs::PointCloud2 msg;
   msg.header.frame_id = frame_id;
   msg.header.stamp.sec = static_cast<uint32_t>(scan.stamp / 1000000000ULL);
@@ -110,7 +111,10 @@ sensor_msgs::PointCloud2 toPointCloud2(const Scan& scan, const std::string& fram
   add("y", sensor_msgs::PointField::FLOAT32, 4);
   add("z", sensor_msgs::PointField::FLOAT32, 4);
   if (scan.hasIntensity()) add("intensity", sensor_msgs::PointField::FLOAT32, 4);
-  if (scan.hasTime()) add("t", sensor_msgs::PointField::UINT32, 4);
+  if (scan.hasTime()) {
+    if (ouster_time) add("t", sensor_msgs::PointField::UINT32, 4);
+    else add("time", sensor_msgs::PointField::FLOAT32, 4);
+  }
   if (scan.hasRing()) add("ring", sensor_msgs::PointField::UINT16, 2);
   msg.row_step = msg.point_step * msg.width;
   msg.data.resize(static_cast<std::size_t>(msg.row_step));
@@ -121,9 +125,12 @@ sensor_msgs::PointCloud2 toPointCloud2(const Scan& scan, const std::string& fram
     std::memcpy(p, scan.points[i].data(), 12);
     std::size_t off = 12;
     if (scan.hasIntensity()) { std::memcpy(p + off, &scan.intensity[i], 4); off += 4; }
-    if (scan.hasTime()) {
+    if (scan.hasTime() && ouster_time) {
       const auto t = static_cast<uint32_t>(std::llround((scan.time[i] - t_min) * 1e9));
       std::memcpy(p + off, &t, 4);
+      off += 4;
+    } else if (scan.hasTime()) {
+      std::memcpy(p + off, &scan.time[i], 4);
       off += 4;
     }
     if (scan.hasRing()) { std::memcpy(p + off, &scan.ring[i], 2); }

@@ -1,6 +1,9 @@
 // rostest gtest node for sequence.test: waits for the player to finish, makes the recorder write, and checks
 // the JRL: `cosmo_jrl validate` passes, every robot has a complete odometry chain, and the outlier labels
 // follow the default (fidelity) chi^2 rule, recomputed here from the file's own ground truth and covariances.
+// Then (issue 8, determinism) the offline driver cosmo_generate runs the same sequence (the player's resolved
+// config and seed), comm model, odometry, noise models and length, and its JRL must be byte-identical to the
+// lockstep launch's.
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <std_msgs/Empty.h>
@@ -9,6 +12,8 @@
 
 #include <atomic>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "cosmo/dataset/outlier_rule.hpp"
 #include "cosmo/jrl/io.hpp"
@@ -26,6 +31,15 @@ std::string siblingProgram(const std::string& name) {
   }
   return name;
 }
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string shellQuote(const std::string& s) { return "'" + s + "'"; }
 
 }  // namespace
 
@@ -90,6 +104,59 @@ TEST(SequenceLaunch, WritesAValidJrl) {
       }
   }
   std::cout << "checked the labels of " << checked << " loop closures" << std::endl;
+}
+
+// Runs after WritesAValidJrl (which waited for the player and made the recorder write).
+TEST(SequenceLaunch, LockstepJrlIsByteIdenticalToTheOfflineDriver) {
+  ros::NodeHandle nh;
+  std::string jrl_path, mode, sequence, seed, comm, odometry, noise_models;
+  double max_seconds = 0.0;
+  ASSERT_TRUE(nh.getParam("/jrl_path", jrl_path));
+  nh.param<std::string>("/mode", mode, "lockstep");
+  if (mode != "lockstep") GTEST_SKIP() << "mode " << mode << ": only lockstep is deterministic";
+  ASSERT_TRUE(nh.getParam("/player/resolved_sequence", sequence)) << "the player did not resolve its sequence";
+  ASSERT_TRUE(nh.getParam("/player/resolved_seed", seed));
+  ASSERT_TRUE(nh.getParam("/comm", comm));
+  ASSERT_TRUE(nh.getParam("/odometry", odometry));
+  ASSERT_TRUE(nh.getParam("/noise_models", noise_models));
+  nh.param("/max_seconds", max_seconds, 0.0);
+  ASSERT_TRUE(std::filesystem::exists(jrl_path)) << jrl_path;
+
+  const std::string out_dir = std::filesystem::path(jrl_path).parent_path().string() + "_offline";
+  std::filesystem::remove_all(out_dir);
+  std::ostringstream cmd;
+  cmd << shellQuote(siblingProgram("cosmo_generate")) << " " << shellQuote(sequence) << " --seed " << seed
+      << " --comm " << comm << " --noise-models " << shellQuote(noise_models) << " --out " << shellQuote(out_dir)
+      << " --quiet" << (odometry == "reference" ? " --reference-odometry" : "");
+  if (max_seconds > 0) cmd << " --max-seconds " << max_seconds;
+  cmd << " > " << shellQuote(out_dir + ".log") << " 2>&1";
+  const ros::WallTime start = ros::WallTime::now();
+  ASSERT_EQ(std::system(cmd.str().c_str()), 0) << cmd.str();
+  std::cout << "cosmo_generate: " << (ros::WallTime::now() - start).toSec() << " s wall" << std::endl;
+
+  const std::string offline_path = out_dir + "/" + std::filesystem::path(jrl_path).filename().string();
+  ASSERT_TRUE(std::filesystem::exists(offline_path)) << offline_path << " (" << cmd.str() << ")";
+  const std::string ros_bytes = readFile(jrl_path), offline_bytes = readFile(offline_path);
+  if (ros_bytes == offline_bytes) {
+    std::cout << "lockstep launch and cosmo_generate wrote the same " << ros_bytes.size() << " bytes" << std::endl;
+    return;
+  }
+  // the first differing line (the writer puts one value or factor per line)
+  std::istringstream a(ros_bytes), b(offline_bytes);
+  std::string la, lb;
+  std::size_t line = 0;
+  while (true) {
+    const bool ga = static_cast<bool>(std::getline(a, la)), gb = static_cast<bool>(std::getline(b, lb));
+    ++line;
+    if (!ga && !gb) break;
+    if (!ga || !gb || la != lb) {
+      auto cut = [](const std::string& s) { return s.size() > 400 ? s.substr(0, 400) + " ..." : s; };
+      ADD_FAILURE() << "JRL differs: " << jrl_path << " (" << ros_bytes.size() << " bytes) vs " << offline_path << " ("
+                    << offline_bytes.size() << " bytes), first at line " << line << ":\n  lockstep: "
+                    << (ga ? cut(la) : "<end>") << "\n  offline:  " << (gb ? cut(lb) : "<end>");
+      break;
+    }
+  }
 }
 
 int main(int argc, char** argv) {

@@ -4,10 +4,10 @@
 // gathering every measurement. Deterministic: single-threaded order of events, all randomness from the seed.
 //
 // Event order (what the lockstep ROS launch reproduces): radio steps lie on the grid origin + k * delta. Before
-// a scan stamped s is processed, every radio step at a time <= s runs: robot states are set (on once the robot
-// processed its first scan, position from its reference trajectory held at the ends, or its odometry position
-// without one), the step runs, and each delivered scan is handed to its receiver at the step time (the time
-// its loop closures are computed at). Then the scan goes through its robot's front-end; a new keyframe is
+// a scan stamped s is processed, every radio step at a time <= s runs (advanceRadio, team_radio.hpp, which the
+// comm_broker node shares): robot states are set (on once the robot processed its first scan, position from its
+// reference trajectory held at the ends, or its odometry position without one), the step runs, and each
+// delivered scan is handed to its receiver at the step time (the time its loop closures are computed at). Then the scan goes through its robot's front-end; a new keyframe is
 // offered to the radio and recorded, accepted loop closures are recorded.
 //
 // Payload: with the paper's size model the delivered scan is the sender's own keyframe scan (xz is lossless,
@@ -75,7 +75,6 @@ class TeamRun {
  private:
   void advanceRadioTo(StampNs t);
   void record(const LoopClosureAttempt& a);
-  StampNs toStamp(double radio_time) const;
 
   TeamRunParams params_;
   std::map<char, std::unique_ptr<RobotFrontend>> frontends_;

@@ -17,8 +17,17 @@ namespace cosmo::ros_glue {
 Scan fromPointCloud2(const sensor_msgs::PointCloud2& msg, bool stamp_at_end = true,
                      const std::string& source = "PointCloud2");
 
-/// x y z intensity t ring (t: uint32 ns since the sweep start, stamped at the sweep end when the scan has
-/// times), only the fields the scan has; frame and stamp from the arguments.
-sensor_msgs::PointCloud2 toPointCloud2(const Scan& scan, const std::string& frame_id);
+/// How toPointCloud2 writes the per-point time.
+enum class PointTimeEncoding {
+  OusterNs,         ///< `t`, uint32 ns since the sweep start (what an Ouster driver publishes)
+  RelativeSeconds,  ///< `time`, float32 seconds relative to the stamp, the Scan's own values: read back by
+                    ///< fromPointCloud2(.., stamp_at_end = true) bit-exactly when the latest point is at 0
+                    ///< (every scan read from a bag with stamp_at_end), the player's lockstep mode
+};
+
+/// x y z intensity t|time ring (stamped at the sweep end when the scan has times), only the fields the scan
+/// has; frame and stamp from the arguments.
+sensor_msgs::PointCloud2 toPointCloud2(const Scan& scan, const std::string& frame_id,
+                                       PointTimeEncoding time_encoding = PointTimeEncoding::OusterNs);
 
 }  // namespace cosmo::ros_glue

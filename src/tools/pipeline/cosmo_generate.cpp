@@ -25,6 +25,7 @@
 #include "cosmo/pipeline/seed_streams.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/pipeline/team_radio.hpp"
 #include "cosmo/pipeline/team_run.hpp"
 #include "cosmo/ros/bag_scan_source.hpp"
 
@@ -150,8 +151,7 @@ int main(int argc, char** argv) {
     for (const std::string& comm : comms) {
       std::string label;
       params.radio = radioFor(comm, config_dir, label);
-      const StampNs step_ns = toStampNs(params.radio.step);
-      const StampNs origin = step_ns > 0 ? (timing.start() / step_ns) * step_ns : timing.start();
+      const StampNs origin = radioGridOrigin(timing.start(), params.radio.step);
       bench::Stopwatch sw;
       TeamRun run(config.name + "_" + label, references, params, deriveSeed(config.seed, "radio"), origin);
       MergedScanStream stream = ros_glue::openSequenceStream(config, timing);

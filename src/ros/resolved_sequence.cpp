@@ -1,0 +1,45 @@
+#include "cosmo/ros/resolved_sequence.hpp"
+
+#include <ros/param.h>
+#include <ros/rate.h>
+#include <ros/time.h>
+
+#include <stdexcept>
+
+#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/ros/bag_scan_source.hpp"
+
+namespace cosmo::ros_glue {
+
+Trajectory ResolvedSequence::reference(char robot) const {
+  for (const auto& t : config.trials)
+    if (t.robot == robot) return pipeline::loadSensorReference(t, timing.of(robot));
+  return {};
+}
+
+ResolvedSequence resolveSequence(const std::string& path, unsigned long long seed) {
+  ResolvedSequence r;
+  r.config = pipeline::SequenceConfig::load(path);
+  r.config.seed = seed;
+  r.timing = synchronizeSequence(r.config);
+  return r;
+}
+
+void publishResolvedSequence(const std::string& path, unsigned long long seed) {
+  ros::param::set(kResolvedSeedParam, std::to_string(seed));
+  ros::param::set(kResolvedSequenceParam, path);  // last: readers wait for this one
+}
+
+ResolvedSequence readResolvedSequence(double timeout_s) {
+  const ros::WallTime start = ros::WallTime::now();
+  std::string path, seed;
+  while (!ros::param::get(kResolvedSequenceParam, path)) {
+    if ((ros::WallTime::now() - start).toSec() > timeout_s)
+      throw std::runtime_error(std::string("no parameter ") + kResolvedSequenceParam + " (is the player running?)");
+    ros::WallDuration(0.05).sleep();
+  }
+  if (!ros::param::get(kResolvedSeedParam, seed)) throw std::runtime_error(std::string("no parameter ") + kResolvedSeedParam);
+  return resolveSequence(path, std::stoull(seed));
+}
+
+}  // namespace cosmo::ros_glue
