@@ -45,6 +45,16 @@ ConsistencyGraph ConsistencyGraph::fromEdges(int n, const std::vector<std::pair<
   return g;
 }
 
+ConsistencyGraph ConsistencyGraph::induced(const std::vector<int>& vertices) const {
+  const int m = static_cast<int>(vertices.size());
+  ConsistencyGraph g(m);
+  for (int a = 0; a < m; ++a)
+    for (int b = a + 1; b < m; ++b)
+      if (adjacent(vertices[static_cast<std::size_t>(a)], vertices[static_cast<std::size_t>(b)])) g.addEdgeBits(a, b);
+  g.finalize();
+  return g;
+}
+
 ConsistencyGraph ConsistencyGraph::fromCorrespondences(const std::vector<Eigen::Vector3f>& source,
                                                        const std::vector<Eigen::Vector3f>& target, double tolerance) {
   if (source.size() != target.size())

@@ -12,6 +12,19 @@ namespace {
 
 constexpr int kBins = 11;
 
+/// atan2 within 2e-4 rad (odd minimax polynomial of atan on [0, 1] plus octant folding): the angle is only
+/// binned into 11 bins, so libm's exact atan2f (a third of the SPFH time) is not needed. Deterministic.
+inline float fastAtan2(float y, float x) {
+  const float ax = std::fabs(x), ay = std::fabs(y);
+  const float mx = std::max(ax, ay), mn = std::min(ax, ay);
+  if (mx == 0.f) return 0.f;
+  const float a = mn / mx, s = a * a;
+  float r = ((-0.0464964749f * s + 0.15931422f) * s - 0.327622764f) * s * a + a;
+  if (ay > ax) r = 1.57079637f - r;
+  if (x < 0.f) r = 3.14159274f - r;
+  return y < 0.f ? -r : r;
+}
+
 /// PCL's pair feature (pcl::computePairFeatures): f1 = theta in [-pi, pi], f2 = alpha in [-1, 1],
 /// f3 = phi in [-1, 1]; false for a degenerate pair.
 inline bool pairFeature(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1, const Eigen::Vector3f& p2,
@@ -34,7 +47,7 @@ inline bool pairFeature(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1, co
   v /= vn;
   const Eigen::Vector3f w = u.cross(v);
   f2 = v.dot(nb);
-  f1 = std::atan2(w.dot(nb), u.dot(nb));
+  f1 = fastAtan2(w.dot(nb), u.dot(nb));
   return true;
 }
 
@@ -68,24 +81,28 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
   std::vector<Eigen::Vector3f> normals(n, Eigen::Vector3f::Zero());
   std::vector<unsigned char> valid(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
-    tree.radius(points[i].data(), rsearch, found);
-    std::sort(found.begin(), found.end());  // by index: order-independent of the tree traversal
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    tree.radius(points[i].data(), rsearch, found);  // the tree's order: deterministic for the same cloud
+    // Moments relative to the query point (small numbers: float accumulation is accurate enough).
+    Eigen::Vector3f m1 = Eigen::Vector3f::Zero();
+    float xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
     std::size_t k = 0;
+    const Eigen::Vector3f pi = points[i];
     for (const auto& [j, d2] : found) {
       nbr.push_back(j);
       nbr_d2.push_back(d2);
       if (d2 <= rn2) {
-        const Eigen::Vector3d q = points[j].cast<double>();
-        mean += q;
-        cov += q * q.transpose();
+        const Eigen::Vector3f q = points[j] - pi;
+        m1 += q;
+        xx += q.x() * q.x(), xy += q.x() * q.y(), xz += q.x() * q.z();
+        yy += q.y() * q.y(), yz += q.y() * q.z(), zz += q.z() * q.z();
         ++k;
       }
     }
     offsets[i + 1] = static_cast<std::uint32_t>(nbr.size());
     if (k < std::max<std::size_t>(params.min_neighbors, 3)) continue;
-    mean /= static_cast<double>(k);
+    const Eigen::Vector3d mean = m1.cast<double>() / static_cast<double>(k);
+    Eigen::Matrix3d cov;
+    cov << xx, xy, xz, xy, yy, yz, xz, yz, zz;
     cov = cov / static_cast<double>(k) - mean * mean.transpose();
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
     es.computeDirect(cov);
@@ -100,27 +117,32 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
     normals[i] = nrm;
     valid[i] = 1;
   }
-  // SPFH of every valid point over its valid neighbours.
+  // SPFH of every valid point over its valid neighbours. PCL's pair feature is symmetric (swapping the two
+  // points selects the same source normal and gives bit-identical values), so each unordered pair is computed
+  // once and counted in both histograms.
   std::vector<float> spfh(n * kFpfhDim, 0.f);
+  std::vector<int> spfh_count(n, 0);
+  const float lo1 = -static_cast<float>(M_PI), hi1 = static_cast<float>(M_PI);
   for (std::size_t i = 0; i < n; ++i) {
     if (!valid[i]) continue;
-    float* h = &spfh[i * kFpfhDim];
-    int count = 0;
+    float* hi = &spfh[i * kFpfhDim];
     for (std::uint32_t e = offsets[i]; e < offsets[i + 1]; ++e) {
       const std::uint32_t j = nbr[e];
-      if (j == i || !valid[j] || nbr_d2[e] > rs2) continue;
+      if (j <= i || !valid[j] || nbr_d2[e] > rs2) continue;
       float f1, f2, f3;
       if (!pairFeature(points[i], normals[i], points[j], normals[j], f1, f2, f3)) continue;
-      ++h[bin(f1, -static_cast<float>(M_PI), static_cast<float>(M_PI))];
-      ++h[kBins + bin(f2, -1.f, 1.f)];
-      ++h[2 * kBins + bin(f3, -1.f, 1.f)];
-      ++count;
-    }
-    if (count > 0) {
-      const float s = 100.f / static_cast<float>(count);
-      for (int b = 0; b < kFpfhDim; ++b) h[b] *= s;
+      const int b1 = bin(f1, lo1, hi1), b2 = kBins + bin(f2, -1.f, 1.f), b3 = 2 * kBins + bin(f3, -1.f, 1.f);
+      float* hj = &spfh[j * kFpfhDim];
+      ++hi[b1], ++hi[b2], ++hi[b3];
+      ++hj[b1], ++hj[b2], ++hj[b3];
+      ++spfh_count[i], ++spfh_count[j];
     }
   }
+  for (std::size_t i = 0; i < n; ++i)
+    if (spfh_count[i] > 0) {
+      const float s = 100.f / static_cast<float>(spfh_count[i]);
+      for (int b = 0; b < kFpfhDim; ++b) spfh[i * kFpfhDim + b] *= s;
+    }
   // Keypoints: the first valid point (in input order) of each keypoint voxel, or every valid point.
   std::vector<int> kept_index(n, -1);
   for (std::size_t i = 0; i < n; ++i)
@@ -161,7 +183,6 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
       for (std::uint32_t e = offsets[i]; e < offsets[i + 1]; ++e) add(nbr[e], nbr_d2[e]);
     } else {
       tree.radius(points[i].data(), rf, found);
-      std::sort(found.begin(), found.end());
       for (const auto& [j, d2] : found) add(j, d2);
     }
     if (k > 0) acc /= static_cast<float>(k);

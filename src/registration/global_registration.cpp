@@ -1,10 +1,12 @@
 #include "cosmo/registration/global_registration.hpp"
 
 #include <cmath>
+#include <optional>
 
 #include "cosmo/registration/consistency_graph.hpp"
 #include "cosmo/registration/feature_matching.hpp"
 #include "cosmo/registration/graph_pruning.hpp"
+#include "cosmo/registration/kdtree.hpp"
 #include "cosmo/registration/icp_refinement.hpp"
 #include "cosmo/registration/registration_gate.hpp"
 #include "cosmo/registration/robust_solver.hpp"
@@ -42,31 +44,57 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
   r.correspondences = corr.size();
   notifyStage(observer, "matching");
 
-  // Pairwise-consistency graph, max k-core, max clique.
+  // Pairwise-consistency graph and its max k-core.
   std::vector<Eigen::Vector3f> cs(corr.size()), ct(corr.size());
   for (std::size_t i = 0; i < corr.size(); ++i) {
     cs[i] = src.points[static_cast<std::size_t>(src.keypoints[static_cast<std::size_t>(corr[i].source)])];
     ct[i] = tgt.points[static_cast<std::size_t>(tgt.keypoints[static_cast<std::size_t>(corr[i].target)])];
   }
-  std::vector<int> pruned;
+  ConsistencyGraph graph;
   if (corr.size() >= 3) {
-    const ConsistencyGraph graph = ConsistencyGraph::fromCorrespondences(cs, ct, 2.0 * p.noise_bound);
-    const std::vector<int> core = maxKCore(graph);
-    r.max_core_size = core.size();
-    if (p.use_max_clique) {
-      const CliqueResult clique = maxClique(graph, p.max_clique_nodes);
-      pruned = clique.vertices;
-      r.clique_proven = clique.proven_maximum;
-    } else {
-      pruned = core;
-    }
+    graph = ConsistencyGraph::fromCorrespondences(cs, ct, 2.0 * p.noise_bound);
+    r.max_core_size = maxKCore(graph).size();
   }
-  r.pruned_inliers = pruned.size();
   notifyStage(observer, "pruning");
 
-  // Robust solve on the survivors.
+  std::optional<KdTree<3>> target_tree;
+  if (!tgt.points.empty()) target_tree.emplace(tgt.points.front().data(), tgt.points.size());
+
+  // Hypotheses: the maximum clique (or k-core) first; while the gate rejects, the maximum clique among the
+  // correspondences that no previous solution explains. Solve, refine, measure the overlap, verify.
+  std::vector<int> remaining(corr.size());
+  for (std::size_t i = 0; i < corr.size(); ++i) remaining[i] = static_cast<int>(i);
   bool solved = false;
-  if (pruned.size() >= 3) {
+  RegistrationResult best;
+  const std::size_t min_clique = std::max<std::size_t>(3, p.min_final_inliers);
+  for (int h = 0; h < p.max_hypotheses && remaining.size() >= 3; ++h) {
+    std::vector<int> pruned;
+    bool proven = true;
+    {
+      const ConsistencyGraph sub = h == 0 ? ConsistencyGraph() : graph.induced(remaining);
+      const ConsistencyGraph& g = h == 0 ? graph : sub;
+      std::vector<int> local;
+      if (p.use_max_clique) {
+        CliqueResult clique = maxClique(g, p.max_clique_nodes);
+        local = std::move(clique.vertices);
+        proven = clique.proven_maximum;
+      } else {
+        local = maxKCore(g);
+      }
+      for (const int v : local) pruned.push_back(h == 0 ? v : remaining[static_cast<std::size_t>(v)]);
+    }
+    if (h > 0 && pruned.size() < min_clique) break;
+    notifyStage(observer, "pruning");
+    RegistrationResult cand = r;
+    cand.pruned_inliers = pruned.size();
+    cand.clique_proven = proven;
+    cand.hypothesis = h;
+    if (pruned.size() < 3) {
+      if (h == 0) best = cand;
+      break;
+    }
+
+    // Robust solve on the survivors.
     std::vector<Eigen::Vector3d> ps, pt;
     ps.reserve(pruned.size()), pt.reserve(pruned.size());
     for (const int i : pruned) {
@@ -79,31 +107,66 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
     gnc.max_iterations = p.gnc_max_iterations;
     gnc.cost_tolerance = p.gnc_cost_tolerance;
     const RigidEstimate est = solveRobustRigid(ps, pt, gnc, p.max_rotation_pairs);
-    if (est.ok) {
-      r.T_target_source = est.T;
-      r.final_inliers = est.inliers.size();
-      solved = true;
+    notifyStage(observer, "solve");
+    if (!est.ok) {
+      if (h == 0) best = cand;
+      break;
     }
-  }
-  notifyStage(observer, "solve");
+    cand.T_target_source = est.T;
+    cand.final_inliers = est.inliers.size();
 
-  // Local refinement on the downsampled clouds.
-  if (solved && p.refine && p.icp_iterations > 0) {
-    const IcpResult icp = refinePointToPlane(src.points, tgt.points, tgt.normals, r.T_target_source,
-                                             p.icp_max_distance, p.icp_iterations);
-    const Pose3 delta = r.T_target_source.inverse() * icp.T;
-    const bool small = delta.translation().norm() <= p.icp_max_correction_m &&
-                       rotationAngle(delta) <= p.icp_max_correction_deg * M_PI / 180.0;
-    if (small && icp.matched >= 6) {
-      r.T_target_source = icp.T;
-      r.refined = true;
+    // Local refinement on the downsampled clouds; kept when small, or when it raises the overlap.
+    if (target_tree) {
+      const double overlap0 = overlapFraction(src.points, *target_tree, cand.T_target_source, p.icp_max_distance);
+      cand.overlap = overlap0;
+      if (p.refine && p.icp_iterations > 0) {
+        const IcpResult icp = refinePointToPlane(src.points, *target_tree, tgt.points, tgt.normals,
+                                                 cand.T_target_source, p.icp_max_distance, p.icp_iterations);
+        const Pose3 delta = cand.T_target_source.inverse() * icp.T;
+        const bool small = delta.translation().norm() <= p.icp_max_correction_m &&
+                           rotationAngle(delta) <= p.icp_max_correction_deg * M_PI / 180.0;
+        if (icp.matched >= 6 && icp.T.matrix().allFinite()) {
+          const double overlap1 = overlapFraction(src.points, *target_tree, icp.T, p.icp_max_distance);
+          if (small || overlap1 > overlap0) {
+            cand.T_target_source = icp.T;
+            cand.refined = true;
+            cand.overlap = overlap1;
+          }
+        }
+      }
     }
-    r.overlap = src.points.empty() ? 0.0 : static_cast<double>(icp.matched) / static_cast<double>(src.points.size());
-  } else if (solved && p.min_overlap > 0.0) {
-    // Overlap at the global solution (one ICP iteration counts the matches; its update is not used).
-    const IcpResult probe = refinePointToPlane(src.points, tgt.points, tgt.normals, r.T_target_source,
-                                               p.icp_max_distance, 1);
-    r.overlap = src.points.empty() ? 0.0 : static_cast<double>(probe.matched) / static_cast<double>(src.points.size());
+    notifyStage(observer, "refine");
+    solved = true;
+    cand.hypotheses = h + 1;
+    applyGate(p, cand);
+    const bool better = h == 0 || cand.valid ||
+                        (!best.valid && cand.final_inliers >= p.min_final_inliers &&
+                         (best.final_inliers < p.min_final_inliers || cand.overlap > best.overlap));
+    if (better) best = cand;
+    best.hypotheses = h + 1;
+    if (cand.valid) break;
+    // Next hypothesis: drop the clique and every correspondence this solution explains.
+    std::vector<int> next;
+    std::vector<char> in_clique(corr.size(), 0);
+    for (const int i : pruned) in_clique[static_cast<std::size_t>(i)] = 1;
+    const Eigen::Matrix3f R = cand.T_target_source.linear().cast<float>();
+    const Eigen::Vector3f t = cand.T_target_source.translation().cast<float>();
+    const float bound = static_cast<float>(2.0 * p.noise_bound);
+    for (const int i : remaining) {
+      const auto k = static_cast<std::size_t>(i);
+      if (!in_clique[k] && (R * cs[k] + t - ct[k]).norm() > bound) next.push_back(i);
+    }
+    remaining.swap(next);
+  }
+  if (solved || corr.size() >= 3) {
+    const std::size_t correspondences = r.correspondences, core = r.max_core_size;
+    r = best;
+    r.correspondences = correspondences;
+    r.max_core_size = core;
+    r.source_points = src.points.size();
+    r.target_points = tgt.points.size();
+    r.source_keypoints = src.keypoints.size();
+    r.target_keypoints = tgt.keypoints.size();
   }
   notifyStage(observer, "refine");
 

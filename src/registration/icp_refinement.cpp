@@ -11,10 +11,38 @@ namespace cosmo {
 IcpResult refinePointToPlane(const std::vector<Eigen::Vector3f>& source, const std::vector<Eigen::Vector3f>& target,
                              const std::vector<Eigen::Vector3f>& target_normals, const Eigen::Isometry3d& initial,
                              double max_distance, int max_iterations) {
+  if (target.empty()) {
+    IcpResult out;
+    out.T = initial;
+    return out;
+  }
+  const KdTree<3> tree(target.front().data(), target.size());
+  return refinePointToPlane(source, tree, target, target_normals, initial, max_distance, max_iterations);
+}
+
+double overlapFraction(const std::vector<Eigen::Vector3f>& source, const KdTree<3>& target_tree,
+                       const Eigen::Isometry3d& T, double max_distance) {
+  if (source.empty() || target_tree.size() == 0) return 0.0;
+  const float max_d2 = static_cast<float>(max_distance * max_distance);
+  const Eigen::Matrix3f Rf = T.linear().cast<float>();
+  const Eigen::Vector3f tf = T.translation().cast<float>();
+  std::size_t matched = 0;
+  for (const auto& s : source) {
+    const Eigen::Vector3f p = Rf * s + tf;
+    const auto [j, d2] = target_tree.nearest(p.data());
+    matched += j >= 0 && d2 <= max_d2;
+  }
+  return static_cast<double>(matched) / static_cast<double>(source.size());
+}
+
+IcpResult refinePointToPlane(const std::vector<Eigen::Vector3f>& source, const KdTree<3>& tree,
+                             const std::vector<Eigen::Vector3f>& target,
+                             const std::vector<Eigen::Vector3f>& target_normals, const Eigen::Isometry3d& initial,
+                             double max_distance, int max_iterations) {
   IcpResult out;
   out.T = initial;
-  if (source.empty() || target.empty() || target_normals.size() != target.size()) return out;
-  const KdTree<3> tree(target.front().data(), target.size());
+  if (source.empty() || target.empty() || target_normals.size() != target.size() || tree.size() != target.size())
+    return out;
   const float max_d2 = static_cast<float>(max_distance * max_distance);
   Eigen::Isometry3d T = initial;
   for (int it = 0; it < max_iterations; ++it) {

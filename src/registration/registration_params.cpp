@@ -30,6 +30,7 @@ RegistrationParams RegistrationParams::fromConfig(const ConfigNode& root) {
   node.read("noise_bound", p.noise_bound);
   node.read("use_max_clique", p.use_max_clique);
   node.read("max_clique_nodes", p.max_clique_nodes);
+  node.read("max_hypotheses", p.max_hypotheses);
   node.read("gnc_factor", p.gnc_factor);
   node.read("gnc_max_iterations", p.gnc_max_iterations);
   node.read("gnc_cost_tolerance", p.gnc_cost_tolerance);
@@ -47,6 +48,7 @@ RegistrationParams RegistrationParams::fromConfig(const ConfigNode& root) {
   require(p.normal_radius > 0.0, node, "normal_radius", "must be > 0");
   require(p.fpfh_radius > 0.0, node, "fpfh_radius", "must be > 0");
   require(p.noise_bound > 0.0, node, "noise_bound", "must be > 0");
+  require(p.max_hypotheses >= 1, node, "max_hypotheses", "must be >= 1");
   require(p.gnc_factor > 1.0, node, "gnc_factor", "must be > 1");
   require(p.max_correspondences > 0, node, "max_correspondences", "must be > 0");
   require(p.max_correspondences <= 20000, node, "max_correspondences", "must be <= 20000 (n^2 graph)");

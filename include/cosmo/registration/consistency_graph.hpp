@@ -20,6 +20,9 @@ class ConsistencyGraph {
   static ConsistencyGraph fromCorrespondences(const std::vector<Eigen::Vector3f>& source,
                                               const std::vector<Eigen::Vector3f>& target, double tolerance);
 
+  /// The subgraph induced by `vertices` (vertex k of the result is vertices[k]).
+  ConsistencyGraph induced(const std::vector<int>& vertices) const;
+
   int size() const { return n_; }
   std::size_t edgeCount() const { return edges_; }
   bool adjacent(int a, int b) const {

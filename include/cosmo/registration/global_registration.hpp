@@ -2,6 +2,10 @@
 // Global (initial-guess-free) registration of a loop-closure scan pair in the manner of KISS-Matcher:
 // voxel downsampling -> normals -> FPFH -> mutual-NN correspondences (capped) -> pairwise-consistency graph ->
 // max k-core / max clique -> GNC-TLS rotation + TLS translation -> optional point-to-plane ICP -> validity gate.
+// When the gate rejects the solution of the maximum clique, the next clique (after removing the correspondences
+// that solution explains) is solved and verified, up to max_hypotheses; the first one the gate accepts (else
+// the one with the largest overlap) is reported. Repetitive or symmetric scenes (a street seen from the
+// opposite direction) give a wrong largest clique whose solution overlaps poorly.
 // The gate looks only at the registration's own evidence (inlier counts), never at a reference pose: a wrong
 // loop closure it accepts is a realistic outlier.
 #include <cstddef>
@@ -26,8 +30,11 @@ struct RegistrationResult {
   std::size_t pruned_inliers = 0;     ///< correspondences surviving the pruning (max clique / k-core)
   std::size_t final_inliers = 0;      ///< pruned correspondences within noise_bound of the final transform
   bool clique_proven = true;          ///< false when the max-clique search hit its node budget
+  int hypotheses = 0;                 ///< cliques solved and verified (more than 1 when the first was rejected)
+  int hypothesis = 0;                 ///< index of the one reported (0 = the maximum clique)
   bool refined = false;               ///< the ICP refinement was applied
-  double overlap = 0.0;               ///< fraction of source points with a target point near after the solve
+  double overlap = 0.0;               ///< fraction of source points with a target point within icp_max_distance
+                                      ///< at the reported transform
   bool valid = false;                 ///< the gate's verdict
   std::string reason;                 ///< why it was rejected (or "ok")
 };

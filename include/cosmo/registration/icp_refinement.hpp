@@ -1,10 +1,12 @@
 #pragma once
 // Local refinement after the global solve: point-to-plane ICP (Gauss-Newton on SE(3)) between the
 // downsampled source points and the downsampled target points with normals, nearest neighbours by an exact
-// nanoflann kd-tree. Deterministic.
+// nanoflann kd-tree; and the overlap measure of the gate. Deterministic.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <vector>
+
+#include "cosmo/registration/kdtree.hpp"
 
 namespace cosmo {
 
@@ -19,5 +21,15 @@ struct IcpResult {
 IcpResult refinePointToPlane(const std::vector<Eigen::Vector3f>& source, const std::vector<Eigen::Vector3f>& target,
                              const std::vector<Eigen::Vector3f>& target_normals, const Eigen::Isometry3d& initial,
                              double max_distance, int max_iterations);
+
+/// The same against a kd-tree built over `target` (reused across several initial guesses).
+IcpResult refinePointToPlane(const std::vector<Eigen::Vector3f>& source, const KdTree<3>& target_tree,
+                             const std::vector<Eigen::Vector3f>& target,
+                             const std::vector<Eigen::Vector3f>& target_normals, const Eigen::Isometry3d& initial,
+                             double max_distance, int max_iterations);
+
+/// Fraction of `source` points that have a target point within `max_distance` after applying T.
+double overlapFraction(const std::vector<Eigen::Vector3f>& source, const KdTree<3>& target_tree,
+                       const Eigen::Isometry3d& T, double max_distance);
 
 }  // namespace cosmo

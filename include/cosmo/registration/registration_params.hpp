@@ -30,6 +30,8 @@ struct RegistrationParams {
   double noise_bound = 0.3;       ///< max residual (m) of an inlier correspondence; edges tolerate 2x this
   bool use_max_clique = true;     ///< max clique inside the max k-core (else the max k-core itself)
   std::uint64_t max_clique_nodes = 1000;    ///< branch-and-bound node budget (deterministic cut-off)
+  int max_hypotheses = 3;         ///< cliques tried in turn while the gate rejects (each next one found after
+                                  ///< removing the correspondences the previous solutions explain); 1 = off
   // --- robust solve --------------------------------------------------------------------------------------
   double gnc_factor = 1.4;        ///< GNC-TLS: growth factor of the control parameter mu
   int gnc_max_iterations = 100;   ///< GNC-TLS: iteration cap
@@ -39,8 +41,8 @@ struct RegistrationParams {
   bool refine = true;             ///< point-to-plane ICP on the downsampled full clouds after the global solve
   int icp_iterations = 20;        ///< ICP iteration cap
   double icp_max_distance = 0.9;  ///< ICP correspondence distance (m)
-  double icp_max_correction_m = 1.0;    ///< a refinement that moves farther than this is discarded (m)
-  double icp_max_correction_deg = 5.0;  ///< ... or rotates more than this (deg)
+  double icp_max_correction_m = 1.0;    ///< a refinement that moves farther than this is discarded (m) ...
+  double icp_max_correction_deg = 5.0;  ///< ... or rotates more than this (deg), unless it raises the overlap
   // --- validity gate (never looks at ground truth) -------------------------------------------------------
   std::size_t min_final_inliers = 5;   ///< accept only with at least this many consistent inliers
   std::size_t min_correspondences = 10; ///< below this the problem is declared degenerate

@@ -2,20 +2,22 @@
 // sequence (written by cosmo_simulate: a sequence yaml with per-robot bags and pose_inW.csv references).
 //
 //   bench_registration_sim <sequence.yaml> [--config registration.yaml] [--pairs N] [--negatives N]
-//                          [--kf 2.0] [--max-offset 10] [--min-separation 100] [--seed S]
+//                          [--kf 2.0] [--max-offset 10] [--min-separation 100] [--seed S] [--cache FILE]
 //
 // Keyframes every --kf m of reference motion per trial, dewarped with the reference (per-point times). Loop pairs:
 // keyframes of two different robots whose reference LiDAR positions are within --max-offset m, sampled uniformly
 // (seeded); the source is rotated by a random yaw. Success = accepted by the gate and error < 0.5 m and < 2 deg
 // against the reference relative pose. Non-overlapping pairs: keyframes of different robots more than
 // --min-separation m apart; a gate acceptance there is a false accept. Separate from bench_registration
-// because it links the ROS bag glue.
+// because it links the ROS bag glue. --cache FILE: keyframes (poses and dewarped points) are read from FILE when it
+// exists, else read from the bags and written there (reading a long sequence's bags takes minutes).
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <random>
 #include <string>
@@ -75,10 +77,55 @@ std::vector<Keyframe> loadKeyframes(const std::string& yaml_path, double kf_m) {
   return out;
 }
 
+constexpr std::uint64_t kCacheMagic = 0x31666b6f6d736f63ULL;  // "cosmokf1"
+
+/// Keyframe cache: magic, kf spacing, count, then per keyframe robot, 16 pose numbers, point count, points.
+bool readCache(const std::string& path, double kf_m, std::vector<Keyframe>& out) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::uint64_t magic = 0, n = 0;
+  double kf = 0;
+  in.read(reinterpret_cast<char*>(&magic), sizeof magic);
+  in.read(reinterpret_cast<char*>(&kf), sizeof kf);
+  in.read(reinterpret_cast<char*>(&n), sizeof n);
+  if (!in || magic != kCacheMagic || kf != kf_m) return false;
+  out.resize(n);
+  for (auto& k : out) {
+    std::int32_t robot = 0;
+    std::uint64_t np = 0;
+    Eigen::Matrix4d m;
+    in.read(reinterpret_cast<char*>(&robot), sizeof robot);
+    in.read(reinterpret_cast<char*>(m.data()), sizeof(double) * 16);
+    in.read(reinterpret_cast<char*>(&np), sizeof np);
+    k.robot = robot;
+    k.pose.matrix() = m;
+    k.scan.points.resize(np);
+    in.read(reinterpret_cast<char*>(k.scan.points.data()), static_cast<std::streamsize>(sizeof(float) * 3 * np));
+  }
+  return static_cast<bool>(in);
+}
+
+void writeCache(const std::string& path, double kf_m, const std::vector<Keyframe>& kfs) {
+  std::ofstream out(path, std::ios::binary);
+  const std::uint64_t n = kfs.size();
+  out.write(reinterpret_cast<const char*>(&kCacheMagic), sizeof kCacheMagic);
+  out.write(reinterpret_cast<const char*>(&kf_m), sizeof kf_m);
+  out.write(reinterpret_cast<const char*>(&n), sizeof n);
+  for (const auto& k : kfs) {
+    const std::int32_t robot = k.robot;
+    const std::uint64_t np = k.scan.points.size();
+    const Eigen::Matrix4d m = k.pose.matrix();
+    out.write(reinterpret_cast<const char*>(&robot), sizeof robot);
+    out.write(reinterpret_cast<const char*>(m.data()), sizeof(double) * 16);
+    out.write(reinterpret_cast<const char*>(&np), sizeof np);
+    out.write(reinterpret_cast<const char*>(k.scan.points.data()), static_cast<std::streamsize>(sizeof(float) * 3 * np));
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string seq, config;
+  std::string seq, config, cache;
   int n_pairs = 100, n_neg = 50;
   double kf_m = 2.0, max_offset = 10.0, min_sep = 100.0;
   std::uint64_t seed = 1;
@@ -92,10 +139,11 @@ int main(int argc, char** argv) {
     else if (a == "--max-offset") max_offset = std::stod(val());
     else if (a == "--min-separation") min_sep = std::stod(val());
     else if (a == "--seed") seed = std::stoull(val());
+    else if (a == "--cache") cache = val();
     else if (!a.empty() && a[0] != '-') seq = a;
     else {
       std::cerr << "usage: bench_registration_sim <sequence.yaml> [--config f] [--pairs N] [--negatives N] [--kf m] "
-                   "[--max-offset m] [--min-separation m] [--seed S]\n";
+                   "[--max-offset m] [--min-separation m] [--seed S] [--cache FILE]\n";
       return 2;
     }
   }
@@ -108,7 +156,13 @@ int main(int argc, char** argv) {
         config.empty() ? RegistrationParams{} : RegistrationParams::fromConfig(ConfigNode::load(config));
     const GlobalRegistration reg(params);
     std::printf("== %s ==\n", seq.c_str());
-    const auto kfs = loadKeyframes(seq, kf_m);
+    std::vector<Keyframe> kfs;
+    if (cache.empty() || !readCache(cache, kf_m, kfs)) {
+      kfs = loadKeyframes(seq, kf_m);
+      if (!cache.empty()) writeCache(cache, kf_m, kfs);
+    } else {
+      std::printf("  %zu keyframes from the cache %s\n", kfs.size(), cache.c_str());
+    }
     std::vector<std::pair<int, int>> near, far;
     for (std::size_t i = 0; i < kfs.size(); ++i)
       for (std::size_t j = 0; j < kfs.size(); ++j) {
