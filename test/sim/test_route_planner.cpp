@@ -121,3 +121,37 @@ trials:
   EXPECT_LT(t.body.length(), 1.1 * routeLength(net, t.route));
   EXPECT_LT((t.body.atClamped(t.body.endStamp()).translation().head<2>() - net.nodes[2]).norm(), 8.0);
 }
+
+TEST(RoutePlanner, DefaultDemoTrialsShareMuchOfTheirPaths) {
+  // The demo (config/sim/default.yaml) relies on the robots driving the same streets (Wi-Fi meetings and
+  // inter-robot loop closures): each pair of trials covers >= 100 m of common path (within 5 m), and every
+  // trial revisits some of its own path later (intra-robot closures).
+  const auto params = SimulationParams::load(std::string(COSMO_SOURCE_DIR) + "/config/sim/default.yaml");
+  const auto seq = planSequence(params);
+  ASSERT_GE(seq.trials.size(), 3u);
+  auto samples = [](const Trajectory& t) {  // a point every ~2 m of travel
+    std::vector<Eigen::Vector2d> pts;
+    for (const auto& p : t.poses()) {
+      const Eigen::Vector2d q = p.pose.translation().head<2>();
+      if (pts.empty() || (q - pts.back()).norm() >= 2.0) pts.push_back(q);
+    }
+    return pts;
+  };
+  auto near = [](const Eigen::Vector2d& q, const std::vector<Eigen::Vector2d>& pts, std::size_t end) {
+    for (std::size_t k = 0; k < end; ++k)
+      if ((pts[k] - q).norm() < 5.0) return true;
+    return false;
+  };
+  std::vector<std::vector<Eigen::Vector2d>> pts;
+  for (const auto& t : seq.trials) pts.push_back(samples(t.body));
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    for (std::size_t j = i + 1; j < pts.size(); ++j) {
+      std::size_t shared = 0;
+      for (const auto& q : pts[i]) shared += near(q, pts[j], pts[j].size());
+      EXPECT_GE(2.0 * shared, 100.0) << seq.trials[i].params.name << " / " << seq.trials[j].params.name;
+    }
+    std::size_t revisits = 0;  // points within 5 m of where the trial was >= 60 m of travel earlier
+    for (std::size_t k = 30; k < pts[i].size(); ++k) revisits += near(pts[i][k], pts[i], k - 30);
+    if (seq.trials[i].params.platform != "handheld") EXPECT_GE(2.0 * revisits, 40.0) << seq.trials[i].params.name;
+  }
+}
