@@ -89,19 +89,25 @@ RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFea
   std::vector<FeatureConstraint> cs;
   std::vector<Eigen::Vector3d> edges, planes;
 
-  // Coarse-to-fine: a subsample of the features (about 2000) until the pose settles to ~1 cm / 1 mrad, then
-  // all features to the convergence thresholds. Each stage: associate, then a few Gauss-Newton steps with
+  // Coarse-to-fine: a subsample of the features (about kCoarseFeatures), then all features. Each stage: associate, then a few Gauss-Newton steps with
   // the association fixed; repeat until an association round moves the pose less than the thresholds.
+  constexpr std::size_t kCoarseFeatures = 1000;
   const std::size_t n_all = features.size();
-  const std::size_t coarse_stride = std::max<std::size_t>(1, n_all / 2000);
+  const std::size_t coarse_stride = std::max<std::size_t>(1, n_all / kCoarseFeatures);
   struct Stage {
     std::size_t stride;
     double pos_thresh, rot_thresh;
   };
   std::vector<Stage> stages;
-  if (coarse_stride > 1)
-    stages.push_back({coarse_stride, 10.0 * params.position_convergence_thresh, 10.0 * params.rotation_convergence_thresh});
-  stages.push_back({1, params.position_convergence_thresh, params.rotation_convergence_thresh});
+  // The subsample converges to the thresholds (cheap), then all features polish it: usually one association
+  // round, repeated only while a round moves the pose by more than 10x the thresholds (re-associating the
+  // ~5000 features once more to confirm a sub-millimetre change cost a third of the time per scan).
+  if (coarse_stride > 1) {
+    stages.push_back({coarse_stride, params.position_convergence_thresh, params.rotation_convergence_thresh});
+    stages.push_back({1, 10.0 * params.position_convergence_thresh, 10.0 * params.rotation_convergence_thresh});
+  } else {
+    stages.push_back({1, params.position_convergence_thresh, params.rotation_convergence_thresh});
+  }
 
   int rounds = 0;
   for (std::size_t si = 0; si < stages.size(); ++si) {

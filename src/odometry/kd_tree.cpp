@@ -19,6 +19,9 @@ using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<fl
                                                  std::uint32_t>;
 }  // namespace
 
+/// Points per leaf: larger leaves build faster (the tree is rebuilt every scan) at a slightly slower search.
+constexpr std::size_t kLeafSize = 24;
+
 struct KdTree3::Index {
   FlatCloud cloud;
   std::unique_ptr<Tree> tree;
@@ -37,7 +40,7 @@ void KdTree3::build(const std::vector<Eigen::Vector3d>& points) {
   index_ = std::make_unique<Index>();
   index_->cloud.coords = &coords_;
   if (points.empty()) return;
-  index_->tree = std::make_unique<Tree>(3, index_->cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  index_->tree = std::make_unique<Tree>(3, index_->cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kLeafSize));
   index_->tree->buildIndex();
 }
 

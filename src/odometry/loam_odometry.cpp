@@ -6,6 +6,7 @@
 #include "cosmo/odometry/feature_registration.hpp"
 #include "cosmo/odometry/motion_model.hpp"
 #include "cosmo/odometry/scan_lines.hpp"
+#include "cosmo/odometry/voxel_filter.hpp"
 
 namespace cosmo {
 namespace {
@@ -20,7 +21,7 @@ std::vector<Eigen::Vector3d> transformed(const Pose3& T, const std::vector<Eigen
 }
 }  // namespace
 
-LoamOdometry::LoamOdometry(const LoamParams& p) : params_(p), map_(static_cast<std::size_t>(std::max(1, p.num_local_map_scans))) {}
+LoamOdometry::LoamOdometry(const LoamParams& p) : params_(p), map_(static_cast<std::size_t>(std::max(1, p.num_local_map_scans)), p.map_edge_voxel_size, p.map_planar_voxel_size) {}
 
 OdometryResult LoamOdometry::fallback(OdometryResult r, double period, const std::string& why) {
   const Pose3 delta = predictMotion(last_delta_, last_period_, period);
@@ -45,6 +46,16 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
   const ScanLines lines = organizeScanLines(scan, params_);
   r.num_points = lines.numPoints();
   last_features_ = r.num_points >= kMinPoints ? extractFeatures(lines, params_) : LoamFeatures{};
+  if (params_.planar_feature_voxel_size > 0.0) {  // thin the planar features (LOAM's "less flat" downsampling)
+    const auto keep = voxelFilterIndices(last_features_.planar_points, params_.planar_feature_voxel_size);
+    const bool timed = last_features_.planar_time.size() == last_features_.planar_points.size();
+    for (std::size_t j = 0; j < keep.size(); ++j) {
+      last_features_.planar_points[j] = last_features_.planar_points[keep[j]];
+      if (timed) last_features_.planar_time[j] = last_features_.planar_time[keep[j]];
+    }
+    last_features_.planar_points.resize(keep.size());
+    if (timed) last_features_.planar_time.resize(keep.size());
+  }
   r.num_edge_features = last_features_.edge_points.size();
   r.num_planar_features = last_features_.planar_points.size();
 

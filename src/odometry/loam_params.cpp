@@ -36,6 +36,9 @@ LoamParams LoamParams::fromConfig(const ConfigNode& root) {
   c.read("yaw_search_max_deg", p.yaw_search_max_deg);
   c.read("min_correspondences", p.min_correspondences);
   c.read("min_eigenvalue_per_constraint", p.min_eigenvalue_per_constraint);
+  c.read("map_edge_voxel_size", p.map_edge_voxel_size);
+  c.read("map_planar_voxel_size", p.map_planar_voxel_size);
+  c.read("planar_feature_voxel_size", p.planar_feature_voxel_size);
   c.read("deskew", p.deskew);
   c.read("deskew_planar_only", p.deskew_planar_only);
   c.read("deskew_reestimate_translation", p.deskew_reestimate_translation);

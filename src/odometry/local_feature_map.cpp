@@ -1,17 +1,27 @@
 #include "cosmo/odometry/local_feature_map.hpp"
 
+#include "cosmo/odometry/voxel_filter.hpp"
+
 namespace cosmo {
 
 void LocalFeatureMap::add(std::vector<Eigen::Vector3d> edges, std::vector<Eigen::Vector3d> planes) {
   scans_.push_back({std::move(edges), std::move(planes)});
   while (scans_.size() > std::max<std::size_t>(1, max_scans_)) scans_.pop_front();
   std::vector<Eigen::Vector3d> all_edges, all_planes;
-  for (const auto& s : scans_) {
-    all_edges.insert(all_edges.end(), s.edges.begin(), s.edges.end());
-    all_planes.insert(all_planes.end(), s.planes.begin(), s.planes.end());
+  for (auto s = scans_.rbegin(); s != scans_.rend(); ++s) {  // newest first: its points win the voxels
+    all_edges.insert(all_edges.end(), s->edges.begin(), s->edges.end());
+    all_planes.insert(all_planes.end(), s->planes.begin(), s->planes.end());
   }
-  edge_tree_.build(all_edges);
-  plane_tree_.build(all_planes);
+  auto thinned = [](std::vector<Eigen::Vector3d> pts, double voxel) {
+    if (!(voxel > 0.0)) return pts;
+    std::vector<Eigen::Vector3d> out;
+    const auto keep = voxelFilterIndices(pts, voxel);
+    out.reserve(keep.size());
+    for (std::uint32_t i : keep) out.push_back(pts[i]);
+    return out;
+  };
+  edge_tree_.build(thinned(std::move(all_edges), edge_voxel_));
+  plane_tree_.build(thinned(std::move(all_planes), planar_voxel_));
 }
 
 void LocalFeatureMap::clear() {

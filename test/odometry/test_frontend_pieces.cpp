@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "cosmo/common/config.hpp"
@@ -9,6 +10,7 @@
 #include "cosmo/common/shared_data.hpp"
 #include "cosmo/odometry/dewarp.hpp"
 #include "cosmo/odometry/keyframer.hpp"
+#include "cosmo/odometry/voxel_filter.hpp"
 #include "cosmo/odometry/loam_params.hpp"
 #include "cosmo/odometry/scan_lines.hpp"
 #include "cosmo/odometry/synthetic_scene.hpp"
@@ -144,4 +146,11 @@ TEST(LoamParams, DefaultsAreThePaperValuesAndConfigOverrides) {
   EXPECT_EQ(c.max_icf_iterations, 20);
   EXPECT_DOUBLE_EQ(c.rotation_convergence_thresh, 1e-4);
   EXPECT_EQ(c.num_local_map_scans, 3);
+}
+
+TEST(VoxelFilter, KeepsTheFirstPointOfEachVoxel) {
+  const std::vector<Eigen::Vector3d> pts{{0.05, 0.05, 0.05}, {0.15, 0.1, 0.0}, {0.25, 0.0, 0.0}, {-0.05, 0.0, 0.0},
+                                         {0.31, 0.0, 0.0},   {std::nan(""), 0.0, 0.0}};
+  EXPECT_EQ(voxelFilterIndices(pts, 0.2), (std::vector<std::uint32_t>{0, 2, 3}));
+  EXPECT_EQ(voxelFilterIndices(pts, 0.0).size(), pts.size());
 }

@@ -29,6 +29,12 @@ struct LoamParams {
 
   // --- local map --------------------------------------------------------------------------------------------
   int num_local_map_scans = 3;  ///< scans whose features form the local map
+  /// Voxel thinning (m, 0 = off) of the local map's edge / planar points (newest scan's point kept per voxel)
+  /// and of each scan's planar features before registration (LOAM's "less flat" downsampling). Fewer, better
+  /// spread points: faster k-NN and tree builds, and plane neighbours that do not all lie on one scan line.
+  double map_edge_voxel_size = 0.0;
+  double map_planar_voxel_size = 0.0;
+  double planar_feature_voxel_size = 0.2;
 
   // --- registration (spec 4.1) ------------------------------------------------------------------------------
   int max_icf_iterations = 20;                ///< iterations of re-association + Gauss-Newton step
