@@ -8,7 +8,8 @@
 #
 # Uses the workspace $COSMO_BUILD_DIR (default _build; build it first: scripts/setup.sh), its own ROS master on a
 # free port (does not disturb a running roscore) and its own display; KEEP_LOGS=1 keeps the logs and the JRL.
-# Needs xvfb and imagemagick (scripts/debian-packages.txt). The first run also generates the synthetic sequence (~5 GB cache, minutes).
+# Needs xvfb and imagemagick (scripts/debian-packages.txt). The first run also generates the synthetic sequence
+# (~5 GB cache, minutes); a run then takes ~3-4 min (lockstep to 150 s, then 30 s for rviz to catch up).
 set -eo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 OUT=$(realpath -m "${1:-$ROOT/docs/rviz.png}")
