@@ -59,6 +59,14 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
 
   std::optional<KdTree<3>> target_tree;
   if (!tgt.points.empty()) target_tree.emplace(tgt.points.front().data(), tgt.points.size());
+  // ICP iterates on an evenly strided subset of the source (every k-th point); the overlap uses all points.
+  std::vector<Eigen::Vector3f> icp_source;
+  const std::size_t stride = p.icp_max_points > 0 ? (src.points.size() + p.icp_max_points - 1) / p.icp_max_points : 1;
+  if (stride > 1) {
+    icp_source.reserve(src.points.size() / stride + 1);
+    for (std::size_t i = 0; i < src.points.size(); i += stride) icp_source.push_back(src.points[i]);
+  }
+  const std::vector<Eigen::Vector3f>& icp_points = stride > 1 ? icp_source : src.points;
 
   // Hypotheses: the maximum clique (or k-core) first; while the gate rejects, the maximum clique among the
   // correspondences that no previous solution explains. Solve, refine, measure the overlap, verify.
@@ -120,7 +128,7 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
       const double overlap0 = overlapFraction(src.points, *target_tree, cand.T_target_source, p.icp_max_distance);
       cand.overlap = overlap0;
       if (p.refine && p.icp_iterations > 0) {
-        const IcpResult icp = refinePointToPlane(src.points, *target_tree, tgt.points, tgt.normals,
+        const IcpResult icp = refinePointToPlane(icp_points, *target_tree, tgt.points, tgt.normals,
                                                  cand.T_target_source, p.icp_max_distance, p.icp_iterations);
         const Pose3 delta = cand.T_target_source.inverse() * icp.T;
         const bool small = delta.translation().norm() <= p.icp_max_correction_m &&

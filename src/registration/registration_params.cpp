@@ -38,6 +38,7 @@ RegistrationParams RegistrationParams::fromConfig(const ConfigNode& root) {
   node.read("refine", p.refine);
   node.read("icp_iterations", p.icp_iterations);
   node.read("icp_max_distance", p.icp_max_distance);
+  node.read("icp_max_points", p.icp_max_points);
   node.read("icp_max_correction_m", p.icp_max_correction_m);
   node.read("icp_max_correction_deg", p.icp_max_correction_deg);
   node.read("min_final_inliers", p.min_final_inliers);

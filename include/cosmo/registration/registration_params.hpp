@@ -41,6 +41,7 @@ struct RegistrationParams {
   bool refine = true;             ///< point-to-plane ICP on the downsampled full clouds after the global solve
   int icp_iterations = 20;        ///< ICP iteration cap
   double icp_max_distance = 0.9;  ///< ICP correspondence distance (m)
+  std::size_t icp_max_points = 4000;  ///< ICP iterates on every k-th source point, k = ceil(n / this); 0 = all
   double icp_max_correction_m = 1.0;    ///< a refinement that moves farther than this is discarded (m) ...
   double icp_max_correction_deg = 5.0;  ///< ... or rotates more than this (deg), unless it raises the overlap
   // --- validity gate (never looks at ground truth) -------------------------------------------------------
