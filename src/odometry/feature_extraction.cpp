@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "cosmo/odometry/voxel_filter.hpp"
+
 namespace cosmo {
 
 std::vector<float> computeCurvature(const ScanLine& line, const LoamParams& params) {
@@ -110,6 +112,18 @@ LoamFeatures extractFeatures(const ScanLines& lines, const LoamParams& params) {
     }
   }
   return out;
+}
+
+void thinPlanarFeatures(LoamFeatures& f, double voxel_size) {
+  if (!(voxel_size > 0.0)) return;
+  const auto keep = voxelFilterIndices(f.planar_points, voxel_size);
+  const bool timed = f.planar_time.size() == f.planar_points.size();
+  for (std::size_t j = 0; j < keep.size(); ++j) {  // keep is ascending: in-place compaction
+    f.planar_points[j] = f.planar_points[keep[j]];
+    if (timed) f.planar_time[j] = f.planar_time[keep[j]];
+  }
+  f.planar_points.resize(keep.size());
+  if (timed) f.planar_time.resize(keep.size());
 }
 
 }  // namespace cosmo

@@ -6,7 +6,6 @@
 #include "cosmo/odometry/feature_registration.hpp"
 #include "cosmo/odometry/motion_model.hpp"
 #include "cosmo/odometry/scan_lines.hpp"
-#include "cosmo/odometry/voxel_filter.hpp"
 
 namespace cosmo {
 namespace {
@@ -46,16 +45,7 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
   const ScanLines lines = organizeScanLines(scan, params_);
   r.num_points = lines.numPoints();
   last_features_ = r.num_points >= kMinPoints ? extractFeatures(lines, params_) : LoamFeatures{};
-  if (params_.planar_feature_voxel_size > 0.0) {  // thin the planar features (LOAM's "less flat" downsampling)
-    const auto keep = voxelFilterIndices(last_features_.planar_points, params_.planar_feature_voxel_size);
-    const bool timed = last_features_.planar_time.size() == last_features_.planar_points.size();
-    for (std::size_t j = 0; j < keep.size(); ++j) {
-      last_features_.planar_points[j] = last_features_.planar_points[keep[j]];
-      if (timed) last_features_.planar_time[j] = last_features_.planar_time[keep[j]];
-    }
-    last_features_.planar_points.resize(keep.size());
-    if (timed) last_features_.planar_time.resize(keep.size());
-  }
+  thinPlanarFeatures(last_features_, params_.planar_feature_voxel_size);
   r.num_edge_features = last_features_.edge_points.size();
   r.num_planar_features = last_features_.planar_points.size();
 

@@ -27,5 +27,7 @@ std::vector<std::uint8_t> computeValidPoints(const ScanLine& line, const LoamPar
 std::vector<float> computeCurvature(const ScanLine& line, const LoamParams& params);
 /// Edge and planar features of all lines.
 LoamFeatures extractFeatures(const ScanLines& lines, const LoamParams& params);
+/// Keeps one planar feature per voxel of `voxel_size` m (0: all), with its time (LOAM's "less flat" filter).
+void thinPlanarFeatures(LoamFeatures& features, double voxel_size);
 
 }  // namespace cosmo
