@@ -10,6 +10,7 @@
 #include <std_srvs/Trigger.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <filesystem>
 #include <fstream>
@@ -109,7 +110,7 @@ TEST(SequenceLaunch, WritesAValidJrl) {
 // Runs after WritesAValidJrl (which waited for the player and made the recorder write).
 TEST(SequenceLaunch, LockstepJrlIsByteIdenticalToTheOfflineDriver) {
   ros::NodeHandle nh;
-  std::string jrl_path, mode, sequence, seed, comm, odometry, noise_models;
+  std::string jrl_path, mode, sequence, seed, comm, odometry, noise_models, config_dir;
   double max_seconds = 0.0;
   ASSERT_TRUE(nh.getParam("/jrl_path", jrl_path));
   nh.param<std::string>("/mode", mode, "lockstep");
@@ -119,6 +120,7 @@ TEST(SequenceLaunch, LockstepJrlIsByteIdenticalToTheOfflineDriver) {
   ASSERT_TRUE(nh.getParam("/comm", comm));
   ASSERT_TRUE(nh.getParam("/odometry", odometry));
   ASSERT_TRUE(nh.getParam("/noise_models", noise_models));
+  ASSERT_TRUE(nh.getParam("/config_dir", config_dir));
   nh.param("/max_seconds", max_seconds, 0.0);
   ASSERT_TRUE(std::filesystem::exists(jrl_path)) << jrl_path;
 
@@ -126,7 +128,7 @@ TEST(SequenceLaunch, LockstepJrlIsByteIdenticalToTheOfflineDriver) {
   std::filesystem::remove_all(out_dir);
   std::ostringstream cmd;
   cmd << shellQuote(siblingProgram("cosmo_generate")) << " " << shellQuote(sequence) << " --seed " << seed
-      << " --comm " << comm << " --noise-models " << shellQuote(noise_models) << " --out " << shellQuote(out_dir)
+      << " --comm " << comm << " --config-dir " << shellQuote(config_dir) << " --noise-models " << shellQuote(noise_models) << " --out " << shellQuote(out_dir)
       << " --quiet" << (odometry == "reference" ? " --reference-odometry" : "");
   if (max_seconds > 0) cmd << " --max-seconds " << max_seconds;
   cmd << " > " << shellQuote(out_dir + ".log") << " 2>&1";
@@ -141,22 +143,14 @@ TEST(SequenceLaunch, LockstepJrlIsByteIdenticalToTheOfflineDriver) {
     std::cout << "lockstep launch and cosmo_generate wrote the same " << ros_bytes.size() << " bytes" << std::endl;
     return;
   }
-  // the first differing line (the writer puts one value or factor per line)
-  std::istringstream a(ros_bytes), b(offline_bytes);
-  std::string la, lb;
-  std::size_t line = 0;
-  while (true) {
-    const bool ga = static_cast<bool>(std::getline(a, la)), gb = static_cast<bool>(std::getline(b, lb));
-    ++line;
-    if (!ga && !gb) break;
-    if (!ga || !gb || la != lb) {
-      auto cut = [](const std::string& s) { return s.size() > 400 ? s.substr(0, 400) + " ..." : s; };
-      ADD_FAILURE() << "JRL differs: " << jrl_path << " (" << ros_bytes.size() << " bytes) vs " << offline_path << " ("
-                    << offline_bytes.size() << " bytes), first at line " << line << ":\n  lockstep: "
-                    << (ga ? cut(la) : "<end>") << "\n  offline:  " << (gb ? cut(lb) : "<end>");
-      break;
-    }
-  }
+  // the first difference: its line, and the text around it (a JRL may be one long line)
+  std::size_t at = 0;
+  while (at < ros_bytes.size() && at < offline_bytes.size() && ros_bytes[at] == offline_bytes[at]) ++at;
+  const std::size_t line = 1 + static_cast<std::size_t>(std::count(ros_bytes.begin(), ros_bytes.begin() + at, '\n'));
+  const std::size_t from = at > 200 ? at - 200 : 0;
+  ADD_FAILURE() << "JRL differs: " << jrl_path << " (" << ros_bytes.size() << " bytes) vs " << offline_path << " ("
+                << offline_bytes.size() << " bytes), first at byte " << at << " (line " << line << "):\n  lockstep: ..."
+                << ros_bytes.substr(from, 400) << "...\n  offline:  ..." << offline_bytes.substr(from, 400) << "...";
 }
 
 int main(int argc, char** argv) {
