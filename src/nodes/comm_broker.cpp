@@ -14,7 +14,8 @@
 //             ~log_file (CSV of every transfer + <name>.summary.json; written every 30 s of ROS time and on
 //             shutdown; empty = none), ~xz_preset (0..9, default 6), ~frame_id (default world),
 //             ~compress_payload (default true; false with size_model paper skips xz, about 0.25 s of CPU per
-//             64 x 1024 scan, and forwards the x y z points as they came, which xz's losslessness makes identical)
+//             64 x 1024 scan, and forwards the x y z points as they came, which xz's losslessness makes identical;
+//             ignored, with a warning, under size_model real)
 // Steps: every delta of ROS time (/clock under use_sim_time) on the grid k * delta, catching up when time jumps.
 //   Each delivery carries its step time (Keyframe.received_at).
 // Lockstep (~lockstep true, sequence.launch mode:=lockstep): no timer; the player drives the radio through
@@ -81,8 +82,10 @@ class CommBroker {
     pnh.param<std::string>("log_file", log_file_, "");
     pnh.param<std::string>("frame_id", frame_id_, "world");
     pnh.param("compress_payload", compress_, true);
-    if (!compress_ && params.size_model == cosmo::RadioParams::SizeModel::RealCompressed)
-      throw std::runtime_error("~compress_payload false needs ~size_model paper (the real size needs xz)");
+    if (!compress_ && params.size_model == cosmo::RadioParams::SizeModel::RealCompressed) {
+      ROS_WARN("comm_broker: ~compress_payload false ignored: the real size model needs the xz payload");
+      compress_ = true;
+    }
     pnh.param("lockstep", lockstep_, false);
     sim_ = std::make_unique<cosmo::RadioSimulator>(params, robots, static_cast<std::uint64_t>(seed));
 
