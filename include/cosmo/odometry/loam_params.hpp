@@ -31,12 +31,12 @@ struct LoamParams {
   int num_local_map_scans = 3;  ///< scans whose features form the local map
   /// Voxel thinning (m, 0 = off) of the local map's edge / planar points (newest scan's point kept per voxel)
   /// and of each scan's planar features before registration (LOAM's "less flat" downsampling). Fewer, better
-  /// spread points: faster k-NN and tree builds, and plane neighbours that do not all lie on one scan line. At
-  /// 0.1 m the map voxels merge the three copies of each point a standing sensor sees (without, the plane fits
-  /// of a standing start fail, the inlier fraction drops below 0.5 and the yaw search jumped by 4 deg on ci_c);
-  /// 0.4 m (LOAM's mapping value) cost ~0.7 % of drift.
-  double map_edge_voxel_size = 0.1;
-  double map_planar_voxel_size = 0.1;
+  /// spread points: faster k-NN and tree builds, and plane neighbours that are not copies of one point. The map
+  /// thinning is off by default: 0.1 m fixed the standing-start yaw-search jump of ci_c (a standing sensor puts
+  /// three copies of each point in the map, plane fits fail, the inlier fraction drops below 0.5) but hid the
+  /// featureless-corridor degeneracy (test LoamDegenerate.FeaturelessCorridor...); 0.4 m cost ~0.7 % of drift.
+  double map_edge_voxel_size = 0.0;
+  double map_planar_voxel_size = 0.0;
   double planar_feature_voxel_size = 0.2;
 
   // --- registration (spec 4.1) ------------------------------------------------------------------------------
