@@ -346,8 +346,15 @@ class FrontendNode {
     }
     lcs.ns = ns + "/loop_closures";
     lcs.type = visualization_msgs::Marker::LINE_LIST;
-    lcs.scale.x = 0.2;
+    lcs.scale.x = 0.4;
     lcs.color = color(1, 1, 1);
+    // closures join keyframes a few metres apart: lift them above the trajectories so they stay visible
+    constexpr double kClosureLift = 1.5;
+    auto lifted = [&](const Eigen::Vector3d& v) {
+      geometry_msgs::Point q = point(v);
+      q.z += kClosureLift;
+      return q;
+    };
     for (const auto& c : closures_) {
       auto p1 = positions_.find({c.a.robot1, c.a.index1});
       auto p2 = positions_.find({c.a.robot2, c.a.index2});
@@ -356,12 +363,17 @@ class FrontendNode {
                                       : c.state == 1 ? color(0.1f, 0.9f, 0.2f)
                                       : c.state == 2 ? color(1.0f, 0.6f, 0.0f)
                                                      : color(0.2f, 0.4f, 1.0f);
-      lcs.points.push_back(point(p1->second));
-      lcs.points.push_back(point(p2->second));
+      lcs.points.push_back(lifted(p1->second));
+      lcs.points.push_back(lifted(p2->second));
       lcs.colors.push_back(col);
       lcs.colors.push_back(col);
     }
-    if (traj.points.size() < 2) traj.points.clear();
+    // rviz flags an empty or one-point line marker as an error: delete it until it has content
+    if (traj.points.size() < 2) {
+      traj.points.clear();
+      traj.action = visualization_msgs::Marker::DELETE;
+    }
+    if (lcs.points.empty()) lcs.action = visualization_msgs::Marker::DELETE;
     arr.markers = {traj, kfs, lcs};
     marker_pub_.publish(arr);
   }
