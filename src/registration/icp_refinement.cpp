@@ -29,7 +29,7 @@ double overlapFraction(const std::vector<Eigen::Vector3f>& source, const KdTree<
   std::size_t matched = 0;
   for (const auto& s : source) {
     const Eigen::Vector3f p = Rf * s + tf;
-    const auto [j, d2] = target_tree.nearest(p.data());
+    const auto [j, d2] = target_tree.nearestWithin(p.data(), max_d2);
     matched += j >= 0 && d2 <= max_d2;
   }
   return static_cast<double>(matched) / static_cast<double>(source.size());
@@ -55,7 +55,7 @@ IcpResult refinePointToPlane(const std::vector<Eigen::Vector3f>& source, const K
     const Eigen::Vector3f tf = T.translation().cast<float>();
     for (const auto& s : source) {
       const Eigen::Vector3f p = Rf * s + tf;
-      const auto [j, d2] = tree.nearest(p.data());
+      const auto [j, d2] = tree.nearestWithin(p.data(), max_d2);
       if (j < 0 || d2 > max_d2) continue;
       const Eigen::Vector3d n = target_normals[static_cast<std::size_t>(j)].cast<double>();
       const Eigen::Vector3d pd = p.cast<double>();

@@ -3,6 +3,7 @@
 // feature vectors. The data must outlive the tree.
 #include <nanoflann.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -29,6 +30,20 @@ class KdTree {
     nanoflann::KNNResultSet<float, std::uint32_t> rs(1);
     rs.init(&idx, &d2);
     index_.findNeighbors(rs, query, nanoflann::SearchParams(32, eps));
+    return {static_cast<int>(idx), d2};
+  }
+
+  /// Nearest neighbour within squared distance `max_d2` (the bound prunes the search: far queries are cheap);
+  /// (-1, inf) when there is none. Same answer as nearest() when that one is within the bound.
+  std::pair<int, float> nearestWithin(const float* query, float max_d2) const {
+    if (adaptor_.count == 0) return {-1, std::numeric_limits<float>::infinity()};
+    std::uint32_t idx = 0;
+    float d2 = 0.f;
+    nanoflann::KNNResultSet<float, std::uint32_t> rs(1);
+    rs.init(&idx, &d2);
+    d2 = std::nextafter(max_d2, std::numeric_limits<float>::infinity());  // worst distance: only closer points
+    index_.findNeighbors(rs, query, nanoflann::SearchParams(32, 0.f));
+    if (rs.size() == 0) return {-1, std::numeric_limits<float>::infinity()};
     return {static_cast<int>(idx), d2};
   }
 

@@ -131,6 +131,7 @@ int main(int argc, char** argv) {
     std::printf("correspondences %zu -> max k-core %zu -> %s %zu -> final inliers %zu\n", r.correspondences,
                 r.max_core_size, params.use_max_clique ? (r.clique_proven ? "max clique" : "clique (budget hit)") : "k-core",
                 r.pruned_inliers, r.final_inliers);
+    std::printf("hypotheses verified %d, reported #%d (0 = the maximum clique)\n", r.hypotheses, r.hypothesis);
     std::printf("refined: %s, overlap %.3f\n", r.refined ? "yes" : "no", r.overlap);
     std::printf("verdict: %s (%s)\n", r.valid ? "ACCEPTED" : "REJECTED", r.reason.c_str());
     std::printf("time (ms):");
