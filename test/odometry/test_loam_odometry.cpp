@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
+#include <vector>
 
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/common/scan_io.hpp"
@@ -32,6 +34,22 @@ std::string kittiScan(const std::string& dir, int frame) {
   std::snprintf(name, sizeof(name), "/velodyne/%06d.bin", frame);
   return dir + name;
 }
+/// Runs LOAM over n distorted sweeps (10 Hz, sweep k ends at 0.1 k s) of a sensor moving along pose_at; every
+/// scan must be accepted. est / gt are the estimated and true poses relative to the first scan.
+template <class PoseAt>
+void runDistortedSweeps(const SyntheticScene& scene, const SyntheticLidar& lidar, std::mt19937_64& rng,
+                        const PoseAt& pose_at, int n, std::vector<Pose3>& est, std::vector<Pose3>& gt) {
+  LoamOdometry odom;
+  for (int k = 0; k < n; ++k) {
+    const double t_end = 0.1 * k;
+    const Scan s = simulateSweep(scene, lidar, toStampNs(1.0 + t_end), [&](double dt) { return pose_at(t_end + dt); }, &rng);
+    const OdometryResult r = odom.update(s);
+    EXPECT_TRUE(r.ok) << "scan " << k << ": " << r.warning;
+    est.push_back(r.pose);
+    gt.push_back(pose_at(0.0).inverse() * pose_at(t_end));
+  }
+}
+
 }  // namespace
 
 TEST(LoamRealScans, KittiConsecutiveFramesWithinTargets) {
@@ -65,17 +83,9 @@ TEST(LoamSynthetic, DrivingWithMotionDistortionRecoversMotion) {
   lidar.range_noise = 0.01;
   std::mt19937_64 rng(42);
   auto pose_at = [](double t) { return makePose(8.0 * t, 0.5 * std::sin(0.5 * t), 0.0, 0.0, 0.0, 0.1 * t); };
-  LoamOdometry odom;
   std::vector<Pose3> est, gt;
   const int n = 12;
-  for (int k = 0; k < n; ++k) {
-    const double t_end = 0.1 * k;
-    const Scan s = simulateSweep(scene, lidar, toStampNs(1.0 + t_end), [&](double dt) { return pose_at(t_end + dt); }, &rng);
-    const OdometryResult r = odom.update(s);
-    EXPECT_TRUE(r.ok) << "scan " << k << ": " << r.warning;
-    est.push_back(r.pose);
-    gt.push_back(pose_at(0.0).inverse() * pose_at(t_end));
-  }
+  runDistortedSweeps(scene, lidar, rng, pose_at, n, est, gt);
   for (int k = 1; k < n; ++k) {
     const Pose3 de = est[k - 1].inverse() * est[k], dg = gt[k - 1].inverse() * gt[k];
     EXPECT_LT(translationError(de, dg), 0.02) << "step " << k;
@@ -173,17 +183,9 @@ TEST(LoamSynthetic, AcceleratingTrialDoesNotOscillate) {
   std::mt19937_64 rng(7);
   auto x_at = [](double t) { return t < 1.0 ? 0.0 : 0.5 * 0.8 * (t - 1.0) * (t - 1.0); };
   auto pose_at = [&](double t) { return makePose(x_at(t), 0.3 * std::sin(0.4 * t), 0.0, 0.0, 0.0, 0.03 * std::sin(0.6 * t)); };
-  LoamOdometry odom;
   std::vector<Pose3> est, gt;
   const int n = 50;
-  for (int k = 0; k < n; ++k) {
-    const double t_end = 0.1 * k;
-    const Scan s = simulateSweep(scene, lidar, toStampNs(1.0 + t_end), [&](double dt) { return pose_at(t_end + dt); }, &rng);
-    const OdometryResult r = odom.update(s);
-    EXPECT_TRUE(r.ok) << "scan " << k << ": " << r.warning;
-    est.push_back(r.pose);
-    gt.push_back(pose_at(0.0).inverse() * pose_at(t_end));
-  }
+  runDistortedSweeps(scene, lidar, rng, pose_at, n, est, gt);
   double len_est = 0.0, len_gt = 0.0;
   for (int k = 1; k < n; ++k) {
     const Pose3 de = est[k - 1].inverse() * est[k], dg = gt[k - 1].inverse() * gt[k];
