@@ -33,6 +33,10 @@ void RobotFrontend::appendReference(StampNs stamp, const Pose3& sensor_in_world)
 
 ScanOutcome RobotFrontend::processScan(const Scan& scan) { return afterOdometry(scan, odometry_.update(scan)); }
 
+ScanOutcome RobotFrontend::processScan(const Scan& scan, const OdometryResult& loam_result) {
+  return afterOdometry(scan, loam_result);
+}
+
 ScanOutcome RobotFrontend::processScan(const Scan& scan, const Pose3& external_odom_pose) {
   OdometryResult r;
   r.pose = external_odom_pose;

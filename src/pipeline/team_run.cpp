@@ -84,7 +84,13 @@ void TeamRun::advanceRadioTo(StampNs t) {
   advanceRadio(radio_, origin_, t, state, deliver);
 }
 
-void TeamRun::addScan(char robot, const Scan& scan) {
+void TeamRun::addScan(char robot, const Scan& scan) { addScan(robot, scan, nullptr); }
+
+void TeamRun::addScan(char robot, const Scan& scan, const OdometryResult& loam_result) {
+  addScan(robot, scan, &loam_result);
+}
+
+void TeamRun::addScan(char robot, const Scan& scan, const OdometryResult* loam_result) {
   auto it = frontends_.find(robot);
   if (it == frontends_.end()) throw std::invalid_argument(std::string("team run: unknown robot '") + robot + "'");
   advanceRadioTo(scan.stamp);
@@ -92,7 +98,8 @@ void TeamRun::addScan(char robot, const Scan& scan) {
   ++counts_.scans;
   const ScanOutcome out = params_.reference_odometry && fe.hasReference()
                               ? fe.processScan(scan, fe.reference().atClamped(scan.stamp))
-                              : fe.processScan(scan);
+                          : loam_result ? fe.processScan(scan, *loam_result)
+                                        : fe.processScan(scan);
   if (out.keyframe) {
     const KeyframeRecord& kf = *out.keyframe;
     ++counts_.keyframes;

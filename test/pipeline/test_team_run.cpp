@@ -4,12 +4,15 @@
 
 #include <filesystem>
 #include <fstream>
+#include <future>
+#include <memory>
 #include <sstream>
 
 #include "cosmo/pipeline/scan_stream.hpp"
 #include "cosmo/pipeline/seed_streams.hpp"
 #include "cosmo/pipeline/sequence_references.hpp"
 #include "cosmo/pipeline/team_run.hpp"
+#include "cosmo/pipeline/odometry_prefetch.hpp"
 #include "synthetic_team.hpp"
 
 using namespace cosmo;
@@ -63,7 +66,42 @@ std::string runOnce(std::uint64_t seed, TeamCounts* counts = nullptr) {
   return readFile(path);
 }
 
+/// A LOAM run of the first `max_scans` merged scans; `prefetch`: odometry on worker threads (OdometryPrefetch).
+std::string runLoam(bool prefetch, std::size_t max_scans) {
+  const auto& trials = team();
+  const SequenceTiming timing = timingOf(trials, 3, 0.5);
+  std::map<char, Trajectory> refs;
+  for (const auto& t : trials) refs[t.robot] = toSensorReference(t.body, t.extrinsic, timing.of(t.robot));
+  TeamRunParams params;
+  params.frontend = FrontendParams::loadDir(defaultConfigDir());
+  TeamRun run("test_team", refs, params, cosmo::pipeline::deriveSeed(3, "radio"), timing.start());
+  OdometryPrefetch workers(run.robots(), params.frontend.loam);
+  MergedScanStream stream = streamOf(trials, timing);
+  std::vector<std::pair<char, std::shared_ptr<const Scan>>> scans;
+  char robot;
+  Scan scan;
+  while (scans.size() < max_scans && stream.next(robot, scan)) scans.emplace_back(robot, std::make_shared<const Scan>(scan));
+  if (prefetch) {
+    std::vector<std::future<OdometryResult>> odometry;  // every scan submitted before any is consumed
+    for (const auto& [r, sc] : scans) odometry.push_back(workers.submit(r, sc));
+    for (std::size_t i = 0; i < scans.size(); ++i) run.addScan(scans[i].first, *scans[i].second, odometry[i].get());
+  } else {
+    for (const auto& [r, sc] : scans) run.addScan(r, *sc);
+  }
+  run.finish(scans.back().second->stamp);
+  const auto path = (std::filesystem::temp_directory_path() / (std::string("cosmo_team_run_loam_") + (prefetch ? "p" : "s") + ".jrl")).string();
+  run.recorder().write(path);
+  EXPECT_GT(run.counts().keyframes, 2u);
+  return readFile(path);
+}
+
 }  // namespace
+
+TEST(TeamRun, OdometryOnWorkerThreadsGivesTheSameJrl) {
+  const std::string serial = runLoam(false, 100), parallel = runLoam(true, 100);
+  ASSERT_FALSE(serial.empty());
+  EXPECT_EQ(serial, parallel);
+}
 
 TEST(MergedScanStream, MergesBySequenceTimeAndDropsNonIncreasingStamps) {
   std::vector<Scan> a(3), b(3);

@@ -13,6 +13,8 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <deque>
+#include <future>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -22,6 +24,7 @@
 #include "cosmo/comm/transfer_log.hpp"
 #include "cosmo/jrl/stats.hpp"
 #include "cosmo/jrl/validate.hpp"
+#include "cosmo/pipeline/odometry_prefetch.hpp"
 #include "cosmo/pipeline/seed_streams.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/pipeline/sequence_references.hpp"
@@ -38,7 +41,7 @@ namespace {
 void usage() {
   std::cerr << "usage: cosmo_generate SEQUENCE.yaml [--comm wifi,proradio] [--seed N] [--out DIR]\n"
                "         [--config-dir DIR] [--noise-models FILE] [--outlier-rule fidelity|squared]\n"
-               "         [--reference-odometry] [--max-seconds S] [--quiet]\n"
+               "         [--reference-odometry] [--serial-odometry] [--max-seconds S] [--quiet]\n"
                "  --comm LIST          comm models, comma separated (wifi, proradio, or a config/comm/*.yaml); default wifi\n"
                "  --seed N             overrides the sequence config's seed\n"
                "  --out DIR            output folder (default: current folder)\n"
@@ -47,6 +50,8 @@ void usage() {
                "  --noise-models FILE  noise-model YAML (default: the sequence's noise_models, else\n"
                "                       <config-dir>/noise_models/<environment>.yaml)\n"
                "  --reference-odometry take odometry from the reference trajectories instead of LOAM\n"
+               "  --serial-odometry    run LOAM in the main thread (default: one thread per robot, ahead of the\n"
+               "                       team; the output is the same byte for byte)\n"
                "  --max-seconds S      stop after S seconds of sequence time (quick looks)\n";
 }
 
@@ -81,7 +86,7 @@ double peakRssMb() {
 int main(int argc, char** argv) {
   std::string sequence_path, out_dir = ".", config_dir = defaultConfigDir(), noise_path, rule_name = "fidelity";
   std::vector<std::string> comms{"wifi"};
-  bool seed_given = false, reference_odometry = false, quiet = false;
+  bool seed_given = false, reference_odometry = false, quiet = false, serial_odometry = false;
   unsigned long long seed = 0;
   double max_seconds = 0.0;
   for (int i = 1; i < argc; ++i) {
@@ -102,6 +107,7 @@ int main(int argc, char** argv) {
       else if (a == "--noise-models") noise_path = value();
       else if (a == "--outlier-rule") rule_name = value();
       else if (a == "--reference-odometry") reference_odometry = true;
+      else if (a == "--serial-odometry") serial_odometry = true;
       else if (a == "--max-seconds") max_seconds = std::stod(value());
       else if (a == "--quiet") quiet = true;
       else if (a == "-h" || a == "--help") { usage(); return 0; }
@@ -159,10 +165,21 @@ int main(int argc, char** argv) {
       Scan scan;
       double next_report = 0.0;
       const double duration = toSeconds(end - timing.start());
-      while (stream.next(robot, scan)) {
-        if (scan.stamp > end) break;
-        run.addScan(robot, scan);
-        const double t = toSeconds(scan.stamp - timing.start());
+      // LOAM runs ahead on one thread per robot (same results: each robot's scans in order); the team consumes
+      // the scans in sequence order, at most `window` behind the reader.
+      std::unique_ptr<OdometryPrefetch> prefetch;
+      if (!reference_odometry && !serial_odometry) prefetch = std::make_unique<OdometryPrefetch>(run.robots(), params.frontend.loam);
+      struct Pending {
+        char robot;
+        std::shared_ptr<const Scan> scan;
+        std::future<OdometryResult> odometry;
+      };
+      std::deque<Pending> pending;
+      const std::size_t window = 8 * run.robots().size();
+      auto consume = [&](const Scan& s, char r, std::future<OdometryResult>* odometry) {
+        if (odometry) run.addScan(r, s, odometry->get());
+        else run.addScan(r, s);
+        const double t = toSeconds(s.stamp - timing.start());
         if (!quiet && t >= next_report) {
           const auto& c = run.counts();
           std::printf("[%s] %6.1f / %.1f s  keyframes %zu  loop closures intra %zu (+%zu rejected) inter %zu (+%zu rejected)"
@@ -172,7 +189,21 @@ int main(int argc, char** argv) {
           std::fflush(stdout);
           next_report = t + std::max(10.0, duration / 20.0);
         }
+      };
+      while (stream.next(robot, scan)) {
+        if (scan.stamp > end) break;
+        if (!prefetch) {
+          consume(scan, robot, nullptr);
+          continue;
+        }
+        auto shared = std::make_shared<const Scan>(std::move(scan));
+        pending.push_back({robot, shared, prefetch->submit(robot, shared)});
+        while (pending.size() > window) {
+          consume(*pending.front().scan, pending.front().robot, &pending.front().odometry);
+          pending.pop_front();
+        }
       }
+      for (; !pending.empty(); pending.pop_front()) consume(*pending.front().scan, pending.front().robot, &pending.front().odometry);
       run.finish(end);
       for (const auto& [r, n] : stream.dropped())
         std::fprintf(stderr, "warning: robot %c: %zu scans dropped (stamps not increasing)\n", r, n);
