@@ -8,6 +8,7 @@
 
 #include "cosmo/dataset/atomic_file.hpp"
 #include "cosmo/jrl/io.hpp"
+#include "cosmo/jrl/stats.hpp"
 
 namespace cosmo {
 namespace {
@@ -241,12 +242,19 @@ jrl::Dataset DatasetRecorder::build(BuildReport* report_out) const {
   return ds;
 }
 
-std::string DatasetRecorder::metadataPath(const std::string& jrl_path) {
+namespace {
+/// `jrl_path` without its ".jrl" extension (unchanged when it has another one) followed by `suffix`.
+std::string besideJrl(const std::string& jrl_path, const std::string& suffix) {
   const std::string ext = ".jrl";
   if (jrl_path.size() >= ext.size() && jrl_path.compare(jrl_path.size() - ext.size(), ext.size(), ext) == 0)
-    return jrl_path.substr(0, jrl_path.size() - ext.size()) + ".recorder.yaml";
-  return jrl_path + ".recorder.yaml";
+    return jrl_path.substr(0, jrl_path.size() - ext.size()) + suffix;
+  return jrl_path + suffix;
 }
+}  // namespace
+
+std::string DatasetRecorder::metadataPath(const std::string& jrl_path) { return besideJrl(jrl_path, ".recorder.yaml"); }
+
+std::string DatasetRecorder::statsPath(const std::string& jrl_path) { return besideJrl(jrl_path, ".stats.txt"); }
 
 std::string DatasetRecorder::metadataYaml(const BuildReport& report) const {
   std::ostringstream out;
@@ -280,6 +288,7 @@ BuildReport DatasetRecorder::write(const std::string& path, jrl::Dataset* built)
   jrl::Dataset ds = build(&report);
   jrl::writeJrl(path, ds);
   writeFileAtomically(metadataPath(path), metadataYaml(report));
+  writeFileAtomically(statsPath(path), jrl::formatStats(jrl::computeStats(ds)) + "\n");
   if (built) *built = std::move(ds);
   return report;
 }

@@ -11,6 +11,7 @@
 
 #include "cosmo/common/shared_data.hpp"
 #include "cosmo/dataset/dataset_recorder.hpp"
+#include "cosmo/jrl/stats.hpp"
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/validate.hpp"
 #include "synthetic_team.hpp"
@@ -224,6 +225,11 @@ TEST_F(RecorderTest, WritesAtomicallyAndParsesBack) {
   EXPECT_TRUE(yaml["outlier_labels"].as<bool>());
   EXPECT_EQ(yaml["outliers"].as<std::size_t>(), written.outliers);
   EXPECT_EQ(yaml["name"].as<std::string>(), "synthetic_team");
+  std::ifstream stats_in(DatasetRecorder::statsPath(path));
+  std::stringstream stats;
+  stats << stats_in.rdbuf();
+  EXPECT_EQ(DatasetRecorder::statsPath(path), (dir / "synthetic_team.stats.txt").string());
+  EXPECT_EQ(stats.str(), jrl::formatStats(jrl::computeStats(ds)) + "\n");
   for (const auto& f : std::filesystem::directory_iterator(dir))  // no temporary files left behind
     EXPECT_EQ(f.path().string().find(".tmp."), std::string::npos) << f.path();
   // A failing write (missing folder) throws and leaves the previous file untouched.

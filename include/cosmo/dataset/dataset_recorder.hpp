@@ -93,12 +93,14 @@ class DatasetRecorder {
   /// The dataset (deterministic). See the file comment for the conventions.
   jrl::Dataset build() const { return build(nullptr); }
   jrl::Dataset build(BuildReport* report) const;
-  /// build() and write the JRL to `path` atomically (temp + rename), then the metadata next to it
-  /// (metadataPath(path)). Returns the build report; the dataset written goes to `*built` when given.
+  /// build() and write the JRL to `path` atomically (temp + rename), then the metadata (metadataPath(path)) and
+  /// the `cosmo_jrl stats` table (statsPath(path)) next to it. Returns the build report; the dataset written goes to `*built` when given.
   /// Throws std::runtime_error naming the path on I/O failure (an existing file is left untouched).
   BuildReport write(const std::string& path, jrl::Dataset* built = nullptr) const;
   /// "<path without .jrl>.recorder.yaml".
   static std::string metadataPath(const std::string& jrl_path);
+  /// "<path without .jrl>.stats.txt": the dataset's Fig. 1 statistics as `cosmo_jrl stats` prints them.
+  static std::string statsPath(const std::string& jrl_path);
   /// The metadata text written next to the JRL: rule, whether labels exist, noise models, counts.
   std::string metadataYaml(const BuildReport& report) const;
 
