@@ -211,14 +211,7 @@ class CommBroker {
       for (const auto& [t, x] : ended) deliver(x, ros::Time(t));
       publishLinks(now_ros, t_last, links);
       publishStats(t_last);
-      if (!log_file_.empty() && t_last - last_log_write_ >= 30.0) {
-        last_log_write_ = t_last;
-        try {
-          cosmo::writeTransferLog(log_file_, sim_->transferLog(), sim_->stats(), sim_->params());
-        } catch (const std::exception& ex) {
-          ROS_ERROR_THROTTLE(30.0, "comm_broker: %s", ex.what());
-        }
-      }
+      writeLogEvery30s(t_last);
     }
   }
 
@@ -290,14 +283,7 @@ class CommBroker {
         publishLinks(cosmo::ros_glue::stampToRos(last_step), radio_time, links);
         publishStats(cosmo::toSeconds(last_step));
         last_step_ = last_step;
-        if (!log_file_.empty() && radio_time - last_log_write_ >= 30.0) {
-          last_log_write_ = radio_time;
-          try {
-            cosmo::writeTransferLog(log_file_, sim_->transferLog(), sim_->stats(), sim_->params());
-          } catch (const std::exception& ex) {
-            ROS_ERROR_THROTTLE(30.0, "comm_broker: %s", ex.what());
-          }
-        }
+        writeLogEvery30s(radio_time);
       }
       cosmo::RadioStepDone done;
       done.seq = m.seq;
@@ -376,6 +362,17 @@ class CommBroker {
     visualization_msgs::MarkerArray array;
     array.markers.push_back(m);
     links_pub_.publish(array);
+  }
+
+  /// The transfer log (CSV + summary) rewritten when 30 s of radio time passed since the last write.
+  void writeLogEvery30s(double radio_time) {
+    if (log_file_.empty() || radio_time - last_log_write_ < 30.0) return;
+    last_log_write_ = radio_time;
+    try {
+      cosmo::writeTransferLog(log_file_, sim_->transferLog(), sim_->stats(), sim_->params());
+    } catch (const std::exception& ex) {
+      ROS_ERROR_THROTTLE(30.0, "comm_broker: %s", ex.what());
+    }
   }
 
   void publishStats(double t) {

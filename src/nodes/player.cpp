@@ -29,6 +29,7 @@
 #include <std_msgs/String.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <functional>
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -168,10 +169,11 @@ int main(int argc, char** argv) {
 
   // Wait for the front-ends to subscribe (lockstep needs every robot's ack).
   const ros::WallTime wait_start = ros::WallTime::now();
-  auto waitSubscribers = [&](ros::Publisher& pub) {
-    while (ros::ok() && pub.getNumSubscribers() == 0 && (ros::WallTime::now() - wait_start).toSec() < ack_timeout)
+  auto waitConnected = [&](const std::function<bool()>& connected) {  // at most ~ack_timeout from wait_start
+    while (ros::ok() && !connected() && (ros::WallTime::now() - wait_start).toSec() < ack_timeout)
       ros::WallDuration(0.05).sleep();
   };
+  auto waitSubscribers = [&](ros::Publisher& pub) { waitConnected([&] { return pub.getNumSubscribers() > 0; }); };
   for (auto& [r, pub] : points_pub) waitSubscribers(pub);
   for (auto& [r, pub] : pose_pub)
     if (!refs[r].empty()) waitSubscribers(pub);
@@ -179,13 +181,10 @@ int main(int argc, char** argv) {
   // connection exists is lost, and the lockstep would wait for it).
   bool use_broker = false;
   if (lockstep) {
-    for (auto& sub : ack_subs)
-      while (ros::ok() && sub.getNumPublishers() == 0 && (ros::WallTime::now() - wait_start).toSec() < ack_timeout)
-        ros::WallDuration(0.05).sleep();
+    for (auto& sub : ack_subs) waitConnected([&] { return sub.getNumPublishers() > 0; });
     if (wait_for_broker) {
       waitSubscribers(step_pub);
-      while (ros::ok() && step_done_sub.getNumPublishers() == 0 && (ros::WallTime::now() - wait_start).toSec() < ack_timeout)
-        ros::WallDuration(0.05).sleep();
+      waitConnected([&] { return step_done_sub.getNumPublishers() > 0; });
       use_broker = step_pub.getNumSubscribers() > 0 && step_done_sub.getNumPublishers() > 0;
       if (!use_broker) ROS_WARN("player: lockstep without a lockstep comm_broker (no /comm/step_request subscriber)");
     }
