@@ -20,14 +20,12 @@ FeatureCloud computeFeatureCloud(const Scan& scan, const RegistrationParams& par
     fp.min_neighbors = params.min_normal_neighbors;
     fp.max_linearity = params.max_linearity;
     fp.keypoint_voxel = params.keypoint_voxel;
-    FastFeatures f = computeFastFeatures(down, fp);
+    FastFeatures f = computeFastFeatures(down, fp, observer);
     out.points.reserve(f.kept.size());
     for (const int i : f.kept) out.points.push_back(down[static_cast<std::size_t>(i)]);
     out.normals = std::move(f.normals);
     out.keypoints = std::move(f.keypoints);
     out.features = std::move(f.features);
-    notifyStage(observer, "fpfh");  // one shared neighbour search: normals are timed with the FPFH
-    notifyStage(observer, "normals");
     return out;
   }
   const PointNormals normals = estimateNormals(down, params.normal_radius, params.min_normal_neighbors);

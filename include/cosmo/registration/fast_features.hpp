@@ -1,6 +1,8 @@
 #pragma once
-// Own normals + FPFH ("fast" backend): one exact nanoflann radius search per point at max(normal, SPFH radius),
-// reused for the normal, the linearity test and the SPFH; FPFH only at keypoints (one per keypoint voxel):
+// Own normals + FPFH ("fast" backend): every neighbour pair within max(normal, SPFH, FPFH radius) found once on
+// a hash grid (neighbour_pairs.hpp) and reused for the normal moments, the linearity test, the SPFH (pair
+// feature computed once per pair, in vectorised blocks) and the FPFH sums; FPFH only at keypoints (one per
+// keypoint voxel):
 // FPFH(p) = SPFH(p) + 1/k sum_k SPFH(q_k) / |p - q_k| over q_k within fpfh_radius (Rusu et al. 2009), each of
 // the three 11-bin sub-histograms normalised to 100 (PCL's layout and pair-feature definition). Faster than
 // PCL because the SPFH radius is smaller than the FPFH radius and only keypoints get the weighted sum.
@@ -28,6 +30,10 @@ struct FastFeatures {
   FpfhMatrix features;                   ///< 33 x keypoints.size()
 };
 
-FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, const FastFeatureParams& params);
+class StageObserver;
+
+/// The observer (optional) is told when each sub-stage ends: "neighbours", "normals", "spfh", "fpfh".
+FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, const FastFeatureParams& params,
+                                 StageObserver* observer = nullptr);
 
 }  // namespace cosmo

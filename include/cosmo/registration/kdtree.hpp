@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -64,9 +65,14 @@ class KdTree {
     template <class BBox>
     bool kdtree_get_bbox(BBox&) const { return false; }
   };
-  using Index = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Adaptor>, Adaptor, Dim,
-                                                    std::uint32_t>;
-  static nanoflann::KDTreeSingleIndexAdaptorParams params() { return nanoflann::KDTreeSingleIndexAdaptorParams(10); }
+  // High-dimensional rows (features): the metric that sums four coordinates at a time and stops a leaf
+  // point's distance as soon as it exceeds the current worst; 3-D points: the simple one.
+  using Metric = std::conditional_t<(Dim > 4), nanoflann::L2_Adaptor<float, Adaptor>,
+                                    nanoflann::L2_Simple_Adaptor<float, Adaptor>>;
+  using Index = nanoflann::KDTreeSingleIndexAdaptor<Metric, Adaptor, Dim, std::uint32_t>;
+  static nanoflann::KDTreeSingleIndexAdaptorParams params() {
+    return nanoflann::KDTreeSingleIndexAdaptorParams(10);
+  }
 
   Adaptor adaptor_;
   Index index_;

@@ -1,0 +1,89 @@
+#include "cosmo/registration/neighbour_pairs.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cosmo {
+
+namespace {
+
+constexpr std::int64_t kOffset = 1 << 20;  // 21 bits per axis
+inline std::uint64_t packCell(std::int64_t x, std::int64_t y, std::int64_t z) {
+  return (static_cast<std::uint64_t>(x) << 42) | (static_cast<std::uint64_t>(y) << 21) | static_cast<std::uint64_t>(z);
+}
+
+}  // namespace
+
+NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, float radius) {
+  NeighbourPairs out;
+  const std::size_t n = points.size();
+  if (n < 2 || !(radius > 0.f)) return out;
+  const float r2 = radius * radius;
+  const double inv = 1.0 / static_cast<double>(radius);
+  // Points sorted by cell (then by index): each cell is a contiguous run of a structure-of-arrays copy.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;
+  keyed.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3f& p = points[i];
+    if (!p.allFinite()) continue;
+    const auto cx = static_cast<std::int64_t>(std::floor(p.x() * inv)) + kOffset;
+    const auto cy = static_cast<std::int64_t>(std::floor(p.y() * inv)) + kOffset;
+    const auto cz = static_cast<std::int64_t>(std::floor(p.z() * inv)) + kOffset;
+    if (cx < 1 || cy < 1 || cz < 1 || cx >= 2 * kOffset - 1 || cy >= 2 * kOffset - 1 || cz >= 2 * kOffset - 1) continue;
+    keyed.emplace_back(packCell(cx, cy, cz), static_cast<std::uint32_t>(i));
+  }
+  std::sort(keyed.begin(), keyed.end());
+  const std::size_t m = keyed.size();
+  std::vector<float> xs(m), ys(m), zs(m);
+  std::vector<std::uint32_t> ids(m);
+  std::vector<std::uint64_t> cell_key;
+  std::vector<std::uint32_t> cell_begin;
+  for (std::size_t s = 0; s < m; ++s) {
+    const Eigen::Vector3f& p = points[keyed[s].second];
+    xs[s] = p.x(), ys[s] = p.y(), zs[s] = p.z();
+    ids[s] = keyed[s].second;
+    if (s == 0 || keyed[s].first != keyed[s - 1].first) {
+      cell_key.push_back(keyed[s].first);
+      cell_begin.push_back(static_cast<std::uint32_t>(s));
+    }
+  }
+  cell_begin.push_back(static_cast<std::uint32_t>(m));
+  const std::size_t cells = cell_key.size();
+  out.first.reserve(n * 40), out.second.reserve(n * 40), out.squared_distance.reserve(n * 40);
+  // The 13 forward neighbour offsets: (dx, dy, dz) lexicographically after (0, 0, 0).
+  std::int64_t forward[13];
+  int nf = 0;
+  for (int dx = 0; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz)
+        if (dx > 0 || (dx == 0 && (dy > 0 || (dy == 0 && dz > 0))))
+          forward[nf++] = (static_cast<std::int64_t>(dx) << 42) + (static_cast<std::int64_t>(dy) << 21) + dz;
+  auto emitPairs = [&](std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1, bool same) {
+    for (std::uint32_t a = a0; a < a1; ++a) {
+      const float ax = xs[a], ay = ys[a], az = zs[a];
+      for (std::uint32_t b = same ? a + 1 : b0; b < b1; ++b) {
+        const float dx = xs[b] - ax, dy = ys[b] - ay, dz = zs[b] - az;
+        const float d2 = dx * dx + dy * dy + dz * dz;
+        if (d2 < r2) {
+          out.first.push_back(ids[a]);
+          out.second.push_back(ids[b]);
+          out.squared_distance.push_back(d2);
+        }
+      }
+    }
+  };
+  for (std::size_t c = 0; c < cells; ++c) {
+    emitPairs(cell_begin[c], cell_begin[c + 1], cell_begin[c], cell_begin[c + 1], true);
+    for (int f = 0; f < nf; ++f) {
+      // Packed keys add per axis without carries (every cell is at least one away from the packing bounds).
+      const std::uint64_t key = static_cast<std::uint64_t>(static_cast<std::int64_t>(cell_key[c]) + forward[f]);
+      const auto it = std::lower_bound(cell_key.begin() + static_cast<std::ptrdiff_t>(c) + 1, cell_key.end(), key);
+      if (it == cell_key.end() || *it != key) continue;
+      const auto d = static_cast<std::size_t>(it - cell_key.begin());
+      emitPairs(cell_begin[c], cell_begin[c + 1], cell_begin[d], cell_begin[d + 1], false);
+    }
+  }
+  return out;
+}
+
+}  // namespace cosmo
