@@ -29,48 +29,45 @@ inline Lane fastAtan2(const Lane& y, const Lane& x) {
   return (y < 0.f).select(-r, r);
 }
 
-/// Bin of x in [lo, hi] into kBins (PCL's floor(kBins (x - lo) / (hi - lo)), clamped); x - lo > -1 bin here,
-/// so truncation equals floor after the clamp.
+/// Bin of x in [lo, hi] into kBins (PCL's floor(kBins (x - lo) / (hi - lo)), clamped, with the division as a
+/// multiplication by kBins / (hi - lo)); x - lo > -1 bin here, so truncation equals floor after the clamp.
 inline LaneI binOf(const Lane& x, float lo, float hi) {
-  const LaneI b = (Lane::Constant(static_cast<float>(kBins)) * (x - lo) / (hi - lo)).cast<int>();
+  const LaneI b = ((x - lo) * (static_cast<float>(kBins) / (hi - lo))).cast<int>();
   return b.max(0).min(kBins - 1);
 }
 
-/// One block of PCL's pair feature (pcl::computePairFeatures) over structure-of-arrays input: the source
-/// normal is the one more parallel to the connecting line; f1 = theta (bin over [-pi, pi]), f2 = alpha,
-/// f3 = phi (over [-1, 1]). `ok` is false for degenerate pairs (coincident points, normal along the line).
-struct PairBlock {
-  Lane p1[3], n1[3], p2[3], n2[3];
-  LaneI b1, b2, b3;
-  Eigen::Array<bool, kBlock, 1> ok;
-  __attribute__((flatten)) void compute() {
-    Lane dp[3] = {p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]};
-    const Lane d = (dp[0] * dp[0] + dp[1] * dp[1] + dp[2] * dp[2]).sqrt();
-    const Lane inv_d = (d > 0.f).select(1.f / d.max(1e-30f), Lane::Zero());
-    for (auto& c : dp) c *= inv_d;
-    const Lane a1 = n1[0] * dp[0] + n1[1] * dp[1] + n1[2] * dp[2];
-    const Lane a2 = n2[0] * dp[0] + n2[1] * dp[1] + n2[2] * dp[2];
-    const auto swap = a1.abs() < a2.abs();
-    Lane u[3], nb[3];
-    for (int k = 0; k < 3; ++k) {
-      u[k] = swap.select(n2[k], n1[k]);
-      nb[k] = swap.select(n1[k], n2[k]);
-      dp[k] = swap.select(-dp[k], dp[k]);
-    }
-    const Lane f3 = swap.select(-a2, a1);
-    Lane v[3] = {dp[1] * u[2] - dp[2] * u[1], dp[2] * u[0] - dp[0] * u[2], dp[0] * u[1] - dp[1] * u[0]};
-    const Lane vn = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    const Lane inv_vn = (vn > 0.f).select(1.f / vn.max(1e-30f), Lane::Zero());
-    for (auto& c : v) c *= inv_vn;
-    const Lane w[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    const Lane f2 = v[0] * nb[0] + v[1] * nb[1] + v[2] * nb[2];
-    const Lane f1 = fastAtan2(w[0] * nb[0] + w[1] * nb[1] + w[2] * nb[2], u[0] * nb[0] + u[1] * nb[1] + u[2] * nb[2]);
-    ok = (d > 0.f) && (vn > 0.f);
-    b1 = binOf(f1, -3.14159274f, 3.14159274f);
-    b2 = binOf(f2, -1.f, 1.f) + kBins;
-    b3 = binOf(f3, -1.f, 1.f) + 2 * kBins;
-  }
-};
+/// PCL's pair feature (pcl::computePairFeatures) over one block of kBlock pairs in structure-of-arrays form
+/// (in[0..2] = p1, in[3..5] = n1, in[6..8] = p2, in[9..11] = n2, each kBlock floats at `stride` apart); writes
+/// the bins of f1 = theta (over [-pi, pi]), f2 = alpha and f3 = phi (over [-1, 1], offset to the 33-bin
+/// layout) and ok = 0 for degenerate pairs (coincident points, source normal along the line).
+/// PCL's Darboux frame, with d = (p2 - p1) / |p2 - p1|, a1 = n1.d, a2 = n2.d: the source is the normal more
+/// parallel to d (u = n1, nb = n2, a_s = a1, a_t = a2, phi = a1; or u = n2, nb = n1, d -> -d, a_s = -a2,
+/// a_t = -a1, phi = -a2), v = d x u / |d x u|, w = u x v. In closed form, with c = n1.n2 and |d x u| =
+/// sqrt(1 - a_s^2): alpha = v.nb = d.(n1 x n2) / |d x u| (the same for both choices), and theta =
+/// atan2(w.nb, u.nb) = atan2(a_t - a_s c, c |d x u|). Flattened so that Eigen's block loops are inlined.
+__attribute__((flatten)) void pairFeatureBlock(const float* in, std::size_t stride, int* b1, int* b2, int* b3,
+                                               int* ok) {
+  auto lane = [&](int k) { return Eigen::Map<const Lane, Eigen::Aligned16>(in + static_cast<std::size_t>(k) * stride); };
+  const Lane dx = lane(6) - lane(0), dy = lane(7) - lane(1), dz = lane(8) - lane(2);
+  const Lane n1x = lane(3), n1y = lane(4), n1z = lane(5), n2x = lane(9), n2y = lane(10), n2z = lane(11);
+  const Lane d = (dx * dx + dy * dy + dz * dz).sqrt();
+  const Lane inv_d = (d > 0.f).select(1.f / d.max(1e-30f), Lane::Zero());
+  const Lane a1 = (n1x * dx + n1y * dy + n1z * dz) * inv_d;
+  const Lane a2 = (n2x * dx + n2y * dy + n2z * dz) * inv_d;
+  const Lane c = n1x * n2x + n1y * n2y + n1z * n2z;
+  const Lane triple = (dx * (n1y * n2z - n1z * n2y) + dy * (n1z * n2x - n1x * n2z) + dz * (n1x * n2y - n1y * n2x)) * inv_d;
+  const auto swap = a1.abs() < a2.abs();
+  const Lane a_s = swap.select(-a2, a1), a_t = swap.select(-a1, a2);
+  const Lane vn2 = 1.f - a_s * a_s;
+  const Lane vn = vn2.max(0.f).sqrt();
+  const Lane f2 = triple / vn.max(1e-30f);
+  const Lane f1 = fastAtan2(a_t - a_s * c, c * vn);
+  Eigen::Map<LaneI> ok_out(ok), b1_out(b1), b2_out(b2), b3_out(b3);
+  ok_out = ((d > 0.f) && (vn2 > 0.f)).cast<int>();
+  b1_out = binOf(f1, -3.14159274f, 3.14159274f);
+  b2_out = binOf(f2, -1.f, 1.f) + kBins;
+  b3_out = binOf(a_s, -1.f, 1.f) + 2 * kBins;
+}
 
 }  // namespace
 
@@ -94,10 +91,12 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
 
   // Normals: covariance moments relative to each point (small numbers: float accumulation is accurate
   // enough), accumulated per pair into both points (q and -q give the same second moments).
-  std::vector<Eigen::Matrix<float, 9, 1>> mom(n, Eigen::Matrix<float, 9, 1>::Zero());  // m1 (3), xx xy xz yy yz zz, k
+  std::vector<Eigen::Matrix<float, 9, 1>> mom(n, Eigen::Matrix<float, 9, 1>::Zero());  // m1 (3), xx xy xz yy yz zz
+  std::vector<std::uint32_t> count(n, 1);  // the point itself
   for (std::size_t e = 0; e < np; ++e) {
-    if (pairs.squared_distance[e] > rn2) continue;
-    const std::uint32_t i = pairs.first[e], j = pairs.second[e];
+    if (pairs[e].squared_distance > rn2) continue;
+    const std::uint32_t i = pairs[e].first, j = pairs[e].second;
+    ++count[i], ++count[j];
     const Eigen::Vector3f q = points[j] - points[i];
     Eigen::Matrix<float, 9, 1> m;
     m << q.x(), q.y(), q.z(), q.x() * q.x(), q.x() * q.y(), q.x() * q.z(), q.y() * q.y(), q.y() * q.z(), q.z() * q.z();
@@ -105,9 +104,6 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
     m.head<3>() = -m.head<3>();
     mom[j] += m;
   }
-  std::vector<std::uint32_t> count(n, 1);  // the point itself
-  for (std::size_t e = 0; e < np; ++e)
-    if (pairs.squared_distance[e] <= rn2) ++count[pairs.first[e]], ++count[pairs.second[e]];
   std::vector<Eigen::Vector3f> normals(n, Eigen::Vector3f::Zero());
   std::vector<unsigned char> valid(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
@@ -142,29 +138,33 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
     std::vector<std::uint32_t> sel_i, sel_j;
     sel_i.reserve(np), sel_j.reserve(np);
     for (std::size_t e = 0; e < np; ++e) {
-      const std::uint32_t i = pairs.first[e], j = pairs.second[e];
-      if (pairs.squared_distance[e] <= rs2 && valid[i] && valid[j]) sel_i.push_back(i), sel_j.push_back(j);
+      const std::uint32_t i = pairs[e].first, j = pairs[e].second;
+      if (pairs[e].squared_distance <= rs2 && valid[i] && valid[j]) sel_i.push_back(i), sel_j.push_back(j);
     }
-    PairBlock blk;
-    for (std::size_t s = 0; s < sel_i.size(); s += kBlock) {
-      const std::size_t len = std::min<std::size_t>(kBlock, sel_i.size() - s);
-      for (std::size_t l = 0; l < kBlock; ++l) {
+    // Chunks of kChunk pairs: gathered into structure-of-arrays buffers first (so the vector loads do not wait
+    // on just-written scalars), features in blocks of kBlock, then the histogram increments.
+    constexpr std::size_t kChunk = 256;
+    alignas(16) float in[12][kChunk];
+    alignas(16) int b1[kChunk], b2[kChunk], b3[kChunk], ok[kChunk];
+    for (std::size_t s = 0; s < sel_i.size(); s += kChunk) {
+      const std::size_t len = std::min(kChunk, sel_i.size() - s);
+      const std::size_t padded = (len + kBlock - 1) / kBlock * kBlock;
+      for (std::size_t l = 0; l < padded; ++l) {
         const std::size_t e = s + std::min(l, len - 1);  // the tail repeats the last pair; not counted
-        const Eigen::Vector3f &p1 = points[sel_i[e]], &p2 = points[sel_j[e]];
-        const Eigen::Vector3f &n1 = normals[sel_i[e]], &n2 = normals[sel_j[e]];
-        for (int k = 0; k < 3; ++k) {
-          blk.p1[k](static_cast<Eigen::Index>(l)) = p1(k), blk.n1[k](static_cast<Eigen::Index>(l)) = n1(k);
-          blk.p2[k](static_cast<Eigen::Index>(l)) = p2(k), blk.n2[k](static_cast<Eigen::Index>(l)) = n2(k);
-        }
+        const float* p1 = points[sel_i[e]].data();
+        const float* p2 = points[sel_j[e]].data();
+        const float* n1 = normals[sel_i[e]].data();
+        const float* n2 = normals[sel_j[e]].data();
+        for (int k = 0; k < 3; ++k) in[k][l] = p1[k], in[3 + k][l] = n1[k], in[6 + k][l] = p2[k], in[9 + k][l] = n2[k];
       }
-      blk.compute();
+      for (std::size_t l = 0; l < padded; l += kBlock)
+        pairFeatureBlock(&in[0][l], kChunk, b1 + l, b2 + l, b3 + l, ok + l);
       for (std::size_t l = 0; l < len; ++l) {
-        const auto li = static_cast<Eigen::Index>(l);
-        if (!blk.ok(li)) continue;
+        if (!ok[l]) continue;
         float* hi = &spfh[sel_i[s + l] * kFpfhDim];
         float* hj = &spfh[sel_j[s + l] * kFpfhDim];
-        ++hi[blk.b1(li)], ++hi[blk.b2(li)], ++hi[blk.b3(li)];
-        ++hj[blk.b1(li)], ++hj[blk.b2(li)], ++hj[blk.b3(li)];
+        ++hi[b1[l]], ++hi[b2[l]], ++hi[b3[l]];
+        ++hj[b1[l]], ++hj[b2[l]], ++hj[b3[l]];
         ++spfh_count[sel_i[s + l]], ++spfh_count[sel_j[s + l]];
       }
     }
@@ -210,9 +210,9 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
   out.features = FpfhMatrix::Zero(kFpfhDim, static_cast<Eigen::Index>(out.keypoints.size()));
   std::vector<int> weight_count(out.keypoints.size(), 0);
   for (std::size_t e = 0; e < np; ++e) {
-    const float d2 = pairs.squared_distance[e];
+    const float d2 = pairs[e].squared_distance;
     if (d2 > rf2 || d2 <= 0.f) continue;
-    const std::uint32_t i = pairs.first[e], j = pairs.second[e];
+    const std::uint32_t i = pairs[e].first, j = pairs[e].second;
     if (!valid[i] || !valid[j] || (key_col[i] < 0 && key_col[j] < 0)) continue;
     const float w = 1.f / std::sqrt(d2);
     if (key_col[i] >= 0) {

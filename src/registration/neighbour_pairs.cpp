@@ -12,6 +12,15 @@ inline std::uint64_t packCell(std::int64_t x, std::int64_t y, std::int64_t z) {
   return (static_cast<std::uint64_t>(x) << 42) | (static_cast<std::uint64_t>(y) << 21) | static_cast<std::uint64_t>(z);
 }
 
+/// out[k] = ((x[k] - ax)^2 + (y[k] - ay)^2) + (z[k] - az)^2, k < len (Eigen packets; flattened so that they
+/// are inlined).
+__attribute__((flatten)) void squaredDistances(const float* x, const float* y, const float* z, Eigen::Index len,
+                                               float ax, float ay, float az, float* out) {
+  using Run = Eigen::Map<const Eigen::ArrayXf>;
+  Eigen::Map<Eigen::ArrayXf> d2(out, len);
+  d2 = (Run(x, len) - ax).square() + (Run(y, len) - ay).square() + (Run(z, len) - az).square();
+}
+
 }  // namespace
 
 NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, float radius) {
@@ -49,7 +58,8 @@ NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, fl
   }
   cell_begin.push_back(static_cast<std::uint32_t>(m));
   const std::size_t cells = cell_key.size();
-  out.first.reserve(n * 40), out.second.reserve(n * 40), out.squared_distance.reserve(n * 40);
+  out.reserve(n * 40);
+  std::vector<float> d2_buffer;
   // The 13 forward neighbour offsets: (dx, dy, dz) lexicographically after (0, 0, 0).
   std::int64_t forward[13];
   int nf = 0;
@@ -58,18 +68,18 @@ NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, fl
       for (int dz = -1; dz <= 1; ++dz)
         if (dx > 0 || (dx == 0 && (dy > 0 || (dy == 0 && dz > 0))))
           forward[nf++] = (static_cast<std::int64_t>(dx) << 42) + (static_cast<std::int64_t>(dy) << 21) + dz;
+  // Squared distances of one point to a run of points (vectorised), then the close ones appended.
   auto emitPairs = [&](std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1, bool same) {
     for (std::uint32_t a = a0; a < a1; ++a) {
-      const float ax = xs[a], ay = ys[a], az = zs[a];
-      for (std::uint32_t b = same ? a + 1 : b0; b < b1; ++b) {
-        const float dx = xs[b] - ax, dy = ys[b] - ay, dz = zs[b] - az;
-        const float d2 = dx * dx + dy * dy + dz * dz;
-        if (d2 < r2) {
-          out.first.push_back(ids[a]);
-          out.second.push_back(ids[b]);
-          out.squared_distance.push_back(d2);
-        }
-      }
+      const std::uint32_t first = same ? a + 1 : b0;
+      if (first >= b1) continue;
+      const auto len = static_cast<Eigen::Index>(b1 - first);
+      if (d2_buffer.size() < static_cast<std::size_t>(len)) d2_buffer.resize(static_cast<std::size_t>(len));
+      squaredDistances(xs.data() + first, ys.data() + first, zs.data() + first, len, xs[a], ys[a], zs[a],
+                       d2_buffer.data());
+      for (Eigen::Index k = 0; k < len; ++k)
+        if (d2_buffer[static_cast<std::size_t>(k)] < r2)
+          out.push_back({ids[a], ids[first + static_cast<std::uint32_t>(k)], d2_buffer[static_cast<std::size_t>(k)]});
     }
   };
   for (std::size_t c = 0; c < cells; ++c) {

@@ -1,8 +1,8 @@
 #pragma once
 // Every unordered pair of points closer than a radius, each pair once, found on a hash grid whose cells are
 // one radius wide (a point's neighbours lie in its own cell and the 26 around it; each cell is paired with
-// itself and its 13 "forward" neighbours, so no pair is tested twice). Flat arrays (first, second, squared
-// distance) so that per-pair work (normal moments, pair features, FPFH sums) runs as plain loops.
+// itself and its 13 "forward" neighbours, so no pair is tested twice). A flat list, so that per-pair work
+// (normal moments, pair features, FPFH sums) runs as plain loops over it.
 // The order is a function of the input only: deterministic.
 #include <Eigen/Core>
 #include <cstdint>
@@ -10,12 +10,12 @@
 
 namespace cosmo {
 
-struct NeighbourPairs {
-  std::vector<std::uint32_t> first;   ///< index of one point of the pair (input order)
-  std::vector<std::uint32_t> second;  ///< index of the other point
-  std::vector<float> squared_distance;
-  std::size_t size() const { return first.size(); }
+struct NeighbourPair {
+  std::uint32_t first;     ///< index of one point of the pair (input order)
+  std::uint32_t second;    ///< index of the other point
+  float squared_distance;  ///< |p_first - p_second|^2
 };
+using NeighbourPairs = std::vector<NeighbourPair>;
 
 /// Pairs {i, j}, i != j, with |p_i - p_j|^2 < radius^2 (float, computed as ((dx^2 + dy^2) + dz^2)).
 NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, float radius);
