@@ -64,23 +64,18 @@ void associateFeatures(const std::vector<Eigen::Vector3d>& edges, const std::vec
                        std::vector<FeatureConstraint>& out, std::size_t stride) {
   out.clear();
   stride = std::max<std::size_t>(1, stride);
-  std::vector<std::size_t> idx;
   std::vector<Eigen::Vector3d> nb;
-  if (map.edges().size() > 0) {
+  if (map.numEdgePoints() > 0) {
     for (std::size_t i = 0; i < edges.size(); i += stride) {
       const Eigen::Vector3d q = T * edges[i];
-      map.edges().knn(q, params.num_edge_neighbors, params.max_edge_neighbor_dist, idx);
-      nb.clear();
-      for (std::size_t k : idx) nb.push_back(map.edges().point(k));
+      map.nearestEdges(q, params.num_edge_neighbors, params.max_edge_neighbor_dist, nb);
       if (auto c = fitLineConstraint(nb, q, params)) out.push_back({edges[i], c->normal, c->offset, true, i, 1.0});
     }
   }
-  if (map.planes().size() > 0) {
+  if (map.numPlanePoints() > 0) {
     for (std::size_t i = 0; i < planes.size(); i += stride) {
       const Eigen::Vector3d q = T * planes[i];
-      map.planes().knn(q, params.num_plane_neighbors, params.max_plane_neighbor_dist, idx);
-      nb.clear();
-      for (std::size_t k : idx) nb.push_back(map.planes().point(k));
+      map.nearestPlanes(q, params.num_plane_neighbors, params.max_plane_neighbor_dist, nb);
       if (auto c = fitPlaneConstraint(nb, params)) out.push_back({planes[i], c->normal, c->offset, false, i, 1.0});
     }
   }

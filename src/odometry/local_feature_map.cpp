@@ -30,4 +30,24 @@ void LocalFeatureMap::clear() {
   plane_tree_.build({});
 }
 
+namespace {
+void nearestIn(const KdTree3& tree, const Eigen::Vector3d& q, int k, double max_dist, std::vector<Eigen::Vector3d>& out) {
+  out.clear();
+  KnnResult result;
+  result.reset(k, max_dist);
+  tree.search(q, result, 0);
+  for (int i = 0; i < result.size(); ++i) out.push_back(tree.point(result.index(i)));
+}
+}  // namespace
+
+void LocalFeatureMap::nearestEdges(const Eigen::Vector3d& q, int k, double max_dist,
+                                   std::vector<Eigen::Vector3d>& out) const {
+  nearestIn(edge_tree_, q, k, max_dist, out);
+}
+
+void LocalFeatureMap::nearestPlanes(const Eigen::Vector3d& q, int k, double max_dist,
+                                    std::vector<Eigen::Vector3d>& out) const {
+  nearestIn(plane_tree_, q, k, max_dist, out);
+}
+
 }  // namespace cosmo

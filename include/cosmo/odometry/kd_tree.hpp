@@ -1,31 +1,70 @@
 #pragma once
-// k-nearest-neighbour search over a fixed set of 3D points (nanoflann behind a small interface, so that its
-// templates stay in one translation unit).
+// k-nearest-neighbour search over a fixed set of 3D points, bounded by a maximum distance: a small k-d tree
+// built for speed (the local map builds one per scan): the points are copied as floats into one contiguous
+// array in tree order, each node is split at the median of its points' widest extent (std::nth_element),
+// and the search starts with the distance bound, so most branches are pruned at once. Several trees can be searched
+// into one running result (KnnResult), e.g. the per-scan trees of the local map.
 #include <Eigen/Core>
-#include <memory>
+#include <cstdint>
 #include <vector>
 
 namespace cosmo {
 
-class KdTree3 {
+/// The k nearest points offered so far within a maximum distance, nearest first; each tagged with the tree
+/// it came from and its index in that tree's input.
+class KnnResult {
  public:
-  KdTree3();
-  ~KdTree3();
-  KdTree3(KdTree3&&) noexcept;
-  KdTree3& operator=(KdTree3&&) noexcept;
-
-  /// Rebuilds the index over `points` (copied).
-  void build(const std::vector<Eigen::Vector3d>& points);
-  std::size_t size() const { return points_.size(); }
-  const Eigen::Vector3d& point(std::size_t i) const { return points_[i]; }
-  /// Up to k nearest points within max_dist (m) of `query`, nearest first: their indices into `indices`.
-  void knn(const Eigen::Vector3d& query, int k, double max_dist, std::vector<std::size_t>& indices) const;
+  static constexpr int kMaxK = 32;
+  /// Empties the result for a new query: up to k (<= kMaxK) points within max_dist (m).
+  void reset(int k, double max_dist);
+  int size() const { return count_; }
+  /// Squared distance a point must be below (or equal to, while the result is not full) to enter.
+  float bound() const { return count_ < k_ ? max_d2_ : d2_[k_ - 1]; }
+  /// Offers a point at squared distance d2 (ties: the earlier offer stays ahead).
+  void offer(float d2, std::uint32_t tree, std::uint32_t index);
+  float squaredDistance(int i) const { return d2_[i]; }
+  std::uint32_t tree(int i) const { return tree_[i]; }
+  std::uint32_t index(int i) const { return index_[i]; }
 
  private:
-  struct Index;
+  int k_ = 0, count_ = 0;
+  float max_d2_ = 0.0f;
+  float d2_[kMaxK];
+  std::uint32_t tree_[kMaxK];
+  std::uint32_t index_[kMaxK];
+};
+
+class KdTree3 {
+ public:
+  /// Rebuilds the index over `points` (non-finite points are kept in point() but never found).
+  void build(std::vector<Eigen::Vector3d> points);
+  std::size_t size() const { return points_.size(); }
+  const Eigen::Vector3d& point(std::size_t i) const { return points_[i]; }
+  const std::vector<Eigen::Vector3d>& points() const { return points_; }
+  /// Up to k nearest points within max_dist (m) of `query`, nearest first: their indices into `indices`.
+  void knn(const Eigen::Vector3d& query, int k, double max_dist, std::vector<std::size_t>& indices) const;
+  /// Offers this tree's points near `query` to `result` (those that can enter it), tagged with `tree`.
+  void search(const Eigen::Vector3d& query, KnnResult& result, std::uint32_t tree) const;
+
+ private:
+  struct Node {
+    std::uint32_t begin = 0, end = 0;  ///< leaf: range of sorted_
+    std::uint32_t right = 0;           ///< inner node: index of the right child (the left one follows the node)
+    std::int32_t axis = -1;            ///< -1: leaf
+    float split = 0.0f;
+  };
+  struct SortedPoint {
+    float c[3];           ///< x y z
+    std::uint32_t index;  ///< into points_
+  };
+  std::uint32_t buildNode(std::uint32_t begin, std::uint32_t end);
+  /// offset: per axis, the query's distance to the node's cell (0 inside); min_d2: its squared norm.
+  void searchNode(std::uint32_t node, const float q[3], float offset[3], float min_d2, KnnResult& result,
+                  std::uint32_t tree) const;
+
   std::vector<Eigen::Vector3d> points_;
-  std::vector<float> coords_;  ///< x y z per point, for the index
-  std::unique_ptr<Index> index_;
+  std::vector<SortedPoint> sorted_;  ///< finite points in tree order
+  std::vector<Node> nodes_;
 };
 
 }  // namespace cosmo
