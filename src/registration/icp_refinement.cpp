@@ -29,8 +29,7 @@ double overlapFraction(const std::vector<Eigen::Vector3f>& source, const KdTree<
   std::size_t matched = 0;
   for (const auto& s : source) {
     const Eigen::Vector3f p = Rf * s + tf;
-    const auto [j, d2] = target_tree.nearestWithin(p.data(), max_d2);
-    matched += j >= 0 && d2 <= max_d2;
+    matched += target_tree.anyWithin(p.data(), max_d2);
   }
   return static_cast<double>(matched) / static_cast<double>(source.size());
 }

@@ -1,6 +1,7 @@
 #pragma once
 // Exact kd-tree over contiguous float rows (nanoflann, single index: deterministic), for 3-D points and for
 // feature vectors. The data must outlive the tree.
+#include <Eigen/Core>
 #include <nanoflann.hpp>
 
 #include <cmath>
@@ -48,6 +49,15 @@ class KdTree {
     return {static_cast<int>(idx), d2};
   }
 
+  /// Whether some row lies within squared distance `max_d2` (inclusive) of the query: the search stops at the
+  /// first one found, so it is cheaper than nearestWithin(); the same verdict.
+  bool anyWithin(const float* query, float max_d2) const {
+    if (adaptor_.count == 0) return false;
+    FirstHit hit{std::nextafter(max_d2, std::numeric_limits<float>::infinity())};
+    index_.findNeighbors(hit, query, nanoflann::SearchParams(32, 0.f));
+    return hit.found;
+  }
+
   /// All neighbours within `radius` (unsorted order is the tree's, deterministic); returns their count.
   std::size_t radius(const float* query, float radius, std::vector<std::pair<std::uint32_t, float>>& out) const {
     out.clear();
@@ -65,14 +75,38 @@ class KdTree {
     template <class BBox>
     bool kdtree_get_bbox(BBox&) const { return false; }
   };
-  // High-dimensional rows (features): the metric that sums four coordinates at a time and stops a leaf
-  // point's distance as soon as it exceeds the current worst; 3-D points: the simple one.
-  using Metric = std::conditional_t<(Dim > 4), nanoflann::L2_Adaptor<float, Adaptor>,
-                                    nanoflann::L2_Simple_Adaptor<float, Adaptor>>;
+  /// Squared L2 over a whole row as one Eigen expression (SSE packets): for the high-dimensional feature rows.
+  struct RowL2 {
+    using ElementType = float;
+    using DistanceType = float;
+    const Adaptor& source;
+    explicit RowL2(const Adaptor& s) : source(s) {}
+    float evalMetric(const float* a, std::uint32_t b, std::size_t) const {
+      using Row = Eigen::Map<const Eigen::Matrix<float, Dim, 1>>;
+      return (Row(a) - Row(source.data + static_cast<std::size_t>(b) * Dim)).squaredNorm();
+    }
+    template <typename U, typename V>
+    float accum_dist(const U a, const V b, std::size_t) const {
+      return (a - b) * (a - b);
+    }
+  };
+  using Metric = std::conditional_t<(Dim > 4), RowL2, nanoflann::L2_Simple_Adaptor<float, Adaptor>>;
   using Index = nanoflann::KDTreeSingleIndexAdaptor<Metric, Adaptor, Dim, std::uint32_t>;
   static nanoflann::KDTreeSingleIndexAdaptorParams params() {
     return nanoflann::KDTreeSingleIndexAdaptorParams(10);
   }
+
+  /// nanoflann result set that accepts one point (closer than `bound`) and then ends the search.
+  struct FirstHit {
+    float bound;
+    bool found = false;
+    float worstDist() const { return bound; }
+    bool full() const { return found; }
+    bool addPoint(float, std::uint32_t) {
+      found = true;
+      return false;
+    }
+  };
 
   Adaptor adaptor_;
   Index index_;
