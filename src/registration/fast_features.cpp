@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cosmo/registration/float4.hpp"
 #include "cosmo/registration/neighbour_pairs.hpp"
 #include "cosmo/registration/stage_observer.hpp"
 
@@ -12,61 +13,61 @@ namespace cosmo {
 namespace {
 
 constexpr int kBins = 11;
-constexpr int kBlock = 8;  ///< pairs per vectorised block of the pair-feature loop
-using Lane = Eigen::Array<float, kBlock, 1>;
-using LaneI = Eigen::Array<int, kBlock, 1>;
+constexpr int kBlock = 4;  ///< pairs per vector step of the pair-feature loop (one Float4)
 
-/// atan2 within 2e-4 rad (odd minimax polynomial of atan on [0, 1] plus octant folding), branch-free over a
-/// block: the angle is only binned into 11 bins, so libm's exact atan2f is not needed. Deterministic.
-inline Lane fastAtan2(const Lane& y, const Lane& x) {
-  const Lane ax = x.abs(), ay = y.abs();
-  const Lane mx = ax.max(ay), mn = ax.min(ay);
-  const Lane a = (mx > 0.f).select(mn / mx.max(1e-30f), Lane::Zero());
-  const Lane s = a * a;
-  Lane r = ((-0.0464964749f * s + 0.15931422f) * s - 0.327622764f) * s * a + a;
-  r = (ay > ax).select(1.57079637f - r, r);
-  r = (x < 0.f).select(3.14159274f - r, r);
-  return (y < 0.f).select(-r, r);
+/// atan2 within 2e-4 rad (odd minimax polynomial of atan on [0, 1] plus octant folding), branch-free: the
+/// angle is only binned into 11 bins, so libm's exact atan2f is not needed. Deterministic.
+inline Float4 fastAtan2(Float4 y, Float4 x) {
+  const Float4 ax = abs(x), ay = abs(y);
+  const Float4 mx = max(ax, ay), mn = min(ax, ay);
+  const Float4 a = mn / max(mx, Float4(1e-30f));  // 0 when both are 0
+  const Float4 s = a * a;
+  Float4 r = ((Float4(-0.0464964749f) * s + Float4(0.15931422f)) * s - Float4(0.327622764f)) * s * a + a;
+  r = select(ay > ax, Float4(1.57079637f) - r, r);
+  r = select(x < Float4(0.f), Float4(3.14159274f) - r, r);
+  return select(y < Float4(0.f), -r, r);
 }
 
-/// Bin of x in [lo, hi] into kBins (PCL's floor(kBins (x - lo) / (hi - lo)), clamped, with the division as a
-/// multiplication by kBins / (hi - lo)); x - lo > -1 bin here, so truncation equals floor after the clamp.
-inline LaneI binOf(const Lane& x, float lo, float hi) {
-  const LaneI b = ((x - lo) * (static_cast<float>(kBins) / (hi - lo))).cast<int>();
-  return b.max(0).min(kBins - 1);
+/// Bin of x in [lo, hi] into kBins: PCL's floor(kBins (x - lo) / (hi - lo)) clamped to [0, kBins - 1], with
+/// the division as a multiplication by kBins / (hi - lo); clamped before the truncation (NaN -> bin 0).
+inline void storeBin(Float4 x, float lo, float hi, int offset, std::int32_t* out) {
+  const Float4 v = (x - Float4(lo)) * Float4(static_cast<float>(kBins) / (hi - lo));
+  const Float4 clamped = max(min(v, Float4(static_cast<float>(kBins - 1))), Float4(0.f));
+  (clamped + Float4(static_cast<float>(offset))).storeTruncated(out);
 }
 
-/// PCL's pair feature (pcl::computePairFeatures) over one block of kBlock pairs in structure-of-arrays form
-/// (in[0..2] = p1, in[3..5] = n1, in[6..8] = p2, in[9..11] = n2, each kBlock floats at `stride` apart); writes
-/// the bins of f1 = theta (over [-pi, pi]), f2 = alpha and f3 = phi (over [-1, 1], offset to the 33-bin
-/// layout) and ok = 0 for degenerate pairs (coincident points, source normal along the line).
+/// PCL's pair feature (pcl::computePairFeatures) for kBlock pairs in structure-of-arrays form (in[0..2] = p1,
+/// in[3..5] = n1, in[6..8] = p2, in[9..11] = n2, each kBlock floats, rows `stride` apart); writes the bins of
+/// f1 = theta (over [-pi, pi]), f2 = alpha and f3 = phi (over [-1, 1]), offset to the 33-bin layout, and
+/// ok = 0 for degenerate pairs (coincident points, source normal along the line).
 /// PCL's Darboux frame, with d = (p2 - p1) / |p2 - p1|, a1 = n1.d, a2 = n2.d: the source is the normal more
 /// parallel to d (u = n1, nb = n2, a_s = a1, a_t = a2, phi = a1; or u = n2, nb = n1, d -> -d, a_s = -a2,
 /// a_t = -a1, phi = -a2), v = d x u / |d x u|, w = u x v. In closed form, with c = n1.n2 and |d x u| =
 /// sqrt(1 - a_s^2): alpha = v.nb = d.(n1 x n2) / |d x u| (the same for both choices), and theta =
-/// atan2(w.nb, u.nb) = atan2(a_t - a_s c, c |d x u|). Flattened so that Eigen's block loops are inlined.
-__attribute__((flatten)) void pairFeatureBlock(const float* in, std::size_t stride, int* b1, int* b2, int* b3,
-                                               int* ok) {
-  auto lane = [&](int k) { return Eigen::Map<const Lane, Eigen::Aligned16>(in + static_cast<std::size_t>(k) * stride); };
-  const Lane dx = lane(6) - lane(0), dy = lane(7) - lane(1), dz = lane(8) - lane(2);
-  const Lane n1x = lane(3), n1y = lane(4), n1z = lane(5), n2x = lane(9), n2y = lane(10), n2z = lane(11);
-  const Lane d = (dx * dx + dy * dy + dz * dz).sqrt();
-  const Lane inv_d = (d > 0.f).select(1.f / d.max(1e-30f), Lane::Zero());
-  const Lane a1 = (n1x * dx + n1y * dy + n1z * dz) * inv_d;
-  const Lane a2 = (n2x * dx + n2y * dy + n2z * dz) * inv_d;
-  const Lane c = n1x * n2x + n1y * n2y + n1z * n2z;
-  const Lane triple = (dx * (n1y * n2z - n1z * n2y) + dy * (n1z * n2x - n1x * n2z) + dz * (n1x * n2y - n1y * n2x)) * inv_d;
-  const auto swap = a1.abs() < a2.abs();
-  const Lane a_s = swap.select(-a2, a1), a_t = swap.select(-a1, a2);
-  const Lane vn2 = 1.f - a_s * a_s;
-  const Lane vn = vn2.max(0.f).sqrt();
-  const Lane f2 = triple / vn.max(1e-30f);
-  const Lane f1 = fastAtan2(a_t - a_s * c, c * vn);
-  Eigen::Map<LaneI> ok_out(ok), b1_out(b1), b2_out(b2), b3_out(b3);
-  ok_out = ((d > 0.f) && (vn2 > 0.f)).cast<int>();
-  b1_out = binOf(f1, -3.14159274f, 3.14159274f);
-  b2_out = binOf(f2, -1.f, 1.f) + kBins;
-  b3_out = binOf(a_s, -1.f, 1.f) + 2 * kBins;
+/// atan2(w.nb, u.nb) = atan2(a_t - a_s c, c |d x u|).
+inline void pairFeatureBlock(const float* in, std::size_t stride, std::int32_t* b1, std::int32_t* b2,
+                             std::int32_t* b3, std::int32_t* ok) {
+  auto lane = [&](int k) { return Float4::load(in + static_cast<std::size_t>(k) * stride); };
+  const Float4 dx = lane(6) - lane(0), dy = lane(7) - lane(1), dz = lane(8) - lane(2);
+  const Float4 n1x = lane(3), n1y = lane(4), n1z = lane(5), n2x = lane(9), n2y = lane(10), n2z = lane(11);
+  const Float4 zero(0.f), tiny(1e-30f);
+  const Float4 d = sqrt(dx * dx + dy * dy + dz * dz);
+  const Float4 inv_d = select(d > zero, Float4(1.f) / max(d, tiny), zero);
+  const Float4 a1 = (n1x * dx + n1y * dy + n1z * dz) * inv_d;
+  const Float4 a2 = (n2x * dx + n2y * dy + n2z * dz) * inv_d;
+  const Float4 c = n1x * n2x + n1y * n2y + n1z * n2z;
+  const Float4 triple =
+      (dx * (n1y * n2z - n1z * n2y) + dy * (n1z * n2x - n1x * n2z) + dz * (n1x * n2y - n1y * n2x)) * inv_d;
+  const Float4 swap = abs(a1) < abs(a2);
+  const Float4 a_s = select(swap, -a2, a1), a_t = select(swap, -a1, a2);
+  const Float4 vn2 = Float4(1.f) - a_s * a_s;
+  const Float4 vn = sqrt(max(vn2, zero));
+  const Float4 f2 = triple / max(vn, tiny);
+  const Float4 f1 = fastAtan2(a_t - a_s * c, c * vn);
+  maskAnd(d > zero, vn2 > zero).storeMask(ok);
+  storeBin(f1, -3.14159274f, 3.14159274f, 0, b1);
+  storeBin(f2, -1.f, 1.f, kBins, b2);
+  storeBin(a_s, -1.f, 1.f, 2 * kBins, b3);
 }
 
 }  // namespace
@@ -131,7 +132,7 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
 
   // SPFH of every valid point over its valid neighbours within the SPFH radius. PCL's pair feature is
   // symmetric (swapping the two points selects the same source normal), so each pair is computed once and
-  // counted in both histograms; the feature itself runs in blocks of kBlock pairs (vectorised).
+  // counted in both histograms; the feature itself runs on kBlock pairs at a time (Float4).
   std::vector<float> spfh(n * kFpfhDim, 0.f);
   std::vector<int> spfh_count(n, 0);
   {
@@ -145,7 +146,7 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
     // on just-written scalars), features in blocks of kBlock, then the histogram increments.
     constexpr std::size_t kChunk = 256;
     alignas(16) float in[12][kChunk];
-    alignas(16) int b1[kChunk], b2[kChunk], b3[kChunk], ok[kChunk];
+    alignas(16) std::int32_t b1[kChunk], b2[kChunk], b3[kChunk], ok[kChunk];
     for (std::size_t s = 0; s < sel_i.size(); s += kChunk) {
       const std::size_t len = std::min(kChunk, sel_i.size() - s);
       const std::size_t padded = (len + kBlock - 1) / kBlock * kBlock;
