@@ -58,7 +58,7 @@ NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, fl
   }
   cell_begin.push_back(static_cast<std::uint32_t>(m));
   const std::size_t cells = cell_key.size();
-  out.reserve(n * 40);
+  out.resize(n * 32);
   std::vector<float> d2_buffer;
   // The 13 forward neighbour offsets: (dx, dy, dz) lexicographically after (0, 0, 0).
   std::int64_t forward[13];
@@ -68,18 +68,27 @@ NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, fl
       for (int dz = -1; dz <= 1; ++dz)
         if (dx > 0 || (dx == 0 && (dy > 0 || (dy == 0 && dz > 0))))
           forward[nf++] = (static_cast<std::int64_t>(dx) << 42) + (static_cast<std::int64_t>(dy) << 21) + dz;
-  // Squared distances of one point to a run of points (vectorised), then the close ones appended.
+  // Squared distances of one point to a run of points (vectorised), then the close ones appended without a
+  // branch (each candidate is written, the end advances only for the close ones).
+  std::size_t used = 0;
   auto emitPairs = [&](std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1, bool same) {
     for (std::uint32_t a = a0; a < a1; ++a) {
       const std::uint32_t first = same ? a + 1 : b0;
       if (first >= b1) continue;
-      const auto len = static_cast<Eigen::Index>(b1 - first);
-      if (d2_buffer.size() < static_cast<std::size_t>(len)) d2_buffer.resize(static_cast<std::size_t>(len));
-      squaredDistances(xs.data() + first, ys.data() + first, zs.data() + first, len, xs[a], ys[a], zs[a],
-                       d2_buffer.data());
-      for (Eigen::Index k = 0; k < len; ++k)
-        if (d2_buffer[static_cast<std::size_t>(k)] < r2)
-          out.push_back({ids[a], ids[first + static_cast<std::uint32_t>(k)], d2_buffer[static_cast<std::size_t>(k)]});
+      const std::size_t len = b1 - first;
+      if (d2_buffer.size() < len) d2_buffer.resize(len);
+      squaredDistances(xs.data() + first, ys.data() + first, zs.data() + first, static_cast<Eigen::Index>(len), xs[a],
+                       ys[a], zs[a], d2_buffer.data());
+      if (out.size() < used + len) out.resize(std::max(2 * out.size(), used + len));
+      NeighbourPair* dst = out.data() + used;
+      const std::uint32_t ia = ids[a];
+      std::size_t k_out = 0;
+      for (std::size_t k = 0; k < len; ++k) {
+        const float d2 = d2_buffer[k];
+        dst[k_out] = {ia, ids[first + k], d2};
+        k_out += d2 < r2 ? 1 : 0;
+      }
+      used += k_out;
     }
   };
   for (std::size_t c = 0; c < cells; ++c) {
@@ -93,6 +102,7 @@ NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, fl
       emitPairs(cell_begin[c], cell_begin[c + 1], cell_begin[d], cell_begin[d + 1], false);
     }
   }
+  out.resize(used);
   return out;
 }
 
