@@ -7,7 +7,8 @@
 // Publishes   keyframe_scans  (cosmo/Keyframe) keyframe scans offered to the comm_broker
 //             keyframes_meas  (cosmo/RecorderKeyframe), loop_closures (cosmo/RecorderLoopClosure) for the recorder
 //             ack             (cosmo/FrontendAck: last scan processed, scans / teammate scans processed,
-//                             keyframes offered) after every scan and delivery, for the player's lockstep mode
+//                             keyframes offered, loop closures published) after every scan and delivery, for the
+//                             player's lockstep mode
 //             markers         (visualization_msgs/MarkerArray, frame world): trajectory, keyframes, loop closures
 //                             (green accepted inlier, orange accepted outlier vs. the reference, red rejected;
 //                             blue accepted when there is no reference)
@@ -215,6 +216,7 @@ class FrontendNode {
     a.scans = static_cast<std::uint32_t>(frontend_->scansProcessed());
     a.received = static_cast<std::uint32_t>(frontend_->teammateScansReceived() + received_dropped_);
     a.keyframes = static_cast<std::uint32_t>(frontend_->keyframes().size());
+    a.loop_closures = static_cast<std::uint32_t>(loop_closures_published_);
     ack_pub_.publish(a);
   }
 
@@ -287,6 +289,7 @@ class FrontendNode {
       lc.measurement = ros_glue::poseToMsg(a.measurement);
       lc.measurement_exact = ros_glue::poseToExact(a.measurement);
       lc_pub_.publish(lc);
+      ++loop_closures_published_;
       // inlier / outlier against the reference when both poses have one
       const auto r1 = referenceOf(a.robot1, a.index1), r2 = referenceOf(a.robot2, a.index2);
       if (r1 && r2) mk.state = isOutlier(a.measurement, r1->inverse() * *r2, noise_.loop_closure) ? 2 : 1;
@@ -394,6 +397,7 @@ class FrontendNode {
   std::vector<Eigen::Vector3d> trajectory_;
   std::vector<Marked> closures_;
   std::size_t received_dropped_ = 0;
+  std::size_t loop_closures_published_ = 0;  ///< counted in the ack (the player's end-of-run handshake)
   std::deque<sensor_msgs::PointCloud2::ConstPtr> pending_;
   double reference_wait_ = 0.5;
   bool lockstep_ = false, sequence_loaded_ = false;

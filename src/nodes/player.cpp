@@ -12,12 +12,14 @@
 //   to step the radio through the scan's time (/comm/step_request: robots on = processed a scan, keyframes
 //   offered so far, which the broker waits for) and waits for /comm/step_done and for every delivered scan to be
 //   processed by its receiver; then the scan is published (per-point times as float seconds, exact). At the end
-//   the radio is stepped through the sequence end the same way. The resolved sequence path and seed are set on
+//   the radio is stepped through the sequence end the same way, and, when a recorder is running, the player waits
+//   until /recorder/progress (cosmo/RecorderProgress) shows every keyframe and loop closure the front-ends
+//   acknowledged (FrontendAck.keyframes / loop_closures), so the final JRL never depends on message timing. The resolved sequence path and seed are set on
 //   the parameter server first (ros_glue::publishResolvedSequence) for the lockstep front-ends and broker.
 //   Real time (~mode realtime): scans at ~rate x wall speed, nothing waited for (results may depend on CPU speed).
 // Params: ~sequence (config path), ~mode, ~rate, ~seed (-1: the config's), ~max_seconds (0: all),
 //         ~ack_timeout (s wall; a front-end silent this long is skipped with a warning), ~wait_for_broker,
-//         ~end_linger (s wall after the last scan, radio still stepping; default 3 realtime, 1 lockstep), ~world_frame.
+//         ~end_linger (s wall after the last scan, radio still stepping; default 3 realtime, 0 lockstep), ~world_frame.
 //         With an empty ~sequence the built-in synthetic sequence is used: cosmo_simulate --config
 //         ~simulate_config --out ~simulate_out (cached by its parameters, so only the first run generates it).
 // When done it publishes /player/done (latched std_msgs/Empty) and exits (the launch marks it required).
@@ -42,6 +44,7 @@
 #include "cosmo/FrontendAck.h"
 #include "cosmo/RadioStepDone.h"
 #include "cosmo/RadioStepRequest.h"
+#include "cosmo/RecorderProgress.h"
 #include "cosmo/ros/pose_msg.hpp"
 #include "cosmo/ros/resolved_sequence.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
@@ -63,6 +66,8 @@ struct Acks {
   bool step_done = false;                     ///< /comm/step_done of the latest request seen
   std::uint32_t step_done_seq = 0;
   std::map<char, std::uint32_t> delivered;    ///< from /comm/step_done, per receiver
+  bool recorder_seen = false;                 ///< /recorder/progress received
+  std::map<char, std::pair<std::uint32_t, std::uint32_t>> recorded;  ///< recorder intake: keyframes, loop closures
 };
 
 }  // namespace
@@ -108,7 +113,7 @@ int main(int argc, char** argv) {
   }
   const bool lockstep = mode == "lockstep";
   if (!(rate > 0)) rate = 1.0;
-  if (end_linger < 0) end_linger = lockstep ? 1.0 : 3.0;
+  if (end_linger < 0) end_linger = lockstep ? 0.0 : 3.0;
 
   pipeline::SequenceConfig config;
   pipeline::SequenceTiming timing;
@@ -162,6 +167,12 @@ int main(int argc, char** argv) {
       acks.broker_delivered = j.value("delivered", std::uint64_t{0});
     } catch (const std::exception&) {
     }
+  }));
+  subs.push_back(nh.subscribe<cosmo::RecorderProgress>("/recorder/progress", 10, [&acks](const cosmo::RecorderProgress::ConstPtr& m) {
+    std::lock_guard<std::mutex> lock(acks.mutex);
+    acks.recorder_seen = true;
+    for (std::size_t i = 0; i < m->robots.size() && i < m->keyframes.size() && i < m->loop_closures.size(); ++i)
+      acks.recorded[m->robots[i]] = {m->keyframes[i], m->loop_closures[i]};
   }));
   tf2_ros::TransformBroadcaster tf;
   ros::AsyncSpinner spinner(1);
@@ -331,7 +342,20 @@ int main(int argc, char** argv) {
     }
     // last acks, then let the radio run to the end of the sequence
     waitAcks();
-    if (lockstep) stepRadio(end);
+    if (lockstep) {
+      stepRadio(end);
+      // everything the front-ends published has reached the recorder (when one runs)
+      waitFor("recorder intake", [&] {
+        std::lock_guard<std::mutex> lock(acks.mutex);
+        if (!acks.recorder_seen) return true;
+        for (const auto& [r, a] : acks.latest) {
+          const auto it = acks.recorded.find(r);
+          if (it == acks.recorded.end() || it->second.first < a.keyframes || it->second.second < a.loop_closures)
+            return false;
+        }
+        return true;
+      });
+    }
     publishClock(end);
     const ros::WallTime linger = ros::WallTime::now();
     while (ros::ok() && (ros::WallTime::now() - linger).toSec() < end_linger) {

@@ -4,7 +4,8 @@
 // on request (service ~write, std_srvs/Trigger, or any message on ~write_request) and every ~autosave_period.
 //
 // Subscribes, per robot r of ~robots: /<r>/keyframes_meas (cosmo/RecorderKeyframe) and /<r>/loop_closures
-// (cosmo/RecorderLoopClosure).
+// (cosmo/RecorderLoopClosure). Publishes /recorder/progress (cosmo/RecorderProgress, latched): what it received
+// per robot, whenever that changes; the player's lockstep mode waits on it before it ends the run.
 // Parameters: ~robots ("a,b,c" or a list), ~name (dataset name), ~output_dir, ~noise_models (YAML path),
 // ~outlier_rule (fidelity | squared), ~autosave_period (s, 0 = off), ~progress_period (s, 0 = off).
 #include <ros/ros.h>
@@ -14,6 +15,7 @@
 #include <atomic>
 #include <csignal>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -21,6 +23,7 @@
 #include "cosmo/ros/robot_list.hpp"
 #include "cosmo/RecorderKeyframe.h"
 #include "cosmo/RecorderLoopClosure.h"
+#include "cosmo/RecorderProgress.h"
 #include "cosmo/dataset/dataset_recorder.hpp"
 #include "cosmo/jrl/stats.hpp"
 
@@ -58,6 +61,9 @@ class RecorderNode {
       subs_.push_back(nh.subscribe<cosmo::RecorderLoopClosure>(
           ns + "/loop_closures", 10000, [this, r](const cosmo::RecorderLoopClosure::ConstPtr& m) { onLoopClosure(r, *m); }));
     }
+    for (const char r : robots) received_[r];
+    progress_pub_ = nh.advertise<cosmo::RecorderProgress>("/recorder/progress", 1, true);
+    publishProgress();
     service_ = pnh.advertiseService("write", &RecorderNode::onWriteService, this);
     write_request_ = pnh.subscribe<std_msgs::Empty>("write_request", 10, [this](const std_msgs::Empty::ConstPtr&) {
       write("request");
@@ -72,6 +78,7 @@ class RecorderNode {
     ros::WallRate rate(100.0);
     while (!g_stop && ros::ok()) {
       ros::spinOnce();
+      if (progress_changed_) publishProgress();
       const ros::WallTime now = ros::WallTime::now();
       if (progress_period_ > 0 && (now - last_progress).toSec() >= progress_period_) {
         ROS_INFO("recorder: %s", recorder_->progressLine().c_str());
@@ -93,6 +100,8 @@ class RecorderNode {
       ROS_WARN_THROTTLE(5.0, "recorder: /%c/keyframes_meas: robot field '%s' differs from the topic's robot",
                         topic_robot, m.robot.c_str());
     const char robot = m.robot.size() == 1 ? m.robot[0] : topic_robot;
+    ++received_[topic_robot].keyframes;  // counted as sent, whatever becomes of it
+    progress_changed_ = true;
     try {
       std::optional<cosmo::Pose3> reference;
       if (m.has_reference) reference = cosmo::ros_glue::poseFromExactOrMsg(m.reference_exact, m.reference);
@@ -107,6 +116,8 @@ class RecorderNode {
   }
 
   void onLoopClosure(char topic_robot, const cosmo::RecorderLoopClosure& m) {
+    ++received_[topic_robot].loop_closures;
+    progress_changed_ = true;
     try {
       if (m.owner.size() != 1 || m.robot1.size() != 1 || m.robot2.size() != 1)
         throw std::invalid_argument("owner, robot1 and robot2 must be single characters");
@@ -152,6 +163,23 @@ class RecorderNode {
     }
   }
 
+  void publishProgress() {
+    cosmo::RecorderProgress p;
+    for (const auto& [r, n] : received_) {
+      p.robots.push_back(r);
+      p.keyframes.push_back(n.keyframes);
+      p.loop_closures.push_back(n.loop_closures);
+    }
+    progress_pub_.publish(p);
+    progress_changed_ = false;
+  }
+
+  struct Received {
+    std::uint32_t keyframes = 0, loop_closures = 0;
+  };
+  std::map<char, Received> received_;  ///< messages received per robot topic (/recorder/progress)
+  bool progress_changed_ = false;
+  ros::Publisher progress_pub_;
   std::optional<cosmo::DatasetRecorder> recorder_;
   std::string path_;
   double autosave_period_ = 30.0, progress_period_ = 5.0;
