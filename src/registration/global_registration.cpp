@@ -59,6 +59,10 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
 
   std::optional<KdTree<3>> target_tree;
   if (!tgt.points.empty()) target_tree.emplace(tgt.points.front().data(), tgt.points.size());
+  // Structure points (not ground-like) of the source, for the structure overlap.
+  std::vector<Eigen::Vector3f> src_structure;
+  for (std::size_t i = 0; i < src.points.size() && i < src.normals.size(); ++i)
+    if (std::fabs(src.normals[i].z()) < static_cast<float>(p.structure_max_normal_z)) src_structure.push_back(src.points[i]);
   // ICP iterates on an evenly strided subset of the source (every k-th point); the overlap uses all points.
   std::vector<Eigen::Vector3f> icp_source;
   const std::size_t stride = p.icp_max_points > 0 ? (src.points.size() + p.icp_max_points - 1) / p.icp_max_points : 1;
@@ -143,6 +147,8 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
         }
       }
     }
+    if (target_tree)
+      cand.structure_overlap = overlapFraction(src_structure, *target_tree, cand.T_target_source, p.icp_max_distance);
     notifyStage(observer, "refine");
     solved = true;
     cand.hypotheses = h + 1;

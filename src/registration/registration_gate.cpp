@@ -19,6 +19,9 @@ void applyGate(const RegistrationParams& p, RegistrationResult& r) {
     r.reason = "inlier ratio below " + std::to_string(p.min_inlier_ratio);
   } else if (p.min_overlap > 0.0 && r.overlap < p.min_overlap) {
     r.reason = "overlap " + std::to_string(r.overlap) + " below " + std::to_string(p.min_overlap);
+  } else if (p.min_structure_overlap > 0.0 && r.structure_overlap < p.min_structure_overlap) {
+    r.reason = "structure overlap " + std::to_string(r.structure_overlap) + " below " +
+               std::to_string(p.min_structure_overlap);
   } else {
     r.valid = true;
     r.reason = "ok";

@@ -45,6 +45,8 @@ RegistrationParams RegistrationParams::fromConfig(const ConfigNode& root) {
   node.read("min_correspondences", p.min_correspondences);
   node.read("min_inlier_ratio", p.min_inlier_ratio);
   node.read("min_overlap", p.min_overlap);
+  node.read("min_structure_overlap", p.min_structure_overlap);
+  node.read("structure_max_normal_z", p.structure_max_normal_z);
   require(p.voxel_size > 0.0, node, "voxel_size", "must be > 0");
   require(p.normal_radius > 0.0, node, "normal_radius", "must be > 0");
   require(p.fpfh_radius > 0.0, node, "fpfh_radius", "must be > 0");

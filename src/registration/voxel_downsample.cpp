@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <unordered_map>
 
 namespace cosmo {
 
@@ -15,10 +14,23 @@ std::vector<Eigen::Vector3f> voxelDownsample(const std::vector<Eigen::Vector3f>&
   const double inv = 1.0 / voxel_size;
   const double min2 = min_range * min_range;
   const double max2 = max_range > 0.0 ? max_range * max_range : std::numeric_limits<double>::infinity();
-  // Per-voxel sums in a hash map (slot per voxel in first-seen order), then the voxels emitted in key order:
-  // deterministic without depending on the hash map's iteration order, and no sort over all points.
-  std::unordered_map<std::uint64_t, std::uint32_t> slot_of;
-  slot_of.reserve(points.size() / 4 + 16);
+  // Per-voxel sums in an open-addressing hash table (linear probing, power-of-two size, slot per voxel in
+  // first-seen order), then the voxels emitted in key order: deterministic without depending on the table's
+  // layout, and no sort over all points.
+  // Scan-ordered input mostly repeats the previous point's voxel: that one is checked first.
+  constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  std::size_t capacity = 1024;
+  while (capacity < points.size() / 2) capacity *= 2;
+  std::vector<std::uint64_t> table_key(capacity, kEmpty);
+  std::vector<std::uint32_t> table_slot(capacity, 0);
+  std::uint64_t mask = capacity - 1;
+  auto probe = [&](std::uint64_t key) {
+    std::uint64_t h = (key * 0x9E3779B97F4A7C15ull) >> 20;
+    while (table_key[h & mask] != kEmpty && table_key[h & mask] != key) ++h;
+    return static_cast<std::size_t>(h & mask);
+  };
+  std::uint64_t last_key = kEmpty;
+  std::uint32_t last_slot = 0;
   std::vector<std::uint64_t> keys;
   std::vector<Eigen::Vector3d> sums;
   std::vector<std::uint32_t> counts;
@@ -34,14 +46,29 @@ std::vector<Eigen::Vector3f> voxelDownsample(const std::vector<Eigen::Vector3f>&
     if (ix < 0 || iy < 0 || iz < 0 || ix >= 2 * kOffset || iy >= 2 * kOffset || iz >= 2 * kOffset) continue;
     const std::uint64_t key = (static_cast<std::uint64_t>(ix) << 42) | (static_cast<std::uint64_t>(iy) << 21) |
                               static_cast<std::uint64_t>(iz);
-    const auto [it, inserted] = slot_of.try_emplace(key, static_cast<std::uint32_t>(keys.size()));
-    if (inserted) {
-      keys.push_back(key);
-      sums.emplace_back(Eigen::Vector3d::Zero());
-      counts.push_back(0);
+    if (key != last_key) {
+      std::size_t at = probe(key);
+      if (table_key[at] == kEmpty) {
+        if (2 * (keys.size() + 1) > capacity) {  // keep the load at most 1/2: rebuild twice as large
+          capacity *= 2, mask = capacity - 1;
+          table_key.assign(capacity, kEmpty);
+          table_slot.assign(capacity, 0);
+          for (std::size_t v = 0; v < keys.size(); ++v) {
+            const std::size_t b = probe(keys[v]);
+            table_key[b] = keys[v], table_slot[b] = static_cast<std::uint32_t>(v);
+          }
+          at = probe(key);
+        }
+        table_key[at] = key;
+        table_slot[at] = static_cast<std::uint32_t>(keys.size());
+        keys.push_back(key);
+        sums.emplace_back(Eigen::Vector3d::Zero());
+        counts.push_back(0);
+      }
+      last_key = key, last_slot = table_slot[at];
     }
-    sums[it->second] += p.cast<double>();
-    ++counts[it->second];
+    sums[last_slot] += p.cast<double>();
+    ++counts[last_slot];
   }
   std::vector<std::pair<std::uint64_t, std::uint32_t>> order(keys.size());
   for (std::size_t v = 0; v < keys.size(); ++v) order[v] = {keys[v], static_cast<std::uint32_t>(v)};

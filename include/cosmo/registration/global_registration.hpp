@@ -35,6 +35,8 @@ struct RegistrationResult {
   bool refined = false;               ///< the ICP refinement was applied
   double overlap = 0.0;               ///< fraction of source points with a target point within icp_max_distance
                                       ///< at the reported transform
+  double structure_overlap = 0.0;     ///< the same over the source's structure points (|normal z| below
+                                      ///< structure_max_normal_z): ground, which matches almost anywhere, left out
   bool valid = false;                 ///< the gate's verdict
   std::string reason;                 ///< why it was rejected (or "ok")
 };

@@ -49,6 +49,8 @@ struct RegistrationParams {
   std::size_t min_correspondences = 10; ///< below this the problem is declared degenerate
   double min_inlier_ratio = 0.0;  ///< final inliers / correspondences must reach this (0 = off)
   double min_overlap = 0.7;       ///< fraction of source points within icp_max_distance after the solve (0 = off)
+  double min_structure_overlap = 0.0;  ///< the same over the source's structure points only (0 = off)
+  double structure_max_normal_z = 0.9;  ///< structure point: |normal z| below this (not ground / ceiling-like)
 
   static RegistrationParams fromConfig(const ConfigNode& node);
 };

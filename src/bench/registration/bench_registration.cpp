@@ -57,15 +57,15 @@ Run runOne(const GlobalRegistration& reg, const std::string& name, const Scan& s
 }
 
 void printRun(const Run& x) {
-  std::printf("%-18s %6.2f %5.0f %6zu %6zu %6zu %6zu %6zu %5.2f %4s %8.3f %8.3f %8.1f %s\n", x.name.c_str(), x.dist,
+  std::printf("%-18s %6.2f %5.0f %6zu %6zu %6zu %6zu %6zu %5.2f %5.2f %4s %8.3f %8.3f %8.1f %s\n", x.name.c_str(), x.dist,
               x.yaw, x.r.source_points, x.r.correspondences, x.r.max_core_size, x.r.pruned_inliers, x.r.final_inliers,
-              x.r.overlap, x.r.valid ? "yes" : "no", x.e.translation_m, x.e.rotation_deg, x.total, x.success ? "OK" : "FAIL");
+              x.r.overlap, x.r.structure_overlap, x.r.valid ? "yes" : "no", x.e.translation_m, x.e.rotation_deg, x.total, x.success ? "OK" : "FAIL");
   std::fflush(stdout);
 }
 
 void printHeader() {
-  std::printf("%-18s %6s %5s %6s %6s %6s %6s %6s %5s %4s %8s %8s %8s %s\n", "pair", "dist_m", "yaw", "srcpts", "corr",
-              "core", "clique", "final", "ovl", "acc", "err_m", "err_deg", "ms", "result");
+  std::printf("%-18s %6s %5s %6s %6s %6s %6s %6s %5s %5s %4s %8s %8s %8s %s\n", "pair", "dist_m", "yaw", "srcpts", "corr",
+              "core", "clique", "final", "ovl", "sovl", "acc", "err_m", "err_deg", "ms", "result");
 }
 
 void printSpeed(const std::string& label, const std::vector<Run>& runs) {

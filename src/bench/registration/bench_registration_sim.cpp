@@ -179,8 +179,8 @@ int main(int argc, char** argv) {
     std::uniform_real_distribution<double> u(-M_PI, M_PI);
     std::printf("loop pairs (different robots, <= %.0f m apart, random yaw): %zu; success = accepted and < 0.5 m, "
                 "< 2 deg\n", max_offset, near.size());
-    std::printf("%-10s %6s %7s %6s %6s %6s %5s %4s %8s %8s %7s\n", "pair", "dist", "yaw", "corr", "clique", "final",
-                "ovl", "acc", "err_m", "err_deg", "cpu_ms");
+    std::printf("%-10s %6s %7s %6s %6s %6s %5s %5s %4s %8s %8s %7s\n", "pair", "dist", "yaw", "corr", "clique", "final",
+                "ovl", "sovl", "acc", "err_m", "err_deg", "cpu_ms");
     int ok = 0, acc = 0;
     std::vector<double> ms;
     int bins_ok[3] = {0, 0, 0}, bins_n[3] = {0, 0, 0};
@@ -198,8 +198,8 @@ int main(int argc, char** argv) {
       const int b = d < 3.0 ? 0 : (d < 6.0 ? 1 : 2);
       bins_n[b]++, bins_ok[b] += success;
       ok += success, acc += r.valid;
-      std::printf("%4d-%-5d %6.2f %7.1f %6zu %6zu %6zu %5.2f %4s %8.3f %8.3f %7.1f %s\n", s, t, d, yaw * 180 / M_PI,
-                  r.correspondences, r.pruned_inliers, r.final_inliers, r.overlap, r.valid ? "yes" : "no", e.translation_m,
+      std::printf("%4d-%-5d %6.2f %7.1f %6zu %6zu %6zu %5.2f %5.2f %4s %8.3f %8.3f %7.1f %s\n", s, t, d, yaw * 180 / M_PI,
+                  r.correspondences, r.pruned_inliers, r.final_inliers, r.overlap, r.structure_overlap, r.valid ? "yes" : "no", e.translation_m,
                   e.rotation_deg, timer.total(), success ? "OK" : "FAIL");
       std::fflush(stdout);
     }
@@ -207,19 +207,22 @@ int main(int argc, char** argv) {
                 "median cpu %.1f ms\n", ok, near.size(), near.empty() ? 0.0 : 100.0 * ok / near.size(), acc, bins_ok[0],
                 bins_n[0], bins_ok[1], bins_n[1], bins_ok[2], bins_n[2], bench::quantile(ms, 0.5));
     int false_acc = 0;
-    std::vector<double> neg_final, neg_overlap;
+    std::vector<double> neg_final, neg_overlap, neg_structure;
     for (const auto& [s, t] : far) {
       const RegistrationResult r = reg.align(rotateScanYaw(kfs[s].scan, u(rng)), kfs[t].scan);
       false_acc += r.valid;
       neg_final.push_back(static_cast<double>(r.final_inliers));
       neg_overlap.push_back(r.overlap);
+      neg_structure.push_back(r.structure_overlap);
       if (r.valid)
         std::printf("  false accept %d-%d: %.0f m apart, final inliers %zu\n", s, t,
                     (kfs[s].pose.translation() - kfs[t].pose.translation()).norm(), r.final_inliers);
     }
-    std::printf("non-overlapping pairs: final inliers median %.0f max %.0f; overlap median %.2f max %.2f\n",
+    std::printf("non-overlapping pairs: final inliers median %.0f max %.0f; overlap median %.2f max %.2f; "
+                "structure overlap median %.2f max %.2f\n",
                 bench::quantile(neg_final, 0.5), bench::quantile(neg_final, 1.0), bench::quantile(neg_overlap, 0.5),
-                bench::quantile(neg_overlap, 1.0));
+                bench::quantile(neg_overlap, 1.0), bench::quantile(neg_structure, 0.5),
+                bench::quantile(neg_structure, 1.0));
     std::printf("non-overlapping pairs (> %.0f m apart): %d / %zu accepted by the gate (false-accept rate %.1f %%)\n",
                 min_sep, false_acc, far.size(), far.empty() ? 0.0 : 100.0 * false_acc / far.size());
   } catch (const std::exception& e) {

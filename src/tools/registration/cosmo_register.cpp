@@ -132,7 +132,8 @@ int main(int argc, char** argv) {
                 r.max_core_size, params.use_max_clique ? (r.clique_proven ? "max clique" : "clique (budget hit)") : "k-core",
                 r.pruned_inliers, r.final_inliers);
     std::printf("hypotheses verified %d, reported #%d (0 = the maximum clique)\n", r.hypotheses, r.hypothesis);
-    std::printf("refined: %s, overlap %.3f\n", r.refined ? "yes" : "no", r.overlap);
+    std::printf("refined: %s, overlap %.3f, structure overlap %.3f\n", r.refined ? "yes" : "no", r.overlap,
+                r.structure_overlap);
     std::printf("verdict: %s (%s)\n", r.valid ? "ACCEPTED" : "REJECTED", r.reason.c_str());
     std::printf("time (ms):");
     for (const char* s : kRegistrationStages) {
