@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <numeric>
 
 #include "cosmo/odometry/voxel_filter.hpp"
@@ -72,7 +74,7 @@ LoamFeatures extractFeatures(const ScanLines& lines, const LoamParams& params) {
   LoamFeatures out;
   const int N = std::max(1, params.neighbor_points);
   const int sectors = std::max(1, params.number_sectors);
-  std::vector<int> order;
+  std::vector<std::uint64_t> order;
   for (const ScanLine& line : lines.lines) {
     const int n = static_cast<int>(line.points.size());
     if (n < 2 * N + 1) continue;
@@ -89,24 +91,33 @@ LoamFeatures extractFeatures(const ScanLines& lines, const LoamParams& params) {
     for (int s = 0; s < sectors; ++s) {
       const int begin = s * per_sector;
       const int end = (s == sectors - 1) ? n : begin + per_sector;
+      // Points by (curvature, index): one 64-bit key each (a non-negative float's bits order like the float),
+      // sorted without indirection. Only points that can be picked enter: valid now (picks only invalidate)
+      // and an edge or planar candidate, so the walks below pick exactly as over all points.
       order.clear();
-      for (int i = begin; i < end; ++i)
-        if (curv[i] >= 0.0f) order.push_back(i);
-      std::sort(order.begin(), order.end(), [&](int a, int b) { return curv[a] < curv[b] || (curv[a] == curv[b] && a < b); });
+      for (int i = begin; i < end; ++i) {
+        if (!(curv[i] >= 0.0f) || !valid[i]) continue;
+        if (!(curv[i] > params.edge_feat_threshold) && !(curv[i] < params.planar_feat_threshold)) continue;
+        std::uint32_t bits;
+        std::memcpy(&bits, &curv[i], sizeof bits);
+        order.push_back((static_cast<std::uint64_t>(bits) << 32) | static_cast<std::uint32_t>(i));
+      }
+      std::sort(order.begin(), order.end());
+      auto index = [](std::uint64_t key) { return static_cast<int>(key & 0xFFFFFFFFu); };
       // Edges: largest curvature first.
       int edges = 0;
       for (auto it = order.rbegin(); it != order.rend() && edges < params.max_edge_feats_per_sector; ++it) {
-        if (curv[*it] <= params.edge_feat_threshold) break;
-        if (!valid[*it]) continue;
-        pick(*it, out.edge_points, out.edge_time);
+        if (curv[index(*it)] <= params.edge_feat_threshold) break;
+        if (!valid[index(*it)]) continue;
+        pick(index(*it), out.edge_points, out.edge_time);
         ++edges;
       }
       // Planar: smallest curvature first.
       int planes = 0;
       for (auto it = order.begin(); it != order.end() && planes < params.max_planar_feats_per_sector; ++it) {
-        if (curv[*it] >= params.planar_feat_threshold) break;
-        if (!valid[*it]) continue;
-        pick(*it, out.planar_points, out.planar_time);
+        if (curv[index(*it)] >= params.planar_feat_threshold) break;
+        if (!valid[index(*it)]) continue;
+        pick(index(*it), out.planar_points, out.planar_time);
         ++planes;
       }
     }

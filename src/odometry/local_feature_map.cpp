@@ -35,7 +35,7 @@ void nearestIn(const KdTree3& tree, const Eigen::Vector3d& q, int k, double max_
   out.clear();
   KnnResult result;
   result.reset(k, max_dist);
-  tree.search(q, result, 0);
+  tree.search(q, result);
   for (int i = 0; i < result.size(); ++i) out.push_back(tree.point(result.index(i)));
 }
 }  // namespace

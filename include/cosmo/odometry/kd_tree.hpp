@@ -1,17 +1,15 @@
 #pragma once
 // k-nearest-neighbour search over a fixed set of 3D points, bounded by a maximum distance: a small k-d tree
 // built for speed (the local map builds one per scan): the points are copied as floats into one contiguous
-// array in tree order, each node is split at the median of its points' widest extent (std::nth_element),
-// and the search starts with the distance bound, so most branches are pruned at once. Several trees can be searched
-// into one running result (KnnResult), e.g. the per-scan trees of the local map.
+// array in tree order, each node is split at the middle of its points' widest extent (one partition pass),
+// and the search starts with the distance bound, so most branches are pruned at once.
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
 
 namespace cosmo {
 
-/// The k nearest points offered so far within a maximum distance, nearest first; each tagged with the tree
-/// it came from and its index in that tree's input.
+/// The k nearest points offered so far within a maximum distance, nearest first (index into the tree's input).
 class KnnResult {
  public:
   static constexpr int kMaxK = 32;
@@ -19,18 +17,32 @@ class KnnResult {
   void reset(int k, double max_dist);
   int size() const { return count_; }
   /// Squared distance a point must be below (or equal to, while the result is not full) to enter.
-  float bound() const { return count_ < k_ ? max_d2_ : d2_[k_ - 1]; }
+  float bound() const { return bound_; }
   /// Offers a point at squared distance d2 (ties: the earlier offer stays ahead).
-  void offer(float d2, std::uint32_t tree, std::uint32_t index);
+  void offer(float d2, std::uint32_t index) {
+    if (count_ < k_) {
+      if (!(d2 <= bound_)) return;
+      ++count_;
+    } else if (!(d2 < bound_)) {
+      return;
+    }
+    int i = count_ - 1;  // the free slot, or the dropped last one; shift the farther entries up
+    while (i > 0 && d2_[i - 1] > d2) {
+      d2_[i] = d2_[i - 1];
+      index_[i] = index_[i - 1];
+      --i;
+    }
+    d2_[i] = d2;
+    index_[i] = index;
+    if (count_ == k_) bound_ = d2_[k_ - 1];
+  }
   float squaredDistance(int i) const { return d2_[i]; }
-  std::uint32_t tree(int i) const { return tree_[i]; }
   std::uint32_t index(int i) const { return index_[i]; }
 
  private:
   int k_ = 0, count_ = 0;
-  float max_d2_ = 0.0f;
+  float bound_ = 0.0f;  ///< max_dist^2 until full, then the k-th squared distance
   float d2_[kMaxK];
-  std::uint32_t tree_[kMaxK];
   std::uint32_t index_[kMaxK];
 };
 
@@ -43,8 +55,8 @@ class KdTree3 {
   const std::vector<Eigen::Vector3d>& points() const { return points_; }
   /// Up to k nearest points within max_dist (m) of `query`, nearest first: their indices into `indices`.
   void knn(const Eigen::Vector3d& query, int k, double max_dist, std::vector<std::size_t>& indices) const;
-  /// Offers this tree's points near `query` to `result` (those that can enter it), tagged with `tree`.
-  void search(const Eigen::Vector3d& query, KnnResult& result, std::uint32_t tree) const;
+  /// Offers this tree's points near `query` to `result` (those that can enter it).
+  void search(const Eigen::Vector3d& query, KnnResult& result) const;
 
  private:
   struct Node {
@@ -59,8 +71,7 @@ class KdTree3 {
   };
   std::uint32_t buildNode(std::uint32_t begin, std::uint32_t end);
   /// offset: per axis, the query's distance to the node's cell (0 inside); min_d2: its squared norm.
-  void searchNode(std::uint32_t node, const float q[3], float offset[3], float min_d2, KnnResult& result,
-                  std::uint32_t tree) const;
+  void searchNode(std::uint32_t node, const float q[3], float offset[3], float min_d2, KnnResult& result) const;
 
   std::vector<Eigen::Vector3d> points_;
   std::vector<SortedPoint> sorted_;  ///< finite points in tree order
