@@ -1,6 +1,7 @@
 #include "cosmo/registration/fast_features.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/StdVector>
 #include <algorithm>
 #include <cmath>
 
@@ -14,6 +15,13 @@ namespace {
 
 constexpr int kBins = 11;
 constexpr int kBlock = 4;  ///< pairs per vector step of the pair-feature loop (one Float4)
+constexpr std::size_t kRow = 36;  ///< histogram row stride: 33 bins padded to a multiple of 4 floats
+
+/// acc[0..kRow) += w row[0..kRow) (both 16-byte aligned).
+inline void addScaledRow(float* acc, const float* row, float w) {
+  const Float4 ww(w);
+  for (std::size_t b = 0; b < kRow; b += 4) (Float4::load(acc + b) + Float4::load(row + b) * ww).store(acc + b);
+}
 
 /// atan2 within 2e-4 rad (odd minimax polynomial of atan on [0, 1] plus octant folding), branch-free: the
 /// angle is only binned into 11 bins, so libm's exact atan2f is not needed. Deterministic.
@@ -90,8 +98,9 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
   const std::size_t np = pairs.size();
   notifyStage(observer, "neighbours");
 
-  // Normals: covariance moments relative to each point (small numbers: float accumulation is accurate
-  // enough), accumulated per pair into both points (q and -q give the same second moments).
+  // Normals: covariance moments relative to each point (small numbers: float accumulation and a float
+  // eigensolver are accurate enough), accumulated per pair into both points (q and -q give the same second
+  // moments).
   std::vector<Eigen::Matrix<float, 9, 1>> mom(n, Eigen::Matrix<float, 9, 1>::Zero());  // m1 (3), xx xy xz yy yz zz
   std::vector<std::uint32_t> count(n, 1);  // the point itself
   for (std::size_t e = 0; e < np; ++e) {
@@ -111,17 +120,17 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
     const std::size_t k = count[i];
     if (k < std::max<std::size_t>(params.min_neighbors, 3)) continue;
     const Eigen::Matrix<float, 9, 1>& m = mom[i];
-    const Eigen::Vector3d mean = m.head<3>().cast<double>() / static_cast<double>(k);
-    Eigen::Matrix3d cov;
+    const Eigen::Vector3f mean = m.head<3>() / static_cast<float>(k);
+    Eigen::Matrix3f cov;
     cov << m(3), m(4), m(5), m(4), m(6), m(7), m(5), m(7), m(8);
-    cov = cov / static_cast<double>(k) - mean * mean.transpose();
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+    cov = cov / static_cast<float>(k) - mean * mean.transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3f> es;
     es.computeDirect(cov);
-    const Eigen::Vector3d ev = es.eigenvalues();  // ascending
-    if (!(ev(2) > 0.0)) continue;
-    const double linearity = (ev(2) - ev(1)) / ev(2);
+    const Eigen::Vector3f ev = es.eigenvalues();  // ascending
+    if (!(ev(2) > 0.f)) continue;
+    const float linearity = (ev(2) - ev(1)) / ev(2);
     if (linearity > params.max_linearity) continue;
-    Eigen::Vector3f nrm = es.eigenvectors().col(0).cast<float>();
+    Eigen::Vector3f nrm = es.eigenvectors().col(0);
     if (!nrm.allFinite()) continue;
     nrm.normalize();
     if (nrm.dot(-points[i]) < 0.f) nrm = -nrm;
@@ -133,7 +142,8 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
   // SPFH of every valid point over its valid neighbours within the SPFH radius. PCL's pair feature is
   // symmetric (swapping the two points selects the same source normal), so each pair is computed once and
   // counted in both histograms; the feature itself runs on kBlock pairs at a time (Float4).
-  std::vector<float> spfh(n * kFpfhDim, 0.f);
+  // Rows padded to kRow floats (16-byte aligned) so the FPFH sums run on Float4.
+  std::vector<float, Eigen::aligned_allocator<float>> spfh(n * kRow, 0.f);
   std::vector<int> spfh_count(n, 0);
   {
     std::vector<std::uint32_t> sel_i, sel_j;
@@ -162,8 +172,8 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
         pairFeatureBlock(&in[0][l], kChunk, b1 + l, b2 + l, b3 + l, ok + l);
       for (std::size_t l = 0; l < len; ++l) {
         if (!ok[l]) continue;
-        float* hi = &spfh[sel_i[s + l] * kFpfhDim];
-        float* hj = &spfh[sel_j[s + l] * kFpfhDim];
+        float* hi = &spfh[sel_i[s + l] * kRow];
+        float* hj = &spfh[sel_j[s + l] * kRow];
         ++hi[b1[l]], ++hi[b2[l]], ++hi[b3[l]];
         ++hj[b1[l]], ++hj[b2[l]], ++hj[b3[l]];
         ++spfh_count[sel_i[s + l]], ++spfh_count[sel_j[s + l]];
@@ -173,7 +183,7 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
   for (std::size_t i = 0; i < n; ++i)
     if (spfh_count[i] > 0) {
       const float s = 100.f / static_cast<float>(spfh_count[i]);
-      for (int b = 0; b < kFpfhDim; ++b) spfh[i * kFpfhDim + b] *= s;
+      for (int b = 0; b < kFpfhDim; ++b) spfh[i * kRow + b] *= s;
     }
   notifyStage(observer, "spfh");
 
@@ -204,12 +214,12 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
 
   // FPFH = own SPFH + distance-weighted mean of the neighbours' SPFH (within fpfh_radius); sub-histograms
   // normalised to 100. The sums run over the pair list into the keypoints' columns.
-  using Hist = Eigen::Matrix<float, kFpfhDim, 1>;
   std::vector<int> key_col(n, -1);
   for (std::size_t c = 0; c < out.keypoints.size(); ++c)
     key_col[static_cast<std::size_t>(out.kept[static_cast<std::size_t>(out.keypoints[c])])] = static_cast<int>(c);
-  out.features = FpfhMatrix::Zero(kFpfhDim, static_cast<Eigen::Index>(out.keypoints.size()));
-  std::vector<int> weight_count(out.keypoints.size(), 0);
+  const std::size_t nk = out.keypoints.size();
+  std::vector<float, Eigen::aligned_allocator<float>> sums(nk * kRow, 0.f);
+  std::vector<int> weight_count(nk, 0);
   for (std::size_t e = 0; e < np; ++e) {
     const float d2 = pairs[e].squared_distance;
     if (d2 > rf2 || d2 <= 0.f) continue;
@@ -217,19 +227,21 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
     if (!valid[i] || !valid[j] || (key_col[i] < 0 && key_col[j] < 0)) continue;
     const float w = 1.f / std::sqrt(d2);
     if (key_col[i] >= 0) {
-      out.features.col(key_col[i]) += Eigen::Map<const Hist>(&spfh[j * kFpfhDim]) * w;
+      addScaledRow(&sums[static_cast<std::size_t>(key_col[i]) * kRow], &spfh[j * kRow], w);
       ++weight_count[static_cast<std::size_t>(key_col[i])];
     }
     if (key_col[j] >= 0) {
-      out.features.col(key_col[j]) += Eigen::Map<const Hist>(&spfh[i * kFpfhDim]) * w;
+      addScaledRow(&sums[static_cast<std::size_t>(key_col[j]) * kRow], &spfh[i * kRow], w);
       ++weight_count[static_cast<std::size_t>(key_col[j])];
     }
   }
+  out.features.resize(kFpfhDim, static_cast<Eigen::Index>(nk));
   for (std::size_t c = 0; c < out.keypoints.size(); ++c) {
     const auto i = static_cast<std::size_t>(out.kept[static_cast<std::size_t>(out.keypoints[c])]);
     auto acc = out.features.col(static_cast<Eigen::Index>(c));
+    acc = Eigen::Map<const Eigen::Matrix<float, kFpfhDim, 1>>(&sums[c * kRow]);
     if (weight_count[c] > 0) acc /= static_cast<float>(weight_count[c]);
-    acc += Eigen::Map<const Hist>(&spfh[i * kFpfhDim]);
+    acc += Eigen::Map<const Eigen::Matrix<float, kFpfhDim, 1>>(&spfh[i * kRow]);
     for (int s = 0; s < 3; ++s) {
       const float sum = acc.segment<kBins>(s * kBins).sum();
       if (sum > 0.f) acc.segment<kBins>(s * kBins) *= 100.f / sum;

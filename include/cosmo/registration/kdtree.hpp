@@ -93,7 +93,7 @@ class KdTree {
   using Metric = std::conditional_t<(Dim > 4), RowL2, nanoflann::L2_Simple_Adaptor<float, Adaptor>>;
   using Index = nanoflann::KDTreeSingleIndexAdaptor<Metric, Adaptor, Dim, std::uint32_t>;
   static nanoflann::KDTreeSingleIndexAdaptorParams params() {
-    return nanoflann::KDTreeSingleIndexAdaptorParams(10);
+    return nanoflann::KDTreeSingleIndexAdaptorParams(Dim > 4 ? 64 : 10);
   }
 
   /// nanoflann result set that accepts one point (closer than `bound`) and then ends the search.

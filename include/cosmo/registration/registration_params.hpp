@@ -36,7 +36,7 @@ struct RegistrationParams {
   double gnc_factor = 1.4;        ///< GNC-TLS: growth factor of the control parameter mu
   int gnc_max_iterations = 100;   ///< GNC-TLS: iteration cap
   double gnc_cost_tolerance = 1e-6;  ///< GNC-TLS: stop when the cost changes less than this
-  std::size_t max_rotation_pairs = 20000;  ///< cap on translation-invariant pairs used for the rotation
+  std::size_t max_rotation_pairs = 5000;   ///< cap on translation-invariant pairs used for the rotation
   // --- refinement ----------------------------------------------------------------------------------------
   bool refine = true;             ///< point-to-plane ICP on the downsampled full clouds after the global solve
   int icp_iterations = 20;        ///< ICP iteration cap
@@ -45,11 +45,11 @@ struct RegistrationParams {
   double icp_max_correction_m = 1.0;    ///< a refinement that moves farther than this is discarded (m) ...
   double icp_max_correction_deg = 5.0;  ///< ... or rotates more than this (deg), unless it raises the overlap
   // --- validity gate (never looks at ground truth) -------------------------------------------------------
-  std::size_t min_final_inliers = 5;   ///< accept only with at least this many consistent inliers
+  std::size_t min_final_inliers = 3;   ///< accept only with at least this many consistent inliers
   std::size_t min_correspondences = 10; ///< below this the problem is declared degenerate
   double min_inlier_ratio = 0.0;  ///< final inliers / correspondences must reach this (0 = off)
-  double min_overlap = 0.7;       ///< fraction of source points within icp_max_distance after the solve (0 = off)
-  double min_structure_overlap = 0.0;  ///< the same over the source's structure points only (0 = off)
+  double min_overlap = 0.5;       ///< fraction of source points within icp_max_distance after the solve (0 = off)
+  double min_structure_overlap = 0.62;  ///< the same over the source's structure points only (0 = off)
   double structure_max_normal_z = 0.9;  ///< structure point: |normal z| below this (not ground / ceiling-like)
 
   static RegistrationParams fromConfig(const ConfigNode& node);
