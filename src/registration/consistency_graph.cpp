@@ -3,6 +3,10 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <Eigen/Core>
+
+#include "cosmo/registration/float4.hpp"
+
 namespace cosmo {
 
 ConsistencyGraph::ConsistencyGraph(int n)
@@ -62,21 +66,26 @@ ConsistencyGraph ConsistencyGraph::fromCorrespondences(const std::vector<Eigen::
   const int n = static_cast<int>(source.size());
   ConsistencyGraph g(n);
   const float tol = static_cast<float>(tolerance);
-  // Structure-of-arrays copies so the inner loop vectorises.
-  std::vector<float> sx(n), sy(n), sz(n), tx(n), ty(n), tz(n);
+  // Structure-of-arrays copies, padded to a multiple of 4, so that the inner loop runs on Float4 (from the
+  // aligned block that holds i + 1; the lanes up to i are ignored).
+  const std::size_t padded = (static_cast<std::size_t>(n) + 3) / 4 * 4;
+  using Aligned = std::vector<float, Eigen::aligned_allocator<float>>;
+  Aligned sx(padded, 0.f), sy(padded, 0.f), sz(padded, 0.f), tx(padded, 0.f), ty(padded, 0.f), tz(padded, 0.f);
   for (int i = 0; i < n; ++i) {
     sx[i] = source[i].x(), sy[i] = source[i].y(), sz[i] = source[i].z();
     tx[i] = target[i].x(), ty[i] = target[i].y(), tz[i] = target[i].z();
   }
-  std::vector<unsigned char> ok(static_cast<std::size_t>(n));
+  std::vector<std::int32_t, Eigen::aligned_allocator<std::int32_t>> ok(padded);
+  const Float4 tol4(tol);
   for (int i = 0; i < n; ++i) {
-    const float ax = sx[i], ay = sy[i], az = sz[i], bx = tx[i], by = ty[i], bz = tz[i];
-    for (int j = i + 1; j < n; ++j) {
-      const float dsx = sx[j] - ax, dsy = sy[j] - ay, dsz = sz[j] - az;
-      const float dtx = tx[j] - bx, dty = ty[j] - by, dtz = tz[j] - bz;
-      const float ds = std::sqrt(dsx * dsx + dsy * dsy + dsz * dsz);
-      const float dt = std::sqrt(dtx * dtx + dty * dty + dtz * dtz);
-      ok[static_cast<std::size_t>(j)] = std::fabs(ds - dt) <= tol;
+    const Float4 ax(sx[i]), ay(sy[i]), az(sz[i]), bx(tx[i]), by(ty[i]), bz(tz[i]);
+    const std::size_t j0 = static_cast<std::size_t>(i + 1) / 4 * 4;
+    for (std::size_t j = j0; j < padded; j += 4) {
+      const Float4 dsx = Float4::load(&sx[j]) - ax, dsy = Float4::load(&sy[j]) - ay, dsz = Float4::load(&sz[j]) - az;
+      const Float4 dtx = Float4::load(&tx[j]) - bx, dty = Float4::load(&ty[j]) - by, dtz = Float4::load(&tz[j]) - bz;
+      const Float4 ds = sqrt(dsx * dsx + dsy * dsy + dsz * dsz);
+      const Float4 dt = sqrt(dtx * dtx + dty * dty + dtz * dtz);
+      (abs(ds - dt) <= tol4).storeMask(&ok[j]);
     }
     for (int j = i + 1; j < n; ++j)
       if (ok[static_cast<std::size_t>(j)]) g.addEdgeBits(i, j);

@@ -127,10 +127,11 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
     cand.T_target_source = est.T;
     cand.final_inliers = est.inliers.size();
 
-    // Local refinement on the downsampled clouds; kept when small, or when it raises the overlap.
+    // Local refinement on the downsampled clouds; kept when small, or when it raises the overlap (the overlap
+    // before it is only needed for that comparison).
     if (target_tree) {
-      const double overlap0 = overlapFraction(src.points, *target_tree, cand.T_target_source, p.icp_max_distance);
-      cand.overlap = overlap0;
+      auto overlapAt = [&](const Pose3& T) { return overlapFraction(src.points, *target_tree, T, p.icp_max_distance); };
+      bool have_overlap = false;
       if (p.refine && p.icp_iterations > 0) {
         const IcpResult icp = refinePointToPlane(icp_points, *target_tree, tgt.points, tgt.normals,
                                                  cand.T_target_source, p.icp_max_distance, p.icp_iterations);
@@ -138,14 +139,19 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
         const bool small = delta.translation().norm() <= p.icp_max_correction_m &&
                            rotationAngle(delta) <= p.icp_max_correction_deg * M_PI / 180.0;
         if (icp.matched >= 6 && icp.T.matrix().allFinite()) {
-          const double overlap1 = overlapFraction(src.points, *target_tree, icp.T, p.icp_max_distance);
+          const double overlap1 = overlapAt(icp.T);
+          const double overlap0 = small ? 0.0 : overlapAt(cand.T_target_source);
           if (small || overlap1 > overlap0) {
             cand.T_target_source = icp.T;
             cand.refined = true;
             cand.overlap = overlap1;
+          } else {
+            cand.overlap = overlap0;
           }
+          have_overlap = true;
         }
       }
+      if (!have_overlap) cand.overlap = overlapAt(cand.T_target_source);
     }
     if (target_tree)
       cand.structure_overlap = overlapFraction(src_structure, *target_tree, cand.T_target_source, p.icp_max_distance);

@@ -79,7 +79,7 @@ IcpResult refinePointToPlane(const std::vector<Eigen::Vector3f>& source, const K
     dT.translation() = dx.tail<3>();
     T = dT * T;
     out.T = T;
-    if (dx.head<3>().norm() < 1e-5 && dx.tail<3>().norm() < 1e-4) {
+    if (dx.head<3>().norm() < 1e-4 && dx.tail<3>().norm() < 1e-3) {  // 0.006 deg, 1 mm
       out.converged = true;
       break;
     }

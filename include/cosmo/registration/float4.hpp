@@ -32,6 +32,7 @@ struct Float4 {
   // Comparisons give lane masks (all bits set where true), used by select() and maskAnd().
   friend Float4 operator<(Float4 a, Float4 b) { return _mm_cmplt_ps(a.v, b.v); }
   friend Float4 operator>(Float4 a, Float4 b) { return _mm_cmpgt_ps(a.v, b.v); }
+  friend Float4 operator<=(Float4 a, Float4 b) { return _mm_cmple_ps(a.v, b.v); }
   friend Float4 maskAnd(Float4 a, Float4 b) { return _mm_and_ps(a.v, b.v); }
   /// mask ? a : b per lane.
   friend Float4 select(Float4 mask, Float4 a, Float4 b) {
@@ -81,6 +82,7 @@ struct Float4 {
   friend Float4 min(Float4 a, Float4 b) { return make([&](int k) { return a.v[k] < b.v[k] ? a.v[k] : b.v[k]; }); }
   friend Float4 operator<(Float4 a, Float4 b) { return make([&](int k) { return maskValue(a.v[k] < b.v[k]); }); }
   friend Float4 operator>(Float4 a, Float4 b) { return make([&](int k) { return maskValue(a.v[k] > b.v[k]); }); }
+  friend Float4 operator<=(Float4 a, Float4 b) { return make([&](int k) { return maskValue(a.v[k] <= b.v[k]); }); }
   friend Float4 maskAnd(Float4 a, Float4 b) {
     return make([&](int k) { return maskValue(isSet(a.v[k]) && isSet(b.v[k])); });
   }
