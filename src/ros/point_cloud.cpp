@@ -3,9 +3,11 @@
 #include <sensor_msgs/point_cloud2_iterator.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 namespace cosmo::ros_glue {
 
@@ -16,18 +18,32 @@ const sensor_msgs::PointField* findField(const sensor_msgs::PointCloud2& msg, co
   return nullptr;
 }
 
-double readAs(const uint8_t* p, uint8_t datatype) {
-  switch (datatype) {
-    case sensor_msgs::PointField::INT8: { int8_t v; std::memcpy(&v, p, 1); return v; }
-    case sensor_msgs::PointField::UINT8: return *p;
-    case sensor_msgs::PointField::INT16: { int16_t v; std::memcpy(&v, p, 2); return v; }
-    case sensor_msgs::PointField::UINT16: { uint16_t v; std::memcpy(&v, p, 2); return v; }
-    case sensor_msgs::PointField::INT32: { int32_t v; std::memcpy(&v, p, 4); return v; }
-    case sensor_msgs::PointField::UINT32: { uint32_t v; std::memcpy(&v, p, 4); return v; }
-    case sensor_msgs::PointField::FLOAT32: { float v; std::memcpy(&v, p, 4); return v; }
-    case sensor_msgs::PointField::FLOAT64: { double v; std::memcpy(&v, p, 8); return v; }
+/// Calls f(i, value) with every point's value of `field` (as stored: int8 ... float64), one pass over the data;
+/// the datatype switch is outside the loop. An unknown datatype gives NaN.
+template <typename F>
+void forEachValue(const sensor_msgs::PointCloud2& msg, std::size_t n, const sensor_msgs::PointField& field, F&& f) {
+  const uint8_t* p = msg.data.data() + field.offset;
+  const std::size_t step = msg.point_step;
+  auto loop = [&](auto zero) {
+    using T = decltype(zero);
+    for (std::size_t i = 0; i < n; ++i, p += step) {
+      T v;
+      std::memcpy(&v, p, sizeof v);
+      f(i, v);
+    }
+  };
+  switch (field.datatype) {
+    case sensor_msgs::PointField::INT8: loop(int8_t{}); break;
+    case sensor_msgs::PointField::UINT8: loop(uint8_t{}); break;
+    case sensor_msgs::PointField::INT16: loop(int16_t{}); break;
+    case sensor_msgs::PointField::UINT16: loop(uint16_t{}); break;
+    case sensor_msgs::PointField::INT32: loop(int32_t{}); break;
+    case sensor_msgs::PointField::UINT32: loop(uint32_t{}); break;
+    case sensor_msgs::PointField::FLOAT32: loop(float{}); break;
+    case sensor_msgs::PointField::FLOAT64: loop(double{}); break;
+    default:
+      for (std::size_t i = 0; i < n; ++i) f(i, std::numeric_limits<double>::quiet_NaN());
   }
-  return std::numeric_limits<double>::quiet_NaN();
 }
 
 std::size_t sizeOf(uint8_t datatype) {
@@ -61,29 +77,40 @@ Scan fromPointCloud2(const sensor_msgs::PointCloud2& msg, bool stamp_at_end, con
     if (!ft) ft = findField(msg, "timestamp");
     t_scale = 1.0;
   }
+  for (const auto* f : {fi, fr, ft})
+    if (f && f->offset + sizeOf(f->datatype) > msg.point_step)
+      throw std::runtime_error(source + ": field '" + f->name + "' lies outside point_step");
   Scan scan;
   scan.stamp = static_cast<StampNs>(msg.header.stamp.sec) * 1000000000ULL + msg.header.stamp.nsec;
-  scan.reserve(n);
-  if (!fi) scan.intensity.clear();
-  for (std::size_t i = 0; i < n; ++i) {
-    const uint8_t* p = msg.data.data() + i * msg.point_step;
-    scan.points.emplace_back(static_cast<float>(readAs(p + fx->offset, fx->datatype)),
-                             static_cast<float>(readAs(p + fy->offset, fy->datatype)),
-                             static_cast<float>(readAs(p + fz->offset, fz->datatype)));
-    if (fi) scan.intensity.push_back(static_cast<float>(readAs(p + fi->offset, fi->datatype)));
-    if (fr) scan.ring.push_back(static_cast<uint16_t>(readAs(p + fr->offset, fr->datatype)));
-    if (ft) scan.time.push_back(static_cast<float>(readAs(p + ft->offset, ft->datatype) * t_scale));
+  scan.points.resize(n);
+  forEachValue(msg, n, *fx, [&scan](std::size_t i, auto v) { scan.points[i].x() = static_cast<float>(v); });
+  forEachValue(msg, n, *fy, [&scan](std::size_t i, auto v) { scan.points[i].y() = static_cast<float>(v); });
+  forEachValue(msg, n, *fz, [&scan](std::size_t i, auto v) { scan.points[i].z() = static_cast<float>(v); });
+  if (fi) {
+    scan.intensity.resize(n);
+    forEachValue(msg, n, *fi, [&scan](std::size_t i, auto v) { scan.intensity[i] = static_cast<float>(v); });
+  }
+  if (fr) {
+    scan.ring.resize(n);
+    forEachValue(msg, n, *fr, [&scan](std::size_t i, auto v) {
+      const double d = static_cast<double>(v);  // a float ring field may hold NaN: line 0, never UB
+      scan.ring[i] = static_cast<uint16_t>(std::isfinite(d) ? std::clamp(d, 0.0, 65535.0) : 0.0);
+    });
   }
   if (ft && n > 0) {
-    // Times relative to the stamp: with the stamp at the sweep end the latest point sits at 0.
+    // In double until made relative: absolute epoch seconds (Velodyne `time`) would lose minutes in float.
+    std::vector<double> t(n);
+    forEachValue(msg, n, *ft, [&t, t_scale](std::size_t i, auto v) { t[i] = static_cast<double>(v) * t_scale; });
     double t_max = -std::numeric_limits<double>::infinity(), t_min = -t_max;
-    for (float t : scan.time) {
-      if (std::isfinite(t)) { t_max = std::max<double>(t_max, t); t_min = std::min<double>(t_min, t); }
+    for (double ti : t) {
+      if (std::isfinite(ti)) { t_max = std::max(t_max, ti); t_min = std::min(t_min, ti); }
     }
-    // Absolute stamps (Velodyne `time` in epoch seconds) are made relative to the message stamp.
+    // Times relative to the stamp: with the stamp at the sweep end the latest point sits at 0; absolute stamps
+    // are made relative to the message stamp.
     const bool absolute = t_min > 1e6;
     const double ref = absolute ? toSeconds(scan.stamp) : (stamp_at_end ? t_max : 0.0);
-    for (float& t : scan.time) t = static_cast<float>(t - ref);
+    scan.time.resize(n);
+    for (std::size_t i = 0; i < n; ++i) scan.time[i] = static_cast<float>(t[i] - ref);
   }
   return scan;
 }

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <deque>
+#include <algorithm>
 #include <future>
 #include <iostream>
 #include <sstream>
@@ -41,7 +42,7 @@ namespace {
 void usage() {
   std::cerr << "usage: cosmo_generate SEQUENCE.yaml [--comm wifi,proradio] [--seed N] [--out DIR]\n"
                "         [--config-dir DIR] [--noise-models FILE] [--outlier-rule fidelity|squared]\n"
-               "         [--reference-odometry] [--serial-odometry] [--max-seconds S] [--quiet]\n"
+               "         [--reference-odometry] [--serial-odometry] [--lookahead N] [--max-seconds S] [--quiet]\n"
                "  --comm LIST          comm models, comma separated (wifi, proradio, or a config/comm/*.yaml); default wifi\n"
                "  --seed N             overrides the sequence config's seed\n"
                "  --out DIR            output folder (default: current folder)\n"
@@ -52,6 +53,8 @@ void usage() {
                "  --reference-odometry take odometry from the reference trajectories instead of LOAM\n"
                "  --serial-odometry    run LOAM in the main thread (default: one thread per robot, ahead of the\n"
                "                       team; the output is the same byte for byte)\n"
+               "  --lookahead N        scans per robot LOAM may run ahead of the team (default 32; more keeps both\n"
+               "                       cores busy through bursts of loop-closure registration, at ~1.5 MB a scan)\n"
                "  --max-seconds S      stop after S seconds of sequence time (quick looks)\n";
 }
 
@@ -89,6 +92,7 @@ int main(int argc, char** argv) {
   bool seed_given = false, reference_odometry = false, quiet = false, serial_odometry = false;
   unsigned long long seed = 0;
   double max_seconds = 0.0;
+  std::size_t lookahead = 32;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -109,6 +113,7 @@ int main(int argc, char** argv) {
       else if (a == "--reference-odometry") reference_odometry = true;
       else if (a == "--serial-odometry") serial_odometry = true;
       else if (a == "--max-seconds") max_seconds = std::stod(value());
+      else if (a == "--lookahead") lookahead = std::max<std::size_t>(1, std::stoul(value()));
       else if (a == "--quiet") quiet = true;
       else if (a == "-h" || a == "--help") { usage(); return 0; }
       else if (!a.empty() && a[0] == '-') { std::cerr << "unknown option " << a << "\n"; usage(); return 2; }
@@ -175,7 +180,7 @@ int main(int argc, char** argv) {
         std::future<OdometryResult> odometry;
       };
       std::deque<Pending> pending;
-      const std::size_t window = 8 * run.robots().size();
+      const std::size_t window = lookahead * run.robots().size();
       auto consume = [&](const Scan& s, char r, std::future<OdometryResult>* odometry) {
         if (odometry) run.addScan(r, s, odometry->get());
         else run.addScan(r, s);
