@@ -78,6 +78,14 @@ RadioParams radioFor(const std::string& comm, const std::string& config_dir, std
   return RadioParams::byName(label);
 }
 
+/// CPU seconds (user + system) of every thread of this process so far.
+double processCpuSeconds() {
+  struct rusage ru {};
+  getrusage(RUSAGE_SELF, &ru);
+  return static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
+
 double peakRssMb() {
   struct rusage ru {};
   getrusage(RUSAGE_SELF, &ru);
@@ -164,6 +172,7 @@ int main(int argc, char** argv) {
       params.radio = radioFor(comm, config_dir, label);
       const StampNs origin = radioGridOrigin(timing.start(), params.radio.step);
       bench::Stopwatch sw;
+      const double cpu_before = processCpuSeconds();
       TeamRun run(config.name + "_" + label, references, params, deriveSeed(config.seed, "radio"), origin);
       MergedScanStream stream = ros_glue::openSequenceStream(config, timing);
       char robot;
@@ -227,8 +236,10 @@ int main(int argc, char** argv) {
       std::printf("  validate: %zu violations\n", violations.size());
       for (std::size_t i = 0; i < violations.size() && i < 10; ++i)
         std::printf("    %s\n", violations[i].str().c_str());
-      std::printf("  wall %.1f s for %.1f s of sequence (%.2fx real time), peak memory %.0f MB\n", wall, duration,
-                  duration / std::max(wall, 1e-9), peakRssMb());
+      const double cpu = processCpuSeconds() - cpu_before;
+      std::printf("  wall %.1f s for %.1f s of sequence (%.2fx real time), CPU %.1f s (%.0f %% of one core), peak memory "
+                  "%.0f MB\n", wall, duration, duration / std::max(wall, 1e-9), cpu, 100.0 * cpu / std::max(wall, 1e-9),
+                  peakRssMb());
     }
     std::printf("total wall %.1f s\n", total.elapsedMs() * 1e-3);
   } catch (const std::exception& e) {
