@@ -146,37 +146,41 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
   std::vector<float, Eigen::aligned_allocator<float>> spfh(n * kRow, 0.f);
   std::vector<int> spfh_count(n, 0);
   {
-    std::vector<std::uint32_t> sel_i, sel_j;
-    sel_i.reserve(np), sel_j.reserve(np);
-    for (std::size_t e = 0; e < np; ++e) {
-      const std::uint32_t i = pairs[e].first, j = pairs[e].second;
-      if (pairs[e].squared_distance <= rs2 && valid[i] && valid[j]) sel_i.push_back(i), sel_j.push_back(j);
-    }
-    // Chunks of kChunk pairs: gathered into structure-of-arrays buffers first (so the vector loads do not wait
-    // on just-written scalars), features in blocks of kBlock, then the histogram increments.
+    // Chunks of up to kChunk selected pairs (within the SPFH radius, both valid): gathered into
+    // structure-of-arrays buffers first (so the vector loads do not wait on just-written scalars), features in
+    // blocks of kBlock, then the histogram increments.
     constexpr std::size_t kChunk = 256;
     alignas(16) float in[12][kChunk];
     alignas(16) std::int32_t b1[kChunk], b2[kChunk], b3[kChunk], ok[kChunk];
-    for (std::size_t s = 0; s < sel_i.size(); s += kChunk) {
-      const std::size_t len = std::min(kChunk, sel_i.size() - s);
-      const std::size_t padded = (len + kBlock - 1) / kBlock * kBlock;
-      for (std::size_t l = 0; l < padded; ++l) {
-        const std::size_t e = s + std::min(l, len - 1);  // the tail repeats the last pair; not counted
-        const float* p1 = points[sel_i[e]].data();
-        const float* p2 = points[sel_j[e]].data();
-        const float* n1 = normals[sel_i[e]].data();
-        const float* n2 = normals[sel_j[e]].data();
-        for (int k = 0; k < 3; ++k) in[k][l] = p1[k], in[3 + k][l] = n1[k], in[6 + k][l] = p2[k], in[9 + k][l] = n2[k];
+    std::uint32_t ci[kChunk], cj[kChunk];
+    std::size_t e = 0;
+    while (e < np) {
+      std::size_t len = 0;
+      for (; e < np && len < kChunk; ++e) {
+        const std::uint32_t i = pairs[e].first, j = pairs[e].second;
+        if (pairs[e].squared_distance > rs2 || !valid[i] || !valid[j]) continue;
+        ci[len] = i, cj[len] = j;
+        const float* p1 = points[i].data();
+        const float* p2 = points[j].data();
+        const float* n1 = normals[i].data();
+        const float* n2 = normals[j].data();
+        for (int k = 0; k < 3; ++k)
+          in[k][len] = p1[k], in[3 + k][len] = n1[k], in[6 + k][len] = p2[k], in[9 + k][len] = n2[k];
+        ++len;
       }
+      if (len == 0) break;
+      const std::size_t padded = (len + kBlock - 1) / kBlock * kBlock;
+      for (std::size_t l = len; l < padded; ++l)  // the tail repeats the last pair; not counted
+        for (int k = 0; k < 12; ++k) in[k][l] = in[k][len - 1];
       for (std::size_t l = 0; l < padded; l += kBlock)
         pairFeatureBlock(&in[0][l], kChunk, b1 + l, b2 + l, b3 + l, ok + l);
       for (std::size_t l = 0; l < len; ++l) {
         if (!ok[l]) continue;
-        float* hi = &spfh[sel_i[s + l] * kRow];
-        float* hj = &spfh[sel_j[s + l] * kRow];
+        float* hi = &spfh[ci[l] * kRow];
+        float* hj = &spfh[cj[l] * kRow];
         ++hi[b1[l]], ++hi[b2[l]], ++hi[b3[l]];
         ++hj[b1[l]], ++hj[b2[l]], ++hj[b3[l]];
-        ++spfh_count[sel_i[s + l]], ++spfh_count[sel_j[s + l]];
+        ++spfh_count[ci[l]], ++spfh_count[cj[l]];
       }
     }
   }

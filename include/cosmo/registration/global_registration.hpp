@@ -6,8 +6,9 @@
 // that solution explains) is solved and verified, up to max_hypotheses; the first one the gate accepts (else
 // the one with the largest overlap) is reported. Repetitive or symmetric scenes (a street seen from the
 // opposite direction) give a wrong largest clique whose solution overlaps poorly.
-// The gate looks only at the registration's own evidence (inlier counts), never at a reference pose: a wrong
-// loop closure it accepts is a realistic outlier.
+// The gate looks only at the registration's own evidence (inlier counts, the overlap of the source with the
+// target at the solution, and that overlap over the source's structure points, i.e. without ground), never at
+// a reference pose: a wrong loop closure it accepts is a realistic outlier.
 #include <cstddef>
 #include <string>
 

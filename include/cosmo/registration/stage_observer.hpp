@@ -8,8 +8,8 @@ namespace cosmo {
 class StageObserver {
  public:
   virtual ~StageObserver() = default;
-  /// Called when the stage `name` has finished (names: downsample, normals, fpfh, matching, pruning, solve,
-  /// refine, gate).
+  /// Called when the stage `name` has finished (names: downsample, neighbours, normals, spfh, fpfh, matching,
+  /// pruning, solve, refine, gate; PCL's feature backend reports normals and fpfh only).
   virtual void stageDone(const std::string& name) = 0;
 };
 
