@@ -134,27 +134,33 @@ std::shared_ptr<const Scan> RobotFrontend::keyframeScanShared(std::size_t index)
 }
 
 const Scan* RobotFrontend::storedScan(char robot, std::size_t index) const {
+  return storedScanShared(robot, index).get();
+}
+
+std::shared_ptr<const Scan> RobotFrontend::storedScanShared(char robot, std::size_t index) const {
   if (robot == robot_) {
     auto it = own_scans_.find(index);
-    return it == own_scans_.end() ? nullptr : it->second.get();
+    return it == own_scans_.end() ? nullptr : it->second;
   }
   auto t = teammate_scans_.find(robot);
   if (t == teammate_scans_.end()) return nullptr;
   auto it = t->second.find(index);
-  return it == t->second.end() ? nullptr : it->second.get();
+  return it == t->second.end() ? nullptr : it->second;
+}
+
+void RobotFrontend::shareFeatureCache(std::shared_ptr<FeatureCache> cache) {
+  if (!cache) throw std::invalid_argument("robot frontend: null feature cache");
+  feature_cache_ = std::move(cache);
 }
 
 const FeatureCloud& RobotFrontend::features(char robot, std::size_t index) {
-  const Scan* scan = storedScan(robot, index);
+  const std::shared_ptr<const Scan> scan = storedScanShared(robot, index);
   if (!scan) throw std::logic_error("robot frontend: no stored scan for a place-recognition candidate");
   if (!params_.cache_features) {
     scratch_features_ = registration_.prepare(*scan);
     return scratch_features_;
   }
-  const auto key = std::make_pair(robot, index);
-  auto it = feature_cache_.find(key);
-  if (it == feature_cache_.end()) it = feature_cache_.emplace(key, registration_.prepare(*scan)).first;
-  return it->second;
+  return feature_cache_->get(scan, [this](const Scan& s) { return registration_.prepare(s); });
 }
 
 LoopClosureAttempt RobotFrontend::registerPair(char query_robot, const LoopCandidate& c, StampNs computed_at) {

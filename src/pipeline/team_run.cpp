@@ -23,8 +23,13 @@ TeamRun::TeamRun(std::string dataset_name, std::map<char, Trajectory> references
       radio_(params.radio, keysOf(references), radio_seed),
       recorder_(std::move(dataset_name), keysOf(references), params.noise, params.outlier_rule),
       origin_(time_origin) {
-  for (auto& [robot, ref] : references)
+  // One feature cache for the team: a delivered scan is the sender's own object, so its features are computed
+  // once, not once per robot that registers against it (same results).
+  auto features = std::make_shared<FeatureCache>();
+  for (auto& [robot, ref] : references) {
     frontends_[robot] = std::make_unique<RobotFrontend>(robot, params.frontend, std::move(ref));
+    frontends_[robot]->shareFeatureCache(features);
+  }
 }
 
 std::vector<char> TeamRun::robots() const { return radio_.robots(); }

@@ -136,3 +136,41 @@ TEST(RobotFrontend, ExternalOdometryAndDegenerateScansDoNotCrash) {
   EXPECT_FALSE(ext.hasReference());
   EXPECT_FALSE(ext.keyframes().front().reference.has_value());
 }
+
+TEST(RobotFrontend, SharedFeatureCacheComputesADeliveredScanOnceWithTheSameResult) {
+  const auto& a = team()[0];
+  const auto& b = team()[1];
+  // The same two robots twice: own caches, and one cache for both (as TeamRun runs them).
+  RobotFrontend fa('a', testParams(), sensorReference(a)), fb('b', testParams(), sensorReference(b));
+  RobotFrontend sa('a', testParams(), sensorReference(a)), sb('b', testParams(), sensorReference(b));
+  auto shared = std::make_shared<FeatureCache>();
+  sa.shareFeatureCache(shared);
+  sb.shareFeatureCache(shared);
+  for (std::size_t i = 0; i < 5; ++i) {
+    for (RobotFrontend* f : {&fa, &sa}) f->processScan(a.scans[i], f->reference().atClamped(a.scans[i].stamp));
+    for (RobotFrontend* f : {&fb, &sb}) f->processScan(b.scans[i], f->reference().atClamped(b.scans[i].stamp));
+  }
+  // b registers a's keyframe 0 (the sender's own object), then a registers b's keyframe 0
+  const auto own_ab = fb.receiveTeammateScan('a', 0, fa.keyframeScanShared(0), 1000);
+  const auto own_ba = fa.receiveTeammateScan('b', 0, fb.keyframeScanShared(0), 2000);
+  const auto sh_ab = sb.receiveTeammateScan('a', 0, sa.keyframeScanShared(0), 1000);
+  const std::size_t after_first = shared->size();
+  const auto sh_ba = sa.receiveTeammateScan('b', 0, sb.keyframeScanShared(0), 2000);
+  ASSERT_FALSE(own_ab.empty());
+  ASSERT_EQ(own_ab.size(), sh_ab.size());
+  ASSERT_EQ(own_ba.size(), sh_ba.size());
+  for (std::size_t i = 0; i < own_ab.size(); ++i) {
+    EXPECT_EQ(own_ab[i].accepted, sh_ab[i].accepted);
+    EXPECT_TRUE(own_ab[i].measurement.matrix() == sh_ab[i].measurement.matrix());  // bit for bit
+  }
+  for (std::size_t i = 0; i < own_ba.size(); ++i)
+    EXPECT_TRUE(own_ba[i].measurement.matrix() == sh_ba[i].measurement.matrix());
+  // b's pair put both keyframe-0 clouds in the cache; a's pair, over the same two scans, computed nothing new
+  EXPECT_EQ(after_first, 2u);
+  EXPECT_EQ(shared->size(), 2u);
+  // a copied scan is another object: its own entry, never another scan's features
+  const auto copy = sb.receiveTeammateScan('a', 1, *sa.keyframeScan(0), 3000);
+  ASSERT_FALSE(copy.empty());
+  EXPECT_EQ(shared->size(), 3u);
+  EXPECT_TRUE(copy.front().measurement.matrix() == sh_ab.front().measurement.matrix());
+}

@@ -22,6 +22,7 @@
 #include "cosmo/common/trajectory.hpp"
 #include "cosmo/odometry/keyframer.hpp"
 #include "cosmo/odometry/loam_odometry.hpp"
+#include "cosmo/pipeline/feature_cache.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/place_recognition/place_recognizer.hpp"
 #include "cosmo/registration/global_registration.hpp"
@@ -81,6 +82,10 @@ class RobotFrontend {
   std::vector<LoopClosureAttempt> receiveTeammateScan(char teammate, std::size_t index,
                                                       std::shared_ptr<const Scan> scan, StampNs received_at);
 
+  /// Registration features cached in `cache` from now on, shared with other front-ends of this process that use
+  /// the same registration parameters (TeamRun); the results are the same as with the own cache.
+  void shareFeatureCache(std::shared_ptr<FeatureCache> cache);
+
   /// Appends a reference (world) sensor pose as it arrives (live use); stamps not after the last are ignored.
   void appendReference(StampNs stamp, const Pose3& sensor_in_world);
 
@@ -108,6 +113,7 @@ class RobotFrontend {
   LoopClosureAttempt registerPair(char own_query_robot, const LoopCandidate& c, StampNs computed_at);
   const FeatureCloud& features(char robot, std::size_t index);
   const Scan* storedScan(char robot, std::size_t index) const;
+  std::shared_ptr<const Scan> storedScanShared(char robot, std::size_t index) const;
 
   char robot_;
   FrontendParams params_;
@@ -120,7 +126,7 @@ class RobotFrontend {
   std::vector<KeyframeRecord> keyframes_;
   std::map<std::size_t, std::shared_ptr<const Scan>> own_scans_;
   std::map<char, std::map<std::size_t, std::shared_ptr<const Scan>>> teammate_scans_;
-  std::map<std::pair<char, std::size_t>, FeatureCloud> feature_cache_;
+  std::shared_ptr<FeatureCache> feature_cache_ = std::make_shared<FeatureCache>();
   FeatureCloud scratch_features_;
 
   Trajectory recent_odometry_;  ///< last few odometry poses (dewarping without a reference)
