@@ -101,28 +101,37 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
   // Normals: covariance moments relative to each point (small numbers: float accumulation and a float
   // eigensolver are accurate enough), accumulated per pair into both points (q and -q give the same second
   // moments).
-  std::vector<Eigen::Matrix<float, 9, 1>> mom(n, Eigen::Matrix<float, 9, 1>::Zero());  // m1 (3), xx xy xz yy yz zz
+  // Rows of kMoments floats, three Float4: [x y z 0 | xx xy xz yy | yz zz 0 0].
+  constexpr std::size_t kMoments = 12;
+  std::vector<float, Eigen::aligned_allocator<float>> mom(n * kMoments, 0.f);
   std::vector<std::uint32_t> count(n, 1);  // the point itself
   for (std::size_t e = 0; e < np; ++e) {
     if (pairs[e].squared_distance > rn2) continue;
     const std::uint32_t i = pairs[e].first, j = pairs[e].second;
     ++count[i], ++count[j];
     const Eigen::Vector3f q = points[j] - points[i];
-    Eigen::Matrix<float, 9, 1> m;
-    m << q.x(), q.y(), q.z(), q.x() * q.x(), q.x() * q.y(), q.x() * q.z(), q.y() * q.y(), q.y() * q.z(), q.z() * q.z();
-    mom[i] += m;
-    m.head<3>() = -m.head<3>();
-    mom[j] += m;
+    const float x = q.x(), y = q.y(), z = q.z();
+    const Float4 first(x, y, z, 0.f);
+    const Float4 second = Float4(x, x, x, y) * Float4(x, y, z, y);
+    const Float4 third = Float4(y, z, 0.f, 0.f) * Float4(z, z, 0.f, 0.f);
+    float* mi = &mom[i * kMoments];
+    float* mj = &mom[j * kMoments];
+    (Float4::load(mi) + first).store(mi);
+    (Float4::load(mi + 4) + second).store(mi + 4);
+    (Float4::load(mi + 8) + third).store(mi + 8);
+    (Float4::load(mj) + -first).store(mj);
+    (Float4::load(mj + 4) + second).store(mj + 4);
+    (Float4::load(mj + 8) + third).store(mj + 8);
   }
   std::vector<Eigen::Vector3f> normals(n, Eigen::Vector3f::Zero());
   std::vector<unsigned char> valid(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t k = count[i];
     if (k < std::max<std::size_t>(params.min_neighbors, 3)) continue;
-    const Eigen::Matrix<float, 9, 1>& m = mom[i];
-    const Eigen::Vector3f mean = m.head<3>() / static_cast<float>(k);
+    const float* m = &mom[i * kMoments];
+    const Eigen::Vector3f mean = Eigen::Vector3f(m[0], m[1], m[2]) / static_cast<float>(k);
     Eigen::Matrix3f cov;
-    cov << m(3), m(4), m(5), m(4), m(6), m(7), m(5), m(7), m(8);
+    cov << m[4], m[5], m[6], m[5], m[7], m[8], m[6], m[8], m[9];
     cov = cov / static_cast<float>(k) - mean * mean.transpose();
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3f> es;
     es.computeDirect(cov);

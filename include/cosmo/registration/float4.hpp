@@ -18,6 +18,7 @@ struct Float4 {
   Float4() = default;
   Float4(__m128 x) : v(x) {}
   explicit Float4(float x) : v(_mm_set1_ps(x)) {}
+  Float4(float a, float b, float c, float d) : v(_mm_setr_ps(a, b, c, d)) {}
   static Float4 load(const float* p) { return _mm_load_ps(p); }  ///< 16-byte aligned
   void store(float* p) const { _mm_store_ps(p, v); }
   friend Float4 operator+(Float4 a, Float4 b) { return _mm_add_ps(a.v, b.v); }
@@ -50,6 +51,7 @@ struct Float4 {
   float v[4];
   Float4() = default;
   explicit Float4(float x) : v{x, x, x, x} {}
+  Float4(float a, float b, float c, float d) : v{a, b, c, d} {}
   static Float4 load(const float* p) { return make([&](int k) { return p[k]; }); }
   void store(float* p) const {
     for (int k = 0; k < 4; ++k) p[k] = v[k];
