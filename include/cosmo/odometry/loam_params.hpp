@@ -77,6 +77,10 @@ struct LoamParams {
   /// (25 m) and demo trial a from 0.021 to 0.010 deg/m.
   double deskew_reestimate_translation = 0.1;
   double deskew_reestimate_rotation_deg = 0.2;
+  /// The re-deskewed features are registered by this many robust Gauss-Newton steps (at most) on the first
+  /// registration's correspondences (the map did not change, the features moved by centimetres): no k-NN
+  /// search, no line / plane fits. 0: a full registration (re-association from the first estimate).
+  int deskew_refine_steps = 4;
   /// Deskew with the x / y / yaw part of the motion only. Off by default: with the prediction-first deskew
   /// above, the full 6-DoF deskew no longer oscillates on the hilly ATV trials (synthetic_ci a/b/c: equal or
   /// better), and the walking sway (roll / pitch) needs it (planar only: 0.037 deg/m over 25 m).
