@@ -70,6 +70,7 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
   if (map_.empty()) {
     r = fallback(r, period, "local map is empty");
     map_.add(transformed(r.pose, last_features_.edge_points), transformed(r.pose, last_features_.planar_points));
+    last_insert_pose_ = r.pose;
     return r;
   }
 
@@ -210,7 +211,14 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
     edges = last_features_.edge_points;
     planes = last_features_.planar_points;
   }
+  // A sensor that has not moved since the last inserted scan would put copies of the same points in the map
+  // (a standing start: three identical scans, plane fits on duplicate neighbours fail); the map keeps its scans.
+  const Pose3 since_insert = last_insert_pose_.inverse() * pose_;
+  if (since_insert.translation().norm() < params_.map_insert_min_translation &&
+      Eigen::AngleAxisd(since_insert.linear()).angle() < params_.map_insert_min_rotation_deg * kPi / 180.0)
+    return r;
   map_.add(transformed(pose_, edges), transformed(pose_, planes));
+  last_insert_pose_ = pose_;
   return r;
 }
 
