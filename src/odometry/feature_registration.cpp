@@ -155,6 +155,34 @@ RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFea
   }
   const std::size_t n = features.size();
   res.inlier_fraction = n ? static_cast<double>(good) / static_cast<double>(n) : 0.0;
+  res.constraints = std::move(cs);
+  return res;
+}
+
+RegistrationResult refineRedeskewed(const LoamFeatures& features, const RegistrationResult& previous,
+                                    const LoamParams& params, const DeskewReference& deskew, int max_steps) {
+  RegistrationResult res = previous;
+  std::vector<Eigen::Vector3d> edges, planes;
+  deskewConstantVelocity(features.edge_points, features.edge_time, deskew.delta, deskew.period, edges);
+  deskewConstantVelocity(features.planar_points, features.planar_time, deskew.delta, deskew.period, planes);
+  for (auto& c : res.constraints) c.point = c.edge ? edges[c.feature] : planes[c.feature];
+  int steps = 0;
+  for (; steps < max_steps; ++steps) {
+    int degenerate = 0;
+    const Vector6 dx = robustGaussNewtonStep(res.constraints, res.pose, params.huber_delta,
+                                             params.min_eigenvalue_per_constraint, degenerate);
+    res.degenerate_directions = degenerate;
+    res.pose = applyCentredUpdate(dx, res.pose);
+    if (dx.head<3>().norm() < params.rotation_convergence_thresh &&
+        dx.tail<3>().norm() < params.position_convergence_thresh)
+      break;
+  }
+  res.iterations = previous.iterations + 1;
+  std::size_t good = 0;
+  for (const auto& c : res.constraints)
+    if (std::abs(c.normal.dot(res.pose * c.point) - c.offset) < params.inlier_dist) ++good;
+  const std::size_t n = features.size();
+  res.inlier_fraction = n ? static_cast<double>(good) / static_cast<double>(n) : 0.0;
   return res;
 }
 

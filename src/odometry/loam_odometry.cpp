@@ -70,6 +70,7 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
   if (map_.empty()) {
     r = fallback(r, period, "local map is empty");
     map_.add(transformed(r.pose, last_features_.edge_points), transformed(r.pose, last_features_.planar_points));
+    last_insert_pose_ = r.pose;
     return r;
   }
 
@@ -130,7 +131,8 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
 
   // Registration from a guess, the features deskewed with deskew_delta. Only when the estimate differs from
   // that motion by more than deskew_reestimate_translation / _rotation (an unexpected motion: a sudden turn or
-  // stop, a dropped scan) is it registered again, deskewed with the estimate.
+  // stop, a dropped scan) is it registered again, deskewed with the estimate: a few Gauss-Newton steps on the
+  // first registration's correspondences (deskew_refine_steps), or a full registration when that is 0.
   auto registerFrom = [&](const Pose3& start) {
     std::optional<DeskewReference> deskew;
     if (has_times) deskew = DeskewReference{deskew_delta, period};
@@ -141,8 +143,18 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
       if (change.head<3>().norm() < params_.deskew_reestimate_rotation_deg * kPi / 180.0 &&
           change.tail<3>().norm() < params_.deskew_reestimate_translation)
         break;
-      deskew = DeskewReference{estimate, period};
-      reg = registerFeatures(last_features_, map_, reg.pose, params_, deskew);
+      if (params_.deskew_refine_steps > 0 && change.tail<3>().norm() < params_.deskew_reestimate_translation) {
+        // Only the rotation was not predicted (a walker's sway): re-deskew with the estimated rotation (the
+        // translation stays the prediction's: deskewing with the own translation fed back into it and grew a
+        // period-2 oscillation on demo trial a), then a few Gauss-Newton steps on the same map lines / planes.
+        Pose3 mixed = estimate;
+        mixed.translation() = deskew->delta.translation();
+        deskew = DeskewReference{mixed, period};
+        reg = refineRedeskewed(last_features_, reg, params_, *deskew, params_.deskew_refine_steps);
+      } else {
+        deskew = DeskewReference{estimate, period};
+        reg = registerFeatures(last_features_, map_, reg.pose, params_, deskew);
+      }
     }
     return reg;
   };
@@ -199,7 +211,14 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
     edges = last_features_.edge_points;
     planes = last_features_.planar_points;
   }
+  // A sensor that has not moved since the last inserted scan would put copies of the same points in the map
+  // (a standing start: three identical scans, plane fits on duplicate neighbours fail); the map keeps its scans.
+  const Pose3 since_insert = last_insert_pose_.inverse() * pose_;
+  if (since_insert.translation().norm() < params_.map_insert_min_translation &&
+      Eigen::AngleAxisd(since_insert.linear()).angle() < params_.map_insert_min_rotation_deg * kPi / 180.0)
+    return r;
   map_.add(transformed(pose_, edges), transformed(pose_, planes));
+  last_insert_pose_ = pose_;
   return r;
 }
 

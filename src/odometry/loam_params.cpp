@@ -39,10 +39,13 @@ LoamParams LoamParams::fromConfig(const ConfigNode& root) {
   c.read("map_edge_voxel_size", p.map_edge_voxel_size);
   c.read("map_planar_voxel_size", p.map_planar_voxel_size);
   c.read("planar_feature_voxel_size", p.planar_feature_voxel_size);
+  c.read("map_insert_min_translation", p.map_insert_min_translation);
+  c.read("map_insert_min_rotation_deg", p.map_insert_min_rotation_deg);
   c.read("deskew", p.deskew);
   c.read("deskew_planar_only", p.deskew_planar_only);
   c.read("deskew_reestimate_translation", p.deskew_reestimate_translation);
   c.read("deskew_reestimate_rotation_deg", p.deskew_reestimate_rotation_deg);
+  c.read("deskew_refine_steps", p.deskew_refine_steps);
   return p;
 }
 

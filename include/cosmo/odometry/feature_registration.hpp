@@ -22,6 +22,9 @@ struct RegistrationResult {
   std::size_t num_plane_constraints = 0;
   int degenerate_directions = 0;  ///< directions of [rot, trans] left at the guess
   double inlier_fraction = 0.0;   ///< features with a constraint and |r| < inlier_dist, over all features
+  /// The last association (all features, sensor-frame points as deskewed for it): reused by
+  /// refineRedeskewed when only the deskew of the features changes.
+  std::vector<FeatureConstraint> constraints;
 };
 
 /// Motion used for deskewing the features before registration: the sensor motion over `period` seconds
@@ -45,6 +48,13 @@ Pose3 applyCentredUpdate(const Vector6& dx, const Pose3& T);
 /// Registers `features` (sensor frame) to `map` starting at `guess`.
 RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFeatureMap& map, const Pose3& guess,
                                     const LoamParams& params, const std::optional<DeskewReference>& deskew);
+
+/// Re-registration after the features were deskewed again with a corrected motion `deskew`: the map is the
+/// same and each feature moved by at most the deskew change (centimetres), so `previous`' lines and planes are
+/// kept (each constraint's point re-deskewed, no k-NN search or fit) and up to `max_steps` robust Gauss-Newton
+/// steps start from previous.pose. The edge constraints keep their normal (first order in the point's shift).
+RegistrationResult refineRedeskewed(const LoamFeatures& features, const RegistrationResult& previous,
+                                    const LoamParams& params, const DeskewReference& deskew, int max_steps);
 
 /// Fraction of (every `stride`-th) features that find a map constraint with |r| < inlier_dist at pose T.
 double scorePose(const LoamFeatures& features, const LocalFeatureMap& map, const Pose3& T, const LoamParams& params,

@@ -47,6 +47,7 @@ class LoamOdometry {
   std::size_t num_scans_ = 0;
   Pose3 pose_ = Pose3::Identity();
   Pose3 last_delta_ = Pose3::Identity();
+  Pose3 last_insert_pose_ = Pose3::Identity();  ///< pose of the newest scan in the local map
   double last_period_ = 0.0;
   StampNs last_stamp_ = 0;
   /// The first scan's features as measured (its motion was unknown when it entered the map): deskewed and

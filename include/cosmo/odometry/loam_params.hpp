@@ -38,6 +38,16 @@ struct LoamParams {
   double map_edge_voxel_size = 0.0;
   double map_planar_voxel_size = 0.0;
   double planar_feature_voxel_size = 0.2;
+  /// A registered scan enters the local map only when the sensor moved at least this far (m) or turned at
+  /// least this much (deg) since the newest scan in the map (0 / 0: every scan, the default). A standing
+  /// sensor fills the map with copies of one scan, whose duplicate neighbours fail the plane fits: 0.02 m /
+  /// 0.2 deg removed the standing-start jump of ci_c (30 cm / 4.35 deg -> 1.8 cm / 0.56 deg). Off by default
+  /// because it hides the featureless-corridor degeneracy (test LoamDegenerate.FeaturelessCorridor...): that
+  /// test's flag comes from the duplicates (k-NN neighbours = copies of 2 points, plane fits rejected); with
+  /// one copy, floor points near the wall fit "planes" through a floor ring arc plus one wall point, whose
+  /// normals have an x component (smallest Gauss-Newton eigenvalue 51 vs threshold 1.6).
+  double map_insert_min_translation = 0.0;
+  double map_insert_min_rotation_deg = 0.0;
 
   // --- registration (spec 4.1) ------------------------------------------------------------------------------
   int max_icf_iterations = 20;                ///< iterations of re-association + Gauss-Newton step
@@ -77,6 +87,10 @@ struct LoamParams {
   /// (25 m) and demo trial a from 0.021 to 0.010 deg/m.
   double deskew_reestimate_translation = 0.1;
   double deskew_reestimate_rotation_deg = 0.2;
+  /// The re-deskewed features are registered by this many robust Gauss-Newton steps (at most) on the first
+  /// registration's correspondences (the map did not change, the features moved by centimetres): no k-NN
+  /// search, no line / plane fits. 0: a full registration (re-association from the first estimate).
+  int deskew_refine_steps = 4;
   /// Deskew with the x / y / yaw part of the motion only. Off by default: with the prediction-first deskew
   /// above, the full 6-DoF deskew no longer oscillates on the hilly ATV trials (synthetic_ci a/b/c: equal or
   /// better), and the walking sway (roll / pitch) needs it (planar only: 0.037 deg/m over 25 m).
