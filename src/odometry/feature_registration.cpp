@@ -159,9 +159,9 @@ RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFea
   return res;
 }
 
-RegistrationResult refineRedeskewed(const LoamFeatures& features, const RegistrationResult& previous,
+RegistrationResult refineRedeskewed(const LoamFeatures& features, RegistrationResult previous,
                                     const LoamParams& params, const DeskewReference& deskew, int max_steps) {
-  RegistrationResult res = previous;
+  RegistrationResult res = std::move(previous);
   std::vector<Eigen::Vector3d> edges, planes;
   deskewConstantVelocity(features.edge_points, features.edge_time, deskew.delta, deskew.period, edges);
   deskewConstantVelocity(features.planar_points, features.planar_time, deskew.delta, deskew.period, planes);
@@ -177,7 +177,7 @@ RegistrationResult refineRedeskewed(const LoamFeatures& features, const Registra
         dx.tail<3>().norm() < params.position_convergence_thresh)
       break;
   }
-  res.iterations = previous.iterations + 1;
+  res.iterations += 1;
   std::size_t good = 0;
   for (const auto& c : res.constraints)
     if (std::abs(c.normal.dot(res.pose * c.point) - c.offset) < params.inlier_dist) ++good;

@@ -150,7 +150,7 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
         Pose3 mixed = estimate;
         mixed.translation() = deskew->delta.translation();
         deskew = DeskewReference{mixed, period};
-        reg = refineRedeskewed(last_features_, reg, params_, *deskew, params_.deskew_refine_steps);
+        reg = refineRedeskewed(last_features_, std::move(reg), params_, *deskew, params_.deskew_refine_steps);
       } else {
         deskew = DeskewReference{estimate, period};
         reg = registerFeatures(last_features_, map_, reg.pose, params_, deskew);

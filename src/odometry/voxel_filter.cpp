@@ -3,6 +3,8 @@
 #include <cmath>
 #include <unordered_set>
 
+#include "cosmo/common/voxel_key.hpp"
+
 namespace cosmo {
 
 std::vector<std::uint32_t> voxelFilterIndices(const std::vector<Eigen::Vector3d>& points, double voxel_size) {
@@ -19,8 +21,7 @@ std::vector<std::uint32_t> voxelFilterIndices(const std::vector<Eigen::Vector3d>
     const Eigen::Vector3d& p = points[i];
     if (!p.allFinite()) continue;
     // 21 bits per axis (+-2^20 voxels): wraps only beyond ~400 km at 0.4 m, harmless for a local map.
-    const auto key = [&](double v) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v * inv)) & 0x1FFFFF); };
-    const std::uint64_t k = key(p.x()) | (key(p.y()) << 21) | (key(p.z()) << 42);
+    const std::uint64_t k = packVoxelKey(voxelCoord(p.x(), inv), voxelCoord(p.y(), inv), voxelCoord(p.z(), inv));
     if (occupied.insert(k).second) kept.push_back(static_cast<std::uint32_t>(i));
   }
   return kept;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cosmo/common/voxel_key.hpp"
 #include "cosmo/registration/float4.hpp"
 #include "cosmo/registration/neighbour_pairs.hpp"
 #include "cosmo/registration/stage_observer.hpp"
@@ -213,8 +214,8 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
     const double inv = 1.0 / params.keypoint_voxel;
     for (const int i : out.kept) {
       const Eigen::Vector3f& p = points[static_cast<std::size_t>(i)];
-      const auto key = [&](float x) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(x * inv)) + (1 << 20)) & 0x1FFFFF; };
-      keyed.emplace_back((key(p.x()) << 42) | (key(p.y()) << 21) | key(p.z()), kept_index[static_cast<std::size_t>(i)]);
+      keyed.emplace_back(packVoxelKey(voxelCoord(p.x(), inv), voxelCoord(p.y(), inv), voxelCoord(p.z(), inv)),
+                         kept_index[static_cast<std::size_t>(i)]);
     }
     std::sort(keyed.begin(), keyed.end());
     for (std::size_t b = 0; b < keyed.size(); ++b)

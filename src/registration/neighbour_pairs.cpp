@@ -3,14 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cosmo/common/voxel_key.hpp"
+
 namespace cosmo {
 
 namespace {
-
-constexpr std::int64_t kOffset = 1 << 20;  // 21 bits per axis
-inline std::uint64_t packCell(std::int64_t x, std::int64_t y, std::int64_t z) {
-  return (static_cast<std::uint64_t>(x) << 42) | (static_cast<std::uint64_t>(y) << 21) | static_cast<std::uint64_t>(z);
-}
 
 /// out[k] = ((x[k] - ax)^2 + (y[k] - ay)^2) + (z[k] - az)^2, k < len (Eigen packets; flattened so that they
 /// are inlined).
@@ -35,11 +32,10 @@ NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, fl
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3f& p = points[i];
     if (!p.allFinite()) continue;
-    const auto cx = static_cast<std::int64_t>(std::floor(p.x() * inv)) + kOffset;
-    const auto cy = static_cast<std::int64_t>(std::floor(p.y() * inv)) + kOffset;
-    const auto cz = static_cast<std::int64_t>(std::floor(p.z() * inv)) + kOffset;
-    if (cx < 1 || cy < 1 || cz < 1 || cx >= 2 * kOffset - 1 || cy >= 2 * kOffset - 1 || cz >= 2 * kOffset - 1) continue;
-    keyed.emplace_back(packCell(cx, cy, cz), static_cast<std::uint32_t>(i));
+    const std::int64_t cx = voxelCoord(p.x(), inv), cy = voxelCoord(p.y(), inv), cz = voxelCoord(p.z(), inv);
+    // one cell of room on each side: the forward neighbours' keys below must not wrap
+    if (!voxelCoordInRange(cx, 1) || !voxelCoordInRange(cy, 1) || !voxelCoordInRange(cz, 1)) continue;
+    keyed.emplace_back(packVoxelKey(cx, cy, cz), static_cast<std::uint32_t>(i));
   }
   std::sort(keyed.begin(), keyed.end());
   const std::size_t m = keyed.size();

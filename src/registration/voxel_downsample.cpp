@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <limits>
 
+#include "cosmo/common/voxel_key.hpp"
+
 namespace cosmo {
 
 std::vector<Eigen::Vector3f> voxelDownsample(const std::vector<Eigen::Vector3f>& points, double voxel_size,
@@ -34,18 +36,14 @@ std::vector<Eigen::Vector3f> voxelDownsample(const std::vector<Eigen::Vector3f>&
   std::vector<std::uint64_t> keys;
   std::vector<Eigen::Vector3d> sums;
   std::vector<std::uint32_t> counts;
-  constexpr std::int64_t kOffset = 1 << 20;  // 21 bits per axis: +-1e6 voxels
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector3f& p = points[i];
     if (!p.allFinite()) continue;
     const double r2 = p.cast<double>().squaredNorm();
     if (r2 < min2 || r2 > max2) continue;
-    const auto ix = static_cast<std::int64_t>(std::floor(p.x() * inv)) + kOffset;
-    const auto iy = static_cast<std::int64_t>(std::floor(p.y() * inv)) + kOffset;
-    const auto iz = static_cast<std::int64_t>(std::floor(p.z() * inv)) + kOffset;
-    if (ix < 0 || iy < 0 || iz < 0 || ix >= 2 * kOffset || iy >= 2 * kOffset || iz >= 2 * kOffset) continue;
-    const std::uint64_t key = (static_cast<std::uint64_t>(ix) << 42) | (static_cast<std::uint64_t>(iy) << 21) |
-                              static_cast<std::uint64_t>(iz);
+    const std::int64_t ix = voxelCoord(p.x(), inv), iy = voxelCoord(p.y(), inv), iz = voxelCoord(p.z(), inv);
+    if (!voxelCoordInRange(ix) || !voxelCoordInRange(iy) || !voxelCoordInRange(iz)) continue;  // +-1e6 voxels
+    const std::uint64_t key = packVoxelKey(ix, iy, iz);
     if (key != last_key) {
       std::size_t at = probe(key);
       if (table_key[at] == kEmpty) {

@@ -53,7 +53,7 @@ RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFea
 /// same and each feature moved by at most the deskew change (centimetres), so `previous`' lines and planes are
 /// kept (each constraint's point re-deskewed, no k-NN search or fit) and up to `max_steps` robust Gauss-Newton
 /// steps start from previous.pose. The edge constraints keep their normal (first order in the point's shift).
-RegistrationResult refineRedeskewed(const LoamFeatures& features, const RegistrationResult& previous,
+RegistrationResult refineRedeskewed(const LoamFeatures& features, RegistrationResult previous,
                                     const LoamParams& params, const DeskewReference& deskew, int max_steps);
 
 /// Fraction of (every `stride`-th) features that find a map constraint with |r| < inlier_dist at pose T.
