@@ -45,12 +45,16 @@ pipeline::SequenceTiming synchronizeSequence(const pipeline::SequenceConfig& con
   return pipeline::SequenceTiming::synchronize(spans, config.anchor, config.time_offset_sigma, config.seed);
 }
 
-pipeline::MergedScanStream openSequenceStream(const pipeline::SequenceConfig& config,
-                                              const pipeline::SequenceTiming& timing) {
+std::map<char, std::unique_ptr<pipeline::ScanSource>> openTrialSources(const pipeline::SequenceConfig& config) {
   std::map<char, std::unique_ptr<pipeline::ScanSource>> sources;
   for (const auto& t : config.trials)
     sources[t.robot] = std::make_unique<BagScanSource>(t.bag, t.topic, t.stamp_at_end);
-  return pipeline::MergedScanStream(std::move(sources), timing);
+  return sources;
+}
+
+pipeline::MergedScanStream openSequenceStream(const pipeline::SequenceConfig& config,
+                                              const pipeline::SequenceTiming& timing) {
+  return pipeline::MergedScanStream(openTrialSources(config), timing);
 }
 
 }  // namespace cosmo::ros_glue

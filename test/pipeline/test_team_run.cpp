@@ -12,7 +12,7 @@
 #include "cosmo/pipeline/seed_streams.hpp"
 #include "cosmo/pipeline/sequence_references.hpp"
 #include "cosmo/pipeline/team_run.hpp"
-#include "cosmo/pipeline/odometry_prefetch.hpp"
+#include "cosmo/pipeline/odometry_run_ahead.hpp"
 #include "synthetic_team.hpp"
 
 using namespace cosmo;
@@ -31,10 +31,10 @@ SequenceTiming timingOf(const std::vector<test::SyntheticTrial>& trials, std::ui
   return SequenceTiming::synchronize(spans, 'a', sigma, seed);
 }
 
+std::map<char, std::unique_ptr<ScanSource>> sourcesOf(const std::vector<test::SyntheticTrial>& trials);
+
 MergedScanStream streamOf(const std::vector<test::SyntheticTrial>& trials, const SequenceTiming& timing) {
-  std::map<char, std::unique_ptr<ScanSource>> sources;
-  for (const auto& t : trials) sources[t.robot] = std::make_unique<VectorScanSource>(t.scans);
-  return MergedScanStream(std::move(sources), timing);
+  return MergedScanStream(sourcesOf(trials), timing);
 }
 
 std::string readFile(const std::string& path) {
@@ -66,8 +66,15 @@ std::string runOnce(std::uint64_t seed, TeamCounts* counts = nullptr) {
   return readFile(path);
 }
 
-/// A LOAM run of the first `max_scans` merged scans; `prefetch`: odometry on worker threads (OdometryPrefetch).
-std::string runLoam(bool prefetch, std::size_t max_scans) {
+std::map<char, std::unique_ptr<ScanSource>> sourcesOf(const std::vector<test::SyntheticTrial>& trials) {
+  std::map<char, std::unique_ptr<ScanSource>> sources;
+  for (const auto& t : trials) sources[t.robot] = std::make_unique<VectorScanSource>(t.scans);
+  return sources;
+}
+
+/// A LOAM run of the first `max_scans` merged scans; `run_ahead`: odometry on worker threads that read their own
+/// copies of the scans (OdometryRunAhead), as cosmo_generate does.
+std::string runLoam(bool run_ahead, std::size_t max_scans) {
   const auto& trials = team();
   const SequenceTiming timing = timingOf(trials, 3, 0.5);
   std::map<char, Trajectory> refs;
@@ -75,21 +82,19 @@ std::string runLoam(bool prefetch, std::size_t max_scans) {
   TeamRunParams params;
   params.frontend = FrontendParams::loadDir(defaultConfigDir());
   TeamRun run("test_team", refs, params, cosmo::pipeline::deriveSeed(3, "radio"), timing.start());
-  OdometryPrefetch workers(run.robots(), params.frontend.loam);
+  std::unique_ptr<OdometryRunAhead> ahead;
+  if (run_ahead) ahead = std::make_unique<OdometryRunAhead>(sourcesOf(trials), timing, params.frontend.loam);
   MergedScanStream stream = streamOf(trials, timing);
-  std::vector<std::pair<char, std::shared_ptr<const Scan>>> scans;
   char robot;
   Scan scan;
-  while (scans.size() < max_scans && stream.next(robot, scan)) scans.emplace_back(robot, std::make_shared<const Scan>(scan));
-  if (prefetch) {
-    std::vector<std::future<OdometryResult>> odometry;  // every scan submitted before any is consumed
-    for (const auto& [r, sc] : scans) odometry.push_back(workers.submit(r, sc));
-    for (std::size_t i = 0; i < scans.size(); ++i) run.addScan(scans[i].first, *scans[i].second, odometry[i].get());
-  } else {
-    for (const auto& [r, sc] : scans) run.addScan(r, *sc);
+  StampNs last = 0;
+  for (std::size_t n = 0; n < max_scans && stream.next(robot, scan); ++n) {
+    if (ahead) run.addScan(robot, scan, ahead->next(robot, scan.stamp));
+    else run.addScan(robot, scan);
+    last = scan.stamp;
   }
-  run.finish(scans.back().second->stamp);
-  const auto path = (std::filesystem::temp_directory_path() / (std::string("cosmo_team_run_loam_") + (prefetch ? "p" : "s") + ".jrl")).string();
+  run.finish(last);
+  const auto path = (std::filesystem::temp_directory_path() / (std::string("cosmo_team_run_loam_") + (run_ahead ? "p" : "s") + ".jrl")).string();
   run.recorder().write(path);
   EXPECT_GT(run.counts().keyframes, 2u);
   return readFile(path);
@@ -101,6 +106,34 @@ TEST(TeamRun, OdometryOnWorkerThreadsGivesTheSameJrl) {
   const std::string serial = runLoam(false, 100), parallel = runLoam(true, 100);
   ASSERT_FALSE(serial.empty());
   EXPECT_EQ(serial, parallel);
+}
+
+TEST(OdometryRunAhead, SkipsTheScansTheTeamsStreamDropsAndNamesAReaderThatDisagrees) {
+  std::vector<Scan> a(4);
+  for (int i = 0; i < 4; ++i) a[i].stamp = 10000000000ULL + i * 100000000ULL;
+  a[2].stamp = a[1].stamp;  // not increasing: the team's stream drops it, so must the worker
+  const SequenceTiming timing = SequenceTiming::synchronize({{'a', a.front().stamp, a.back().stamp}}, 'a', 0.0, 1);
+  std::map<char, std::unique_ptr<ScanSource>> team_sources, worker_sources;
+  team_sources['a'] = std::make_unique<VectorScanSource>(a);
+  worker_sources['a'] = std::make_unique<VectorScanSource>(a);
+  MergedScanStream stream(std::move(team_sources), timing);
+  OdometryRunAhead ahead(std::move(worker_sources), timing, LoamParams{});
+  char robot;
+  Scan scan;
+  int n = 0;
+  while (stream.next(robot, scan)) {
+    const OdometryResult r = ahead.next(robot, scan.stamp);  // empty scans: motion-model fallback, never a throw
+    EXPECT_FALSE(r.ok);
+    ++n;
+  }
+  EXPECT_EQ(n, 3);
+  EXPECT_THROW(ahead.next('a', scan.stamp + 1), std::logic_error);  // the worker has no scan left
+  EXPECT_THROW(ahead.next('z', 0), std::invalid_argument);
+
+  std::map<char, std::unique_ptr<ScanSource>> other;
+  other['a'] = std::make_unique<VectorScanSource>(a);
+  OdometryRunAhead mismatched(std::move(other), timing, LoamParams{});
+  EXPECT_THROW(mismatched.next('a', timing.of('a').toSequence(a[1].stamp)), std::logic_error);  // it holds a[0]
 }
 
 TEST(MergedScanStream, MergesBySequenceTimeAndDropsNonIncreasingStamps) {

@@ -71,7 +71,7 @@ class RobotFrontend {
   ScanOutcome processScan(const Scan& scan);
   /// Next scan with its sensor pose from an external odometry source (any fixed odometry frame).
   ScanOutcome processScan(const Scan& scan, const Pose3& external_odom_pose);
-  /// Next scan with LOAM odometry computed elsewhere (OdometryPrefetch: a LoamOdometry with these parameters fed
+  /// Next scan with LOAM odometry computed elsewhere (OdometryRunAhead: a LoamOdometry with these parameters fed
   /// exactly this robot's scans in order); the same outcome as processScan(scan).
   ScanOutcome processScan(const Scan& scan, const OdometryResult& loam_result);
   /// A teammate's keyframe scan (points, sensor frame) received at `received_at`: searched against the own

@@ -59,7 +59,7 @@ class TeamRun {
 
   /// Runs the radio through `scan.stamp`, then the scan through `robot`'s front-end.
   void addScan(char robot, const Scan& scan);
-  /// The same with the scan's LOAM odometry computed ahead (OdometryPrefetch); ignored with reference odometry.
+  /// The same with the scan's LOAM odometry computed ahead (OdometryRunAhead); ignored with reference odometry.
   void addScan(char robot, const Scan& scan, const OdometryResult& loam_result);
   /// Runs the radio through `end` (the sequence end) so late transfers are delivered.
   void finish(StampNs end);

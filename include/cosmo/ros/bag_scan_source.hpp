@@ -2,6 +2,7 @@
 // The trials of a sequence config read from their bags (ROS glue for the pipeline's drivers, the `player`
 // node and `cosmo_generate`): each trial's first/last scan stamps (for the synchronization) and a
 // pipeline::ScanSource over its scans. Errors throw std::runtime_error naming the bag and topic.
+#include <map>
 #include <memory>
 #include <string>
 
@@ -30,6 +31,9 @@ class BagScanSource : public pipeline::ScanSource {
 
 /// The synchronized timing of a sequence config (reads every trial's span).
 pipeline::SequenceTiming synchronizeSequence(const pipeline::SequenceConfig& config);
+
+/// A reader of each trial's scans (robot -> source), in recorded time.
+std::map<char, std::unique_ptr<pipeline::ScanSource>> openTrialSources(const pipeline::SequenceConfig& config);
 
 /// One merged stream over all trials of a sequence config, in sequence time.
 pipeline::MergedScanStream openSequenceStream(const pipeline::SequenceConfig& config,

@@ -13,9 +13,7 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <deque>
 #include <algorithm>
-#include <future>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -25,7 +23,7 @@
 #include "cosmo/comm/transfer_log.hpp"
 #include "cosmo/jrl/stats.hpp"
 #include "cosmo/jrl/validate.hpp"
-#include "cosmo/pipeline/odometry_prefetch.hpp"
+#include "cosmo/pipeline/odometry_run_ahead.hpp"
 #include "cosmo/pipeline/seed_streams.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/pipeline/sequence_references.hpp"
@@ -42,7 +40,7 @@ namespace {
 void usage() {
   std::cerr << "usage: cosmo_generate SEQUENCE.yaml [--comm wifi,proradio] [--seed N] [--out DIR]\n"
                "         [--config-dir DIR] [--noise-models FILE] [--outlier-rule fidelity|squared]\n"
-               "         [--reference-odometry] [--serial-odometry] [--lookahead N] [--max-seconds S] [--quiet]\n"
+               "         [--reference-odometry] [--serial-odometry] [--max-seconds S] [--quiet]\n"
                "  --comm LIST          comm models, comma separated (wifi, proradio, or a config/comm/*.yaml); default wifi\n"
                "  --seed N             overrides the sequence config's seed\n"
                "  --out DIR            output folder (default: current folder)\n"
@@ -51,10 +49,8 @@ void usage() {
                "  --noise-models FILE  noise-model YAML (default: the sequence's noise_models, else\n"
                "                       <config-dir>/noise_models/<environment>.yaml)\n"
                "  --reference-odometry take odometry from the reference trajectories instead of LOAM\n"
-               "  --serial-odometry    run LOAM in the main thread (default: one thread per robot, ahead of the\n"
-               "                       team; the output is the same byte for byte)\n"
-               "  --lookahead N        scans per robot LOAM may run ahead of the team (default 8; 32 measured no faster\n"
-               "                       on the demo; each pending scan holds ~1.5 MB)\n"
+               "  --serial-odometry    run LOAM in the main thread (default: one thread per robot, reading its own bag\n"
+               "                       and running ahead of the team; the output is the same byte for byte)\n"
                "  --max-seconds S      stop after S seconds of sequence time (quick looks)\n";
 }
 
@@ -100,7 +96,6 @@ int main(int argc, char** argv) {
   bool seed_given = false, reference_odometry = false, quiet = false, serial_odometry = false;
   unsigned long long seed = 0;
   double max_seconds = 0.0;
-  std::size_t lookahead = 8;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -121,7 +116,6 @@ int main(int argc, char** argv) {
       else if (a == "--reference-odometry") reference_odometry = true;
       else if (a == "--serial-odometry") serial_odometry = true;
       else if (a == "--max-seconds") max_seconds = std::stod(value());
-      else if (a == "--lookahead") lookahead = std::max<std::size_t>(1, std::stoul(value()));
       else if (a == "--quiet") quiet = true;
       else if (a == "-h" || a == "--help") { usage(); return 0; }
       else if (!a.empty() && a[0] == '-') { std::cerr << "unknown option " << a << "\n"; usage(); return 2; }
@@ -179,21 +173,16 @@ int main(int argc, char** argv) {
       Scan scan;
       double next_report = 0.0;
       const double duration = toSeconds(end - timing.start());
-      // LOAM runs ahead on one thread per robot (same results: each robot's scans in order); the team consumes
-      // the scans in sequence order, at most `window` behind the reader.
-      std::unique_ptr<OdometryPrefetch> prefetch;
-      if (!reference_odometry && !serial_odometry) prefetch = std::make_unique<OdometryPrefetch>(run.robots(), params.frontend.loam);
-      struct Pending {
-        char robot;
-        std::shared_ptr<const Scan> scan;
-        std::future<OdometryResult> odometry;
-      };
-      std::deque<Pending> pending;
-      const std::size_t window = lookahead * run.robots().size();
-      auto consume = [&](const Scan& s, char r, std::future<OdometryResult>* odometry) {
-        if (odometry) run.addScan(r, s, odometry->get());
-        else run.addScan(r, s);
-        const double t = toSeconds(s.stamp - timing.start());
+      // LOAM runs ahead on one thread per robot, from a second reader of the robot's bag (same results: each
+      // robot's scans in order); the team consumes the results in sequence order.
+      std::unique_ptr<OdometryRunAhead> ahead;
+      if (!reference_odometry && !serial_odometry)
+        ahead = std::make_unique<OdometryRunAhead>(ros_glue::openTrialSources(config), timing, params.frontend.loam);
+      while (stream.next(robot, scan)) {
+        if (scan.stamp > end) break;
+        if (ahead) run.addScan(robot, scan, ahead->next(robot, scan.stamp));
+        else run.addScan(robot, scan);
+        const double t = toSeconds(scan.stamp - timing.start());
         if (!quiet && t >= next_report) {
           const auto& c = run.counts();
           std::printf("[%s] %6.1f / %.1f s  keyframes %zu  loop closures intra %zu (+%zu rejected) inter %zu (+%zu rejected)"
@@ -203,21 +192,8 @@ int main(int argc, char** argv) {
           std::fflush(stdout);
           next_report = t + std::max(10.0, duration / 20.0);
         }
-      };
-      while (stream.next(robot, scan)) {
-        if (scan.stamp > end) break;
-        if (!prefetch) {
-          consume(scan, robot, nullptr);
-          continue;
-        }
-        auto shared = std::make_shared<const Scan>(std::move(scan));
-        pending.push_back({robot, shared, prefetch->submit(robot, shared)});
-        while (pending.size() > window) {
-          consume(*pending.front().scan, pending.front().robot, &pending.front().odometry);
-          pending.pop_front();
-        }
       }
-      for (; !pending.empty(); pending.pop_front()) consume(*pending.front().scan, pending.front().robot, &pending.front().odometry);
+      ahead.reset();  // stops the workers (they may have run past --max-seconds)
       run.finish(end);
       for (const auto& [r, n] : stream.dropped())
         std::fprintf(stderr, "warning: robot %c: %zu scans dropped (stamps not increasing)\n", r, n);
