@@ -288,6 +288,9 @@ class CommBroker {
       cosmo::RadioStepDone done;
       done.seq = m.seq;
       done.stamp = cosmo::ros_glue::stampToRos(last_step_);
+      // advanceRadio runs a step when (t - origin) s + 1 ns >= the next step time: 10 ns earlier is safe
+      const cosmo::StampNs next = cosmo::pipeline::radioStepStamp(origin_, sim_->nextStepTime());
+      done.next_stamp = cosmo::ros_glue::stampToRos(next > 10 ? next - 10 : 0);
       for (char r : sim_->robots()) {
         done.robots.push_back(r);
         done.delivered.push_back(delivered_[r]);

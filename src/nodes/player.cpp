@@ -6,12 +6,14 @@
 //                                    every 20 ms of the reference trajectory up to each scan
 //            TF world -> <r>/reference (the reference LiDAR pose)
 //            /player/progress        (std_msgs/String) "t / total" once per second of wall time
-// Lockstep (~mode lockstep, default): the offline driver's event order (TeamRun), one event at a time, so the
-//   JRL is byte-identical to cosmo_generate's. Per scan of the merged stream: every scan published so far is
-//   acknowledged (/<r>/ack, cosmo/FrontendAck); then, with a comm_broker (~wait_for_broker), the player asks it
-//   to step the radio through the scan's time (/comm/step_request: robots on = processed a scan, keyframes
-//   offered so far, which the broker waits for) and waits for /comm/step_done and for every delivered scan to be
-//   processed by its receiver; then the scan is published (per-point times as float seconds, exact). At the end
+// Lockstep (~mode lockstep, default): the offline driver's event order (TeamRun), so the JRL is byte-identical
+//   to cosmo_generate's. Per scan of the merged stream that lies at or after the broker's next radio step
+//   (RadioStepDone.next_stamp), or whose robot's previous scan is not acknowledged yet: every scan published so
+//   far is acknowledged (/<r>/ack, cosmo/FrontendAck); then, with a comm_broker (~wait_for_broker), the player
+//   asks it to step the radio through the scan's time (/comm/step_request: robots on = processed a scan,
+//   keyframes offered so far, which the broker waits for) and waits for /comm/step_done and for every delivered
+//   scan to be processed by its receiver. Then the scan is published (per-point times as float seconds, exact).
+//   Scans of different robots between two radio steps are independent, so they are processed in parallel. At the end
 //   the radio is stepped through the sequence end the same way, and, when a recorder is running, the player waits
 //   until /recorder/progress (cosmo/RecorderProgress) shows every keyframe and loop closure the front-ends
 //   acknowledged (FrontendAck.keyframes / loop_closures), so the final JRL never depends on message timing. The resolved sequence path and seed are set on
@@ -66,6 +68,7 @@ struct Acks {
   bool step_done = false;                     ///< /comm/step_done of the latest request seen
   std::uint32_t step_done_seq = 0;
   std::map<char, std::uint32_t> delivered;    ///< from /comm/step_done, per receiver
+  StampNs next_radio_step = 0;                ///< from /comm/step_done: scans before it need no radio step
   bool recorder_seen = false;                 ///< /recorder/progress received
   std::map<char, std::pair<std::uint32_t, std::uint32_t>> recorded;  ///< recorder intake: keyframes, loop closures
 };
@@ -157,6 +160,7 @@ int main(int argc, char** argv) {
         std::lock_guard<std::mutex> lock(acks.mutex);
         acks.step_done = true;
         acks.step_done_seq = m->seq;
+        acks.next_radio_step = m->next_stamp.toNSec();
         for (std::size_t i = 0; i < m->robots.size() && i < m->delivered.size(); ++i)
           acks.delivered[m->robots[i]] = m->delivered[i];
       });
@@ -283,9 +287,21 @@ int main(int argc, char** argv) {
         const ros::WallTime now = ros::WallTime::now();
         if (due > now) (due - now).sleep();
       } else {
-        // every scan published so far processed, then the radio stepped through this scan's time
-        waitAcks();
-        stepRadio(scan.stamp);
+        // Every scan published so far processed, then the radio stepped through this scan's time: that is
+        // TeamRun's order. Between two radio steps the robots' scans are independent (deliveries and the radio's
+        // robot states change only at steps), so a scan that needs no step first is published at once unless its
+        // own robot's previous scan is still being processed: the front-ends then work in parallel.
+        StampNs next_step = 0;
+        {
+          std::lock_guard<std::mutex> lock(acks.mutex);
+          next_step = acks.next_radio_step;
+        }
+        const bool needs_step = use_broker && (next_step == 0 || scan.stamp >= next_step);
+        if (needs_step || expected_ack.count(robot)) {
+          waitAcks();
+          expected_ack.clear();
+          if (use_broker) stepRadio(scan.stamp);
+        }
       }
       publishClock(scan.stamp);
       // reference poses up to the scan (about every 20 ms), then the scan
