@@ -79,6 +79,8 @@ TEST(SequenceLaunch, WritesAValidJrl) {
   EXPECT_LE(stats.irlc_outliers, stats.irlc_count);
   // the robots start at the same junction: scans exchanged there give inter-robot loop closures
   EXPECT_GT(stats.irlc_count, 0u);
+  // robot a drives around a block back to its start: its return gives intra-robot loop closures
+  EXPECT_GT(stats.lc_count, 0u);
 
   // Outlier labels: a loop closure is listed as an outlier iff it fails the default (fidelity) chi^2 rule
   // against the file's own ground truth and covariance.
