@@ -161,16 +161,28 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
   RegistrationResult reg = registerFrom(guess);
 
   // Large unexpected motion (fast turns, low scan rates): when the result fits poorly, try a coarse yaw
-  // search around the guess and keep its registration only if it clearly fits better.
-  if (reg.inlier_fraction < params_.min_guess_inlier_fraction && params_.yaw_search_step_deg > 0.0) {
+  // search around the guess and keep its registration only if it clearly fits better. A candidate is a motion
+  // hypothesis: its features are deskewed with that motion before they are scored (a scan taken during a fast
+  // turn is distorted by it, and no rigid yaw fits the raw points), and its registration starts deskewed with it.
+  const double turned_deg = Eigen::AngleAxisd((guess.inverse() * reg.pose).linear()).angle() * 180.0 / kPi;
+  const bool unpredicted_turn = params_.yaw_search_correction_deg > 0.0 && turned_deg >= params_.yaw_search_correction_deg;
+  if ((reg.inlier_fraction < params_.min_guess_inlier_fraction || unpredicted_turn) && params_.yaw_search_step_deg > 0.0) {
     const double base = scorePose(last_features_, map_, reg.pose, params_, stride);
+    LoamFeatures deskewed = last_features_;
+    auto scoreMotion = [&](const Pose3& cand) {
+      if (!has_times) return scorePose(last_features_, map_, cand, params_, stride);
+      const Pose3 motion = deskewMotion(pose_.inverse() * cand);
+      deskewConstantVelocity(last_features_.edge_points, last_features_.edge_time, motion, period, deskewed.edge_points);
+      deskewConstantVelocity(last_features_.planar_points, last_features_.planar_time, motion, period, deskewed.planar_points);
+      return scorePose(deskewed, map_, cand, params_, stride);
+    };
     double best_yaw_score = base;
     Pose3 best_yaw = guess;
     for (double yaw = params_.yaw_search_step_deg; yaw <= params_.yaw_search_max_deg + 1e-9;
          yaw += params_.yaw_search_step_deg) {
       for (double sign : {1.0, -1.0}) {
         const Pose3 cand = guess * makePose(0, 0, 0, 0, 0, sign * yaw * kPi / 180.0);
-        const double sc = scorePose(last_features_, map_, cand, params_, stride);
+        const double sc = scoreMotion(cand);
         if (sc > best_yaw_score) {
           best_yaw_score = sc;
           best_yaw = cand;
@@ -178,10 +190,14 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
       }
     }
     if (best_yaw_score > base + 0.05) {
+      const Pose3 predicted_deskew = deskew_delta;
+      deskew_delta = deskewMotion(pose_.inverse() * best_yaw);
       const RegistrationResult alt = registerFrom(best_yaw);
-      if (alt.inlier_fraction > reg.inlier_fraction + 0.1) {
+      if (alt.inlier_fraction > reg.inlier_fraction + (unpredicted_turn ? 0.02 : 0.1)) {
         reg = alt;
         r.initial_guess = "yaw_search";
+      } else {
+        deskew_delta = predicted_deskew;
       }
     }
   }

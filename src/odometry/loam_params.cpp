@@ -34,6 +34,7 @@ LoamParams LoamParams::fromConfig(const ConfigNode& root) {
   c.read("inlier_dist", p.inlier_dist);
   c.read("yaw_search_step_deg", p.yaw_search_step_deg);
   c.read("yaw_search_max_deg", p.yaw_search_max_deg);
+  c.read("yaw_search_correction_deg", p.yaw_search_correction_deg);
   c.read("min_correspondences", p.min_correspondences);
   c.read("min_eigenvalue_per_constraint", p.min_eigenvalue_per_constraint);
   c.read("map_edge_voxel_size", p.map_edge_voxel_size);

@@ -73,6 +73,9 @@ struct LoamParams {
   double inlier_dist = 0.3;           ///< (m) residual counted as an inlier when scoring guesses
   double yaw_search_step_deg = 10.0;  ///< yaw step of the coarse search
   double yaw_search_max_deg = 50.0;   ///< yaw range (+-) of the coarse search
+  /// The yaw search also runs when the registration turned at least this far from its guess (an unpredicted
+  /// turn, where a local registration can settle part-way with a fair inlier fraction); 0: only on poor fits.
+  double yaw_search_correction_deg = 5.0;
   /// Degeneracy: directions of the Gauss-Newton system with an eigenvalue below this times the number of
   /// constraints keep the initial guess (solution remapping) and the result is flagged.
   double min_eigenvalue_per_constraint = 1e-3;
