@@ -20,6 +20,12 @@ struct Float4 {
   explicit Float4(float x) : v(_mm_set1_ps(x)) {}
   Float4(float a, float b, float c, float d) : v(_mm_setr_ps(a, b, c, d)) {}
   static Float4 load(const float* p) { return _mm_load_ps(p); }  ///< 16-byte aligned
+  static Float4 loadUnaligned(const float* p) { return _mm_loadu_ps(p); }
+  /// Sum of the four lanes, ((v0 + v2) + (v1 + v3)).
+  float horizontalSum() const {
+    const __m128 s = _mm_add_ps(v, _mm_movehl_ps(v, v));
+    return _mm_cvtss_f32(_mm_add_ss(s, _mm_shuffle_ps(s, s, 1)));
+  }
   void store(float* p) const { _mm_store_ps(p, v); }
   friend Float4 operator+(Float4 a, Float4 b) { return _mm_add_ps(a.v, b.v); }
   friend Float4 operator-(Float4 a, Float4 b) { return _mm_sub_ps(a.v, b.v); }
@@ -39,6 +45,8 @@ struct Float4 {
   friend Float4 select(Float4 mask, Float4 a, Float4 b) {
     return _mm_or_ps(_mm_and_ps(mask.v, a.v), _mm_andnot_ps(mask.v, b.v));
   }
+  /// Rows a, b, c, d become columns (a 4 x 4 transpose).
+  friend void transpose4(Float4& a, Float4& b, Float4& c, Float4& d) { _MM_TRANSPOSE4_PS(a.v, b.v, c.v, d.v); }
   /// Truncation towards zero to int32 (the value must fit).
   void storeTruncated(std::int32_t* p) const { _mm_store_si128(reinterpret_cast<__m128i*>(p), _mm_cvttps_epi32(v)); }
   /// 1 where the mask is set, else 0.
@@ -53,6 +61,8 @@ struct Float4 {
   explicit Float4(float x) : v{x, x, x, x} {}
   Float4(float a, float b, float c, float d) : v{a, b, c, d} {}
   static Float4 load(const float* p) { return make([&](int k) { return p[k]; }); }
+  static Float4 loadUnaligned(const float* p) { return load(p); }
+  float horizontalSum() const { return (v[0] + v[2]) + (v[1] + v[3]); }
   void store(float* p) const {
     for (int k = 0; k < 4; ++k) p[k] = v[k];
   }
@@ -90,6 +100,15 @@ struct Float4 {
   }
   friend Float4 select(Float4 mask, Float4 a, Float4 b) {
     return make([&](int k) { return isSet(mask.v[k]) ? a.v[k] : b.v[k]; });
+  }
+  friend void transpose4(Float4& a, Float4& b, Float4& c, Float4& d) {
+    Float4* r[4] = {&a, &b, &c, &d};
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const float t = r[i]->v[j];
+        r[i]->v[j] = r[j]->v[i];
+        r[j]->v[i] = t;
+      }
   }
   void storeTruncated(std::int32_t* p) const {
     for (int k = 0; k < 4; ++k) p[k] = static_cast<std::int32_t>(v[k]);

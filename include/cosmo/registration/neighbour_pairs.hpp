@@ -14,6 +14,9 @@ struct NeighbourPair {
   std::uint32_t first;     ///< index of one point of the pair (input order)
   std::uint32_t second;    ///< index of the other point
   float squared_distance;  ///< |p_first - p_second|^2
+  /// Left uninitialised (the search sizes its output generously before filling it: no zeroing pass).
+  NeighbourPair() {}
+  NeighbourPair(std::uint32_t a, std::uint32_t b, float d2) : first(a), second(b), squared_distance(d2) {}
 };
 using NeighbourPairs = std::vector<NeighbourPair>;
 
