@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "cosmo/common/voxel_key.hpp"
+#include "cosmo/registration/radix_sort.hpp"
 #include "cosmo/registration/float4.hpp"
 #include "cosmo/registration/neighbour_pairs.hpp"
 #include "cosmo/registration/stage_observer.hpp"
@@ -54,7 +55,7 @@ inline void storeBin(Float4 x, float lo, float hi, int offset, std::int32_t* out
 /// a_t = -a1, phi = -a2), v = d x u / |d x u|, w = u x v. In closed form, with c = n1.n2 and |d x u| =
 /// sqrt(1 - a_s^2): alpha = v.nb = d.(n1 x n2) / |d x u| (the same for both choices), and theta =
 /// atan2(w.nb, u.nb) = atan2(a_t - a_s c, c |d x u|).
-inline void pairFeatureBlock(const float* pn, const std::uint32_t* i, const std::uint32_t* j, std::int32_t* b1,
+__attribute__((always_inline)) inline void pairFeatureBlock(const float* pn, const std::uint32_t* i, const std::uint32_t* j, std::int32_t* b1,
                              std::int32_t* b2, std::int32_t* b3, std::int32_t* ok) {
   // Four rows [x y z 0] gathered and transposed into x, y, z lanes (the fourth row is the zero column).
   auto lanes = [&](const std::uint32_t* idx, std::size_t offset, Float4& x, Float4& y, Float4& z) {
@@ -234,7 +235,7 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
       keyed.emplace_back(packVoxelKey(voxelCoord(p.x(), inv), voxelCoord(p.y(), inv), voxelCoord(p.z(), inv)),
                          kept_index[static_cast<std::size_t>(i)]);
     }
-    std::sort(keyed.begin(), keyed.end());
+    radixSortByKey(keyed);  // = std::sort: the input is in kept order
     for (std::size_t b = 0; b < keyed.size(); ++b)
       if (b == 0 || keyed[b].first != keyed[b - 1].first) out.keypoints.push_back(keyed[b].second);
     std::sort(out.keypoints.begin(), out.keypoints.end());

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cosmo/common/voxel_key.hpp"
+#include "cosmo/registration/radix_sort.hpp"
 
 namespace cosmo {
 
@@ -37,7 +38,7 @@ NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, fl
     if (!voxelCoordInRange(cx, 1) || !voxelCoordInRange(cy, 1) || !voxelCoordInRange(cz, 1)) continue;
     keyed.emplace_back(packVoxelKey(cx, cy, cz), static_cast<std::uint32_t>(i));
   }
-  std::sort(keyed.begin(), keyed.end());
+  radixSortByKey(keyed);  // = std::sort: the input is in index order
   const std::size_t m = keyed.size();
   std::vector<float> xs(m), ys(m), zs(m);
   std::vector<std::uint32_t> ids(m);

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "cosmo/common/voxel_key.hpp"
+#include "cosmo/registration/radix_sort.hpp"
 
 namespace cosmo {
 
@@ -70,7 +71,7 @@ std::vector<Eigen::Vector3f> voxelDownsample(const std::vector<Eigen::Vector3f>&
   }
   std::vector<std::pair<std::uint64_t, std::uint32_t>> order(keys.size());
   for (std::size_t v = 0; v < keys.size(); ++v) order[v] = {keys[v], static_cast<std::uint32_t>(v)};
-  std::sort(order.begin(), order.end());
+  radixSortByKey(order);  // = std::sort (keys are unique)
   out.reserve(order.size());
   for (const auto& [key, v] : order) out.push_back((sums[v] / static_cast<double>(counts[v])).cast<float>());
   return out;
