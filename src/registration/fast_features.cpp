@@ -93,11 +93,11 @@ __attribute__((always_inline)) inline void pairFeatureBlock(const float* pn, con
 
 }  // namespace
 
-FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, const FastFeatureParams& params,
+FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& input, const FastFeatureParams& params,
                                  StageObserver* observer) {
   FastFeatures out;
-  const std::size_t n = points.size();
-  if (n == 0) {
+  const std::size_t n_input = input.size();
+  if (n_input == 0) {
     out.features = FpfhMatrix(kFpfhDim, 0);
     return out;
   }
@@ -106,8 +106,17 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
   const float rs2 = static_cast<float>(spfh_r * spfh_r);
   const float rn2 = static_cast<float>(params.normal_radius * params.normal_radius);
   const float rsearch = static_cast<float>(std::max({spfh_r, params.normal_radius, params.fpfh_radius}));
-  // Every neighbour pair once, at the largest of the three radii.
-  const NeighbourPairs pairs = findNeighbourPairs(points, rsearch);
+  // Every neighbour pair once, at the largest of the three radii, numbered by position in the grid's cell
+  // order: the per-point work below runs on the points in that order (a cell's points contiguous in memory) and
+  // only the outputs go back to input order. The pairs come in the same sequence as with input numbering, so
+  // every per-point sum accumulates in the same order (same bits).
+  std::vector<std::uint32_t> order;
+  const NeighbourPairs pairs = findNeighbourPairs(input, rsearch, order);
+  const std::size_t n = order.size();
+  std::vector<Eigen::Vector3f> points(n);
+  for (std::size_t s = 0; s < n; ++s) points[s] = input[order[s]];
+  std::vector<int> position(n_input, -1);
+  for (std::size_t s = 0; s < n; ++s) position[order[s]] = static_cast<int>(s);
   const std::size_t np = pairs.size();
   notifyStage(observer, "neighbours");
 
@@ -220,20 +229,22 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
   notifyStage(observer, "spfh");
 
   // Keypoints: the first valid point (in input order) of each keypoint voxel, or every valid point.
-  std::vector<int> kept_index(n, -1);
-  for (std::size_t i = 0; i < n; ++i)
-    if (valid[i]) {
-      kept_index[i] = static_cast<int>(out.kept.size());
+  std::vector<int> kept_index(n, -1);  // by position
+  for (std::size_t i = 0; i < n_input; ++i) {
+    const int s = position[i];
+    if (s >= 0 && valid[static_cast<std::size_t>(s)]) {
+      kept_index[static_cast<std::size_t>(s)] = static_cast<int>(out.kept.size());
       out.kept.push_back(static_cast<int>(i));
-      out.normals.push_back(normals[i]);
+      out.normals.push_back(normals[static_cast<std::size_t>(s)]);
     }
+  }
   if (params.keypoint_voxel > 0.0) {
     std::vector<std::pair<std::uint64_t, int>> keyed;
     const double inv = 1.0 / params.keypoint_voxel;
     for (const int i : out.kept) {
-      const Eigen::Vector3f& p = points[static_cast<std::size_t>(i)];
+      const Eigen::Vector3f& p = input[static_cast<std::size_t>(i)];
       keyed.emplace_back(packVoxelKey(voxelCoord(p.x(), inv), voxelCoord(p.y(), inv), voxelCoord(p.z(), inv)),
-                         kept_index[static_cast<std::size_t>(i)]);
+                         kept_index[static_cast<std::size_t>(position[static_cast<std::size_t>(i)])]);
     }
     radixSortByKey(keyed);  // = std::sort: the input is in kept order
     for (std::size_t b = 0; b < keyed.size(); ++b)
@@ -246,9 +257,12 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
 
   // FPFH = own SPFH + distance-weighted mean of the neighbours' SPFH (within fpfh_radius); sub-histograms
   // normalised to 100. The sums run over the pair list into the keypoints' columns.
-  std::vector<int> key_col(n, -1);
-  for (std::size_t c = 0; c < out.keypoints.size(); ++c)
-    key_col[static_cast<std::size_t>(out.kept[static_cast<std::size_t>(out.keypoints[c])])] = static_cast<int>(c);
+  std::vector<int> key_col(n, -1);  // by position
+  auto keypointPosition = [&](std::size_t c) {
+    return static_cast<std::size_t>(
+        position[static_cast<std::size_t>(out.kept[static_cast<std::size_t>(out.keypoints[c])])]);
+  };
+  for (std::size_t c = 0; c < out.keypoints.size(); ++c) key_col[keypointPosition(c)] = static_cast<int>(c);
   const std::size_t nk = out.keypoints.size();
   std::vector<float, Eigen::aligned_allocator<float>> sums(nk * kRow, 0.f);
   std::vector<int> weight_count(nk, 0);
@@ -284,7 +298,7 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
   }
   out.features.resize(kFpfhDim, static_cast<Eigen::Index>(nk));
   for (std::size_t c = 0; c < out.keypoints.size(); ++c) {
-    const auto i = static_cast<std::size_t>(out.kept[static_cast<std::size_t>(out.keypoints[c])]);
+    const std::size_t i = keypointPosition(c);
     auto acc = out.features.col(static_cast<Eigen::Index>(c));
     acc = Eigen::Map<const Eigen::Matrix<float, kFpfhDim, 1>>(&sums[c * kRow]);
     if (weight_count[c] > 0) acc /= static_cast<float>(weight_count[c]);

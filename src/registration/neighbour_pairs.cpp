@@ -19,11 +19,25 @@ __attribute__((flatten)) void squaredDistances(const float* x, const float* y, c
   d2 = (Run(x, len) - ax).square() + (Run(y, len) - ay).square() + (Run(z, len) - az).square();
 }
 
+NeighbourPairs findPairs(const std::vector<Eigen::Vector3f>& points, float radius, std::vector<std::uint32_t>* order);
+
 }  // namespace
 
 NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, float radius) {
+  return findPairs(points, radius, nullptr);
+}
+
+NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, float radius,
+                                  std::vector<std::uint32_t>& order) {
+  return findPairs(points, radius, &order);
+}
+
+namespace {
+
+NeighbourPairs findPairs(const std::vector<Eigen::Vector3f>& points, float radius, std::vector<std::uint32_t>* order) {
   NeighbourPairs out;
   const std::size_t n = points.size();
+  if (order != nullptr) order->clear();
   if (n < 2 || !(radius > 0.f)) return out;
   const float r2 = radius * radius;
   const double inv = 1.0 / static_cast<double>(radius);
@@ -54,6 +68,10 @@ NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, fl
     }
   }
   cell_begin.push_back(static_cast<std::uint32_t>(m));
+  if (order != nullptr) {  // pairs labelled by position instead of input index
+    *order = ids;
+    for (std::size_t s = 0; s < m; ++s) ids[s] = static_cast<std::uint32_t>(s);
+  }
   const std::size_t cells = cell_key.size();
   out.resize(n * 32);
   std::vector<float> d2_buffer;
@@ -102,5 +120,7 @@ NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, fl
   out.resize(used);
   return out;
 }
+
+}  // namespace
 
 }  // namespace cosmo

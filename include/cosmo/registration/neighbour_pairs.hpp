@@ -23,4 +23,10 @@ using NeighbourPairs = std::vector<NeighbourPair>;
 /// Pairs {i, j}, i != j, with |p_i - p_j|^2 < radius^2 (float, computed as ((dx^2 + dy^2) + dz^2)).
 NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, float radius);
 
+/// The same pairs in the same order, but numbered by position in the grid's cell-sorted order: order[s] is the
+/// input index of position s (points that are not finite or beyond the grid's range have no position). Per-point
+/// work indexed by position touches memory locally (a cell's points are contiguous).
+NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, float radius,
+                                  std::vector<std::uint32_t>& order);
+
 }  // namespace cosmo
