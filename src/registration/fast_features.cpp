@@ -188,7 +188,6 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& input, cons
   // Rows padded to kRow floats (16-byte aligned) so the FPFH sums run on Float4.
   // Integer bin counts first (exact, as the float counts were; integer increments are cheaper), then scaled.
   std::vector<std::uint16_t> bins(n * kRow, 0);
-  std::vector<int> spfh_count(n, 0);
   {
     // Chunks of up to kChunk selected pairs (within the SPFH radius, both valid; selected without a branch),
     // features in blocks of kBlock gathered from the packed [point normal] rows, then the histogram increments.
@@ -217,13 +216,15 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& input, cons
         std::uint16_t* hj = &bins[cj[l] * kRow];
         ++hi[b1[l]], ++hi[b2[l]], ++hi[b3[l]];
         ++hj[b1[l]], ++hj[b2[l]], ++hj[b3[l]];
-        ++spfh_count[ci[l]], ++spfh_count[cj[l]];
       }
     }
   }
   std::vector<float, Eigen::aligned_allocator<float>> spfh(n * kRow, 0.f);
   for (std::size_t i = 0; i < n; ++i) {
-    const float s = spfh_count[i] > 0 ? 100.f / static_cast<float>(spfh_count[i]) : 1.f;
+    // Pairs counted in the point's SPFH = the sum of any one sub-histogram (each pair adds one to each).
+    int pairs_counted = 0;
+    for (int b = 0; b < kBins; ++b) pairs_counted += bins[i * kRow + b];
+    const float s = pairs_counted > 0 ? 100.f / static_cast<float>(pairs_counted) : 1.f;
     for (int b = 0; b < kFpfhDim; ++b) spfh[i * kRow + b] = static_cast<float>(bins[i * kRow + b]) * s;
   }
   notifyStage(observer, "spfh");
