@@ -268,15 +268,13 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& input, cons
   std::vector<float, Eigen::aligned_allocator<float>> sums(nk * kRow, 0.f);
   std::vector<int> weight_count(nk, 0);
   {
-    // The (keypoint column, neighbour row, weight) terms in pair order (for a pair: the first point's term,
-    // then the second's), listed without data-dependent branches, then summed: each column receives the same
-    // terms in the same order as a direct loop over the pairs.
-    struct Term {
-      std::uint32_t col, row;
-      float w;
-    };
+    // The (keypoint column, neighbour row, squared distance) terms in pair order (for a pair: the first point's
+    // term, then the second's), listed without data-dependent branches, then summed with weight 1 / |p - q|
+    // (computed only for the listed terms): each column receives the same terms in the same order as a direct
+    // loop over the pairs.
     constexpr std::size_t kChunk = 256;
-    Term terms[2 * kChunk];
+    std::uint32_t term_col[2 * kChunk], term_row[2 * kChunk];
+    float term_d2[2 * kChunk];
     for (std::size_t e0 = 0; e0 < np; e0 += kChunk) {
       const std::size_t e1 = std::min(np, e0 + kChunk);
       std::size_t nt = 0;
@@ -284,16 +282,16 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& input, cons
         const float d2 = pairs[e].squared_distance;
         const std::uint32_t i = pairs[e].first, j = pairs[e].second;
         const bool ok = (d2 <= rf2) & (d2 > 0.f) & (valid[i] != 0) & (valid[j] != 0);
-        const float w = 1.f / std::sqrt(d2);
         const int ki = key_col[i], kj = key_col[j];
-        terms[nt] = {static_cast<std::uint32_t>(ki), j, w};
+        term_col[nt] = static_cast<std::uint32_t>(ki), term_row[nt] = j, term_d2[nt] = d2;
         nt += ok & (ki >= 0) ? 1 : 0;
-        terms[nt] = {static_cast<std::uint32_t>(kj), i, w};
+        term_col[nt] = static_cast<std::uint32_t>(kj), term_row[nt] = i, term_d2[nt] = d2;
         nt += ok & (kj >= 0) ? 1 : 0;
       }
       for (std::size_t t = 0; t < nt; ++t) {
-        addScaledRow(&sums[static_cast<std::size_t>(terms[t].col) * kRow], &spfh[terms[t].row * kRow], terms[t].w);
-        ++weight_count[terms[t].col];
+        const float w = 1.f / std::sqrt(term_d2[t]);
+        addScaledRow(&sums[static_cast<std::size_t>(term_col[t]) * kRow], &spfh[term_row[t] * kRow], w);
+        ++weight_count[term_col[t]];
       }
     }
   }
