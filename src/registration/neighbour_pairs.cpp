@@ -106,14 +106,17 @@ NeighbourPairs findPairs(const std::vector<Eigen::Vector3f>& points, float radiu
       used += k_out;
     }
   };
+  // Each forward neighbour's key grows with the cell's key, so its cell is found by a cursor per offset that
+  // only moves forward over the sorted keys (a merge walk instead of a binary search per cell and offset).
+  std::size_t cursor[13] = {};
   for (std::size_t c = 0; c < cells; ++c) {
     emitPairs(cell_begin[c], cell_begin[c + 1], cell_begin[c], cell_begin[c + 1], true);
     for (int f = 0; f < nf; ++f) {
       // Packed keys add per axis without carries (every cell is at least one away from the packing bounds).
       const std::uint64_t key = static_cast<std::uint64_t>(static_cast<std::int64_t>(cell_key[c]) + forward[f]);
-      const auto it = std::lower_bound(cell_key.begin() + static_cast<std::ptrdiff_t>(c) + 1, cell_key.end(), key);
-      if (it == cell_key.end() || *it != key) continue;
-      const auto d = static_cast<std::size_t>(it - cell_key.begin());
+      std::size_t& d = cursor[f];
+      while (d < cells && cell_key[d] < key) ++d;
+      if (d == cells || cell_key[d] != key) continue;
       emitPairs(cell_begin[c], cell_begin[c + 1], cell_begin[d], cell_begin[d + 1], false);
     }
   }
