@@ -20,12 +20,6 @@ struct Float4 {
   explicit Float4(float x) : v(_mm_set1_ps(x)) {}
   Float4(float a, float b, float c, float d) : v(_mm_setr_ps(a, b, c, d)) {}
   static Float4 load(const float* p) { return _mm_load_ps(p); }  ///< 16-byte aligned
-  static Float4 loadUnaligned(const float* p) { return _mm_loadu_ps(p); }
-  /// Sum of the four lanes, ((v0 + v2) + (v1 + v3)).
-  float horizontalSum() const {
-    const __m128 s = _mm_add_ps(v, _mm_movehl_ps(v, v));
-    return _mm_cvtss_f32(_mm_add_ss(s, _mm_shuffle_ps(s, s, 1)));
-  }
   void store(float* p) const { _mm_store_ps(p, v); }
   friend Float4 operator+(Float4 a, Float4 b) { return _mm_add_ps(a.v, b.v); }
   friend Float4 operator-(Float4 a, Float4 b) { return _mm_sub_ps(a.v, b.v); }
@@ -61,8 +55,6 @@ struct Float4 {
   explicit Float4(float x) : v{x, x, x, x} {}
   Float4(float a, float b, float c, float d) : v{a, b, c, d} {}
   static Float4 load(const float* p) { return make([&](int k) { return p[k]; }); }
-  static Float4 loadUnaligned(const float* p) { return load(p); }
-  float horizontalSum() const { return (v[0] + v[2]) + (v[1] + v[3]); }
   void store(float* p) const {
     for (int k = 0; k < 4; ++k) p[k] = v[k];
   }
