@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "cosmo/common/voxel_key.hpp"
+#include "cosmo/registration/radix_sort.hpp"
 #include "cosmo/registration/float4.hpp"
 #include "cosmo/registration/neighbour_pairs.hpp"
 #include "cosmo/registration/stage_observer.hpp"
@@ -45,8 +46,8 @@ inline void storeBin(Float4 x, float lo, float hi, int offset, std::int32_t* out
   (clamped + Float4(static_cast<float>(offset))).storeTruncated(out);
 }
 
-/// PCL's pair feature (pcl::computePairFeatures) for kBlock pairs in structure-of-arrays form (in[0..2] = p1,
-/// in[3..5] = n1, in[6..8] = p2, in[9..11] = n2, each kBlock floats, rows `stride` apart); writes the bins of
+/// PCL's pair feature (pcl::computePairFeatures) for kBlock pairs, each pair's p1, n1, p2, n2 as rows
+/// [x y z 0] of 8 floats [p n] per point (`pn`; the pairs' point indices i[0..4), j[0..4)); writes the bins of
 /// f1 = theta (over [-pi, pi]), f2 = alpha and f3 = phi (over [-1, 1]), offset to the 33-bin layout, and
 /// ok = 0 for degenerate pairs (coincident points, source normal along the line).
 /// PCL's Darboux frame, with d = (p2 - p1) / |p2 - p1|, a1 = n1.d, a2 = n2.d: the source is the normal more
@@ -54,11 +55,22 @@ inline void storeBin(Float4 x, float lo, float hi, int offset, std::int32_t* out
 /// a_t = -a1, phi = -a2), v = d x u / |d x u|, w = u x v. In closed form, with c = n1.n2 and |d x u| =
 /// sqrt(1 - a_s^2): alpha = v.nb = d.(n1 x n2) / |d x u| (the same for both choices), and theta =
 /// atan2(w.nb, u.nb) = atan2(a_t - a_s c, c |d x u|).
-inline void pairFeatureBlock(const float* in, std::size_t stride, std::int32_t* b1, std::int32_t* b2,
-                             std::int32_t* b3, std::int32_t* ok) {
-  auto lane = [&](int k) { return Float4::load(in + static_cast<std::size_t>(k) * stride); };
-  const Float4 dx = lane(6) - lane(0), dy = lane(7) - lane(1), dz = lane(8) - lane(2);
-  const Float4 n1x = lane(3), n1y = lane(4), n1z = lane(5), n2x = lane(9), n2y = lane(10), n2z = lane(11);
+__attribute__((always_inline)) inline void pairFeatureBlock(const float* pn, const std::uint32_t* i, const std::uint32_t* j, std::int32_t* b1,
+                             std::int32_t* b2, std::int32_t* b3, std::int32_t* ok) {
+  // Four rows [x y z 0] gathered and transposed into x, y, z lanes (the fourth row is the zero column).
+  auto lanes = [&](const std::uint32_t* idx, std::size_t offset, Float4& x, Float4& y, Float4& z) {
+    x = Float4::load(pn + 8 * static_cast<std::size_t>(idx[0]) + offset);
+    y = Float4::load(pn + 8 * static_cast<std::size_t>(idx[1]) + offset);
+    z = Float4::load(pn + 8 * static_cast<std::size_t>(idx[2]) + offset);
+    Float4 w = Float4::load(pn + 8 * static_cast<std::size_t>(idx[3]) + offset);
+    transpose4(x, y, z, w);
+  };
+  Float4 p1x, p1y, p1z, n1x, n1y, n1z, p2x, p2y, p2z, n2x, n2y, n2z;
+  lanes(i, 0, p1x, p1y, p1z);
+  lanes(i, 4, n1x, n1y, n1z);
+  lanes(j, 0, p2x, p2y, p2z);
+  lanes(j, 4, n2x, n2y, n2z);
+  const Float4 dx = p2x - p1x, dy = p2y - p1y, dz = p2z - p1z;
   const Float4 zero(0.f), tiny(1e-30f);
   const Float4 d = sqrt(dx * dx + dy * dy + dz * dz);
   const Float4 inv_d = select(d > zero, Float4(1.f) / max(d, tiny), zero);
@@ -81,11 +93,11 @@ inline void pairFeatureBlock(const float* in, std::size_t stride, std::int32_t* 
 
 }  // namespace
 
-FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, const FastFeatureParams& params,
+FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& input, const FastFeatureParams& params,
                                  StageObserver* observer) {
   FastFeatures out;
-  const std::size_t n = points.size();
-  if (n == 0) {
+  const std::size_t n_input = input.size();
+  if (n_input == 0) {
     out.features = FpfhMatrix(kFpfhDim, 0);
     return out;
   }
@@ -94,8 +106,17 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
   const float rs2 = static_cast<float>(spfh_r * spfh_r);
   const float rn2 = static_cast<float>(params.normal_radius * params.normal_radius);
   const float rsearch = static_cast<float>(std::max({spfh_r, params.normal_radius, params.fpfh_radius}));
-  // Every neighbour pair once, at the largest of the three radii.
-  const NeighbourPairs pairs = findNeighbourPairs(points, rsearch);
+  // Every neighbour pair once, at the largest of the three radii, numbered by position in the grid's cell
+  // order: the per-point work below runs on the points in that order (a cell's points contiguous in memory) and
+  // only the outputs go back to input order. The pairs come in the same sequence as with input numbering, so
+  // every per-point sum accumulates in the same order (same bits).
+  std::vector<std::uint32_t> order;
+  const NeighbourPairs pairs = findNeighbourPairs(input, rsearch, order);
+  const std::size_t n = order.size();
+  std::vector<Eigen::Vector3f> points(n);
+  for (std::size_t s = 0; s < n; ++s) points[s] = input[order[s]];
+  std::vector<int> position(n_input, -1);
+  for (std::size_t s = 0; s < n; ++s) position[order[s]] = static_cast<int>(s);
   const std::size_t np = pairs.size();
   notifyStage(observer, "neighbours");
 
@@ -106,23 +127,35 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
   constexpr std::size_t kMoments = 12;
   std::vector<float, Eigen::aligned_allocator<float>> mom(n * kMoments, 0.f);
   std::vector<std::uint32_t> count(n, 1);  // the point itself
-  for (std::size_t e = 0; e < np; ++e) {
-    if (pairs[e].squared_distance > rn2) continue;
-    const std::uint32_t i = pairs[e].first, j = pairs[e].second;
-    ++count[i], ++count[j];
-    const Eigen::Vector3f q = points[j] - points[i];
-    const float x = q.x(), y = q.y(), z = q.z();
-    const Float4 first(x, y, z, 0.f);
-    const Float4 second = Float4(x, x, x, y) * Float4(x, y, z, y);
-    const Float4 third = Float4(y, z, 0.f, 0.f) * Float4(z, z, 0.f, 0.f);
-    float* mi = &mom[i * kMoments];
-    float* mj = &mom[j * kMoments];
-    (Float4::load(mi) + first).store(mi);
-    (Float4::load(mi + 4) + second).store(mi + 4);
-    (Float4::load(mi + 8) + third).store(mi + 8);
-    (Float4::load(mj) + -first).store(mj);
-    (Float4::load(mj + 4) + second).store(mj + 4);
-    (Float4::load(mj + 8) + third).store(mj + 8);
+  // In chunks: the pairs within the normal radius listed first without a branch (the test is data-dependent
+  // and would mispredict), in pair order, so the moments accumulate in the same order as a direct loop.
+  constexpr std::size_t kSelect = 512;
+  std::uint32_t selected[kSelect];
+  for (std::size_t e0 = 0; e0 < np; e0 += kSelect) {
+    const std::size_t e1 = std::min(np, e0 + kSelect);
+    std::size_t ns = 0;
+    for (std::size_t e = e0; e < e1; ++e) {
+      selected[ns] = static_cast<std::uint32_t>(e);
+      ns += pairs[e].squared_distance > rn2 ? 0 : 1;
+    }
+    for (std::size_t s = 0; s < ns; ++s) {
+      const std::size_t e = selected[s];
+      const std::uint32_t i = pairs[e].first, j = pairs[e].second;
+      ++count[i], ++count[j];
+      const Eigen::Vector3f q = points[j] - points[i];
+      const float x = q.x(), y = q.y(), z = q.z();
+      const Float4 first(x, y, z, 0.f);
+      const Float4 second = Float4(x, x, x, y) * Float4(x, y, z, y);
+      const Float4 third = Float4(y, z, 0.f, 0.f) * Float4(z, z, 0.f, 0.f);
+      float* mi = &mom[i * kMoments];
+      float* mj = &mom[j * kMoments];
+      (Float4::load(mi) + first).store(mi);
+      (Float4::load(mi + 4) + second).store(mi + 4);
+      (Float4::load(mi + 8) + third).store(mi + 8);
+      (Float4::load(mj) + -first).store(mj);
+      (Float4::load(mj + 4) + second).store(mj + 4);
+      (Float4::load(mj + 8) + third).store(mj + 8);
+    }
   }
   std::vector<Eigen::Vector3f> normals(n, Eigen::Vector3f::Zero());
   std::vector<unsigned char> valid(n, 0);
@@ -153,71 +186,68 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
   // symmetric (swapping the two points selects the same source normal), so each pair is computed once and
   // counted in both histograms; the feature itself runs on kBlock pairs at a time (Float4).
   // Rows padded to kRow floats (16-byte aligned) so the FPFH sums run on Float4.
-  std::vector<float, Eigen::aligned_allocator<float>> spfh(n * kRow, 0.f);
-  std::vector<int> spfh_count(n, 0);
+  // Integer bin counts first (exact, as the float counts were; integer increments are cheaper), then scaled.
+  std::vector<std::uint16_t> bins(n * kRow, 0);
   {
-    // Chunks of up to kChunk selected pairs (within the SPFH radius, both valid): gathered into
-    // structure-of-arrays buffers first (so the vector loads do not wait on just-written scalars), features in
-    // blocks of kBlock, then the histogram increments.
+    // Chunks of up to kChunk selected pairs (within the SPFH radius, both valid; selected without a branch),
+    // features in blocks of kBlock gathered from the packed [point normal] rows, then the histogram increments.
+    std::vector<float, Eigen::aligned_allocator<float>> pn(n * 8, 0.f);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < 3; ++k) pn[8 * i + k] = points[i][k], pn[8 * i + 4 + k] = normals[i][k];
     constexpr std::size_t kChunk = 256;
-    alignas(16) float in[12][kChunk];
     alignas(16) std::int32_t b1[kChunk], b2[kChunk], b3[kChunk], ok[kChunk];
-    std::uint32_t ci[kChunk], cj[kChunk];
+    std::uint32_t ci[kChunk + kBlock], cj[kChunk + kBlock];
     std::size_t e = 0;
     while (e < np) {
       std::size_t len = 0;
       for (; e < np && len < kChunk; ++e) {
         const std::uint32_t i = pairs[e].first, j = pairs[e].second;
-        if (pairs[e].squared_distance > rs2 || !valid[i] || !valid[j]) continue;
         ci[len] = i, cj[len] = j;
-        const float* p1 = points[i].data();
-        const float* p2 = points[j].data();
-        const float* n1 = normals[i].data();
-        const float* n2 = normals[j].data();
-        for (int k = 0; k < 3; ++k)
-          in[k][len] = p1[k], in[3 + k][len] = n1[k], in[6 + k][len] = p2[k], in[9 + k][len] = n2[k];
-        ++len;
+        len += (pairs[e].squared_distance <= rs2) & (valid[i] != 0) & (valid[j] != 0) ? 1 : 0;
       }
       if (len == 0) break;
       const std::size_t padded = (len + kBlock - 1) / kBlock * kBlock;
-      for (std::size_t l = len; l < padded; ++l)  // the tail repeats the last pair; not counted
-        for (int k = 0; k < 12; ++k) in[k][l] = in[k][len - 1];
+      for (std::size_t l = len; l < padded; ++l) ci[l] = ci[len - 1], cj[l] = cj[len - 1];  // not counted
       for (std::size_t l = 0; l < padded; l += kBlock)
-        pairFeatureBlock(&in[0][l], kChunk, b1 + l, b2 + l, b3 + l, ok + l);
+        pairFeatureBlock(pn.data(), ci + l, cj + l, b1 + l, b2 + l, b3 + l, ok + l);
       for (std::size_t l = 0; l < len; ++l) {
         if (!ok[l]) continue;
-        float* hi = &spfh[ci[l] * kRow];
-        float* hj = &spfh[cj[l] * kRow];
+        std::uint16_t* hi = &bins[ci[l] * kRow];
+        std::uint16_t* hj = &bins[cj[l] * kRow];
         ++hi[b1[l]], ++hi[b2[l]], ++hi[b3[l]];
         ++hj[b1[l]], ++hj[b2[l]], ++hj[b3[l]];
-        ++spfh_count[ci[l]], ++spfh_count[cj[l]];
       }
     }
   }
-  for (std::size_t i = 0; i < n; ++i)
-    if (spfh_count[i] > 0) {
-      const float s = 100.f / static_cast<float>(spfh_count[i]);
-      for (int b = 0; b < kFpfhDim; ++b) spfh[i * kRow + b] *= s;
-    }
+  std::vector<float, Eigen::aligned_allocator<float>> spfh(n * kRow, 0.f);
+  for (std::size_t i = 0; i < n; ++i) {
+    // Pairs counted in the point's SPFH = the sum of any one sub-histogram (each pair adds one to each).
+    int pairs_counted = 0;
+    for (int b = 0; b < kBins; ++b) pairs_counted += bins[i * kRow + b];
+    const float s = pairs_counted > 0 ? 100.f / static_cast<float>(pairs_counted) : 1.f;
+    for (int b = 0; b < kFpfhDim; ++b) spfh[i * kRow + b] = static_cast<float>(bins[i * kRow + b]) * s;
+  }
   notifyStage(observer, "spfh");
 
   // Keypoints: the first valid point (in input order) of each keypoint voxel, or every valid point.
-  std::vector<int> kept_index(n, -1);
-  for (std::size_t i = 0; i < n; ++i)
-    if (valid[i]) {
-      kept_index[i] = static_cast<int>(out.kept.size());
+  std::vector<int> kept_index(n, -1);  // by position
+  for (std::size_t i = 0; i < n_input; ++i) {
+    const int s = position[i];
+    if (s >= 0 && valid[static_cast<std::size_t>(s)]) {
+      kept_index[static_cast<std::size_t>(s)] = static_cast<int>(out.kept.size());
       out.kept.push_back(static_cast<int>(i));
-      out.normals.push_back(normals[i]);
+      out.normals.push_back(normals[static_cast<std::size_t>(s)]);
     }
+  }
   if (params.keypoint_voxel > 0.0) {
     std::vector<std::pair<std::uint64_t, int>> keyed;
     const double inv = 1.0 / params.keypoint_voxel;
     for (const int i : out.kept) {
-      const Eigen::Vector3f& p = points[static_cast<std::size_t>(i)];
+      const Eigen::Vector3f& p = input[static_cast<std::size_t>(i)];
       keyed.emplace_back(packVoxelKey(voxelCoord(p.x(), inv), voxelCoord(p.y(), inv), voxelCoord(p.z(), inv)),
-                         kept_index[static_cast<std::size_t>(i)]);
+                         kept_index[static_cast<std::size_t>(position[static_cast<std::size_t>(i)])]);
     }
-    std::sort(keyed.begin(), keyed.end());
+    radixSortByKey(keyed);  // = std::sort: the input is in kept order
     for (std::size_t b = 0; b < keyed.size(); ++b)
       if (b == 0 || keyed[b].first != keyed[b - 1].first) out.keypoints.push_back(keyed[b].second);
     std::sort(out.keypoints.begin(), out.keypoints.end());
@@ -228,30 +258,46 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, con
 
   // FPFH = own SPFH + distance-weighted mean of the neighbours' SPFH (within fpfh_radius); sub-histograms
   // normalised to 100. The sums run over the pair list into the keypoints' columns.
-  std::vector<int> key_col(n, -1);
-  for (std::size_t c = 0; c < out.keypoints.size(); ++c)
-    key_col[static_cast<std::size_t>(out.kept[static_cast<std::size_t>(out.keypoints[c])])] = static_cast<int>(c);
+  std::vector<int> key_col(n, -1);  // by position
+  auto keypointPosition = [&](std::size_t c) {
+    return static_cast<std::size_t>(
+        position[static_cast<std::size_t>(out.kept[static_cast<std::size_t>(out.keypoints[c])])]);
+  };
+  for (std::size_t c = 0; c < out.keypoints.size(); ++c) key_col[keypointPosition(c)] = static_cast<int>(c);
   const std::size_t nk = out.keypoints.size();
   std::vector<float, Eigen::aligned_allocator<float>> sums(nk * kRow, 0.f);
   std::vector<int> weight_count(nk, 0);
-  for (std::size_t e = 0; e < np; ++e) {
-    const float d2 = pairs[e].squared_distance;
-    if (d2 > rf2 || d2 <= 0.f) continue;
-    const std::uint32_t i = pairs[e].first, j = pairs[e].second;
-    if (!valid[i] || !valid[j] || (key_col[i] < 0 && key_col[j] < 0)) continue;
-    const float w = 1.f / std::sqrt(d2);
-    if (key_col[i] >= 0) {
-      addScaledRow(&sums[static_cast<std::size_t>(key_col[i]) * kRow], &spfh[j * kRow], w);
-      ++weight_count[static_cast<std::size_t>(key_col[i])];
-    }
-    if (key_col[j] >= 0) {
-      addScaledRow(&sums[static_cast<std::size_t>(key_col[j]) * kRow], &spfh[i * kRow], w);
-      ++weight_count[static_cast<std::size_t>(key_col[j])];
+  {
+    // The (keypoint column, neighbour row, squared distance) terms in pair order (for a pair: the first point's
+    // term, then the second's), listed without data-dependent branches, then summed with weight 1 / |p - q|
+    // (computed only for the listed terms): each column receives the same terms in the same order as a direct
+    // loop over the pairs.
+    constexpr std::size_t kChunk = 256;
+    std::uint32_t term_col[2 * kChunk], term_row[2 * kChunk];
+    float term_d2[2 * kChunk];
+    for (std::size_t e0 = 0; e0 < np; e0 += kChunk) {
+      const std::size_t e1 = std::min(np, e0 + kChunk);
+      std::size_t nt = 0;
+      for (std::size_t e = e0; e < e1; ++e) {
+        const float d2 = pairs[e].squared_distance;
+        const std::uint32_t i = pairs[e].first, j = pairs[e].second;
+        const bool ok = (d2 <= rf2) & (d2 > 0.f) & (valid[i] != 0) & (valid[j] != 0);
+        const int ki = key_col[i], kj = key_col[j];
+        term_col[nt] = static_cast<std::uint32_t>(ki), term_row[nt] = j, term_d2[nt] = d2;
+        nt += ok & (ki >= 0) ? 1 : 0;
+        term_col[nt] = static_cast<std::uint32_t>(kj), term_row[nt] = i, term_d2[nt] = d2;
+        nt += ok & (kj >= 0) ? 1 : 0;
+      }
+      for (std::size_t t = 0; t < nt; ++t) {
+        const float w = 1.f / std::sqrt(term_d2[t]);
+        addScaledRow(&sums[static_cast<std::size_t>(term_col[t]) * kRow], &spfh[term_row[t] * kRow], w);
+        ++weight_count[term_col[t]];
+      }
     }
   }
   out.features.resize(kFpfhDim, static_cast<Eigen::Index>(nk));
   for (std::size_t c = 0; c < out.keypoints.size(); ++c) {
-    const auto i = static_cast<std::size_t>(out.kept[static_cast<std::size_t>(out.keypoints[c])]);
+    const std::size_t i = keypointPosition(c);
     auto acc = out.features.col(static_cast<Eigen::Index>(c));
     acc = Eigen::Map<const Eigen::Matrix<float, kFpfhDim, 1>>(&sums[c * kRow]);
     if (weight_count[c] > 0) acc /= static_cast<float>(weight_count[c]);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cosmo/common/voxel_key.hpp"
+#include "cosmo/registration/radix_sort.hpp"
 
 namespace cosmo {
 
@@ -18,11 +19,25 @@ __attribute__((flatten)) void squaredDistances(const float* x, const float* y, c
   d2 = (Run(x, len) - ax).square() + (Run(y, len) - ay).square() + (Run(z, len) - az).square();
 }
 
+NeighbourPairs findPairs(const std::vector<Eigen::Vector3f>& points, float radius, std::vector<std::uint32_t>* order);
+
 }  // namespace
 
 NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, float radius) {
+  return findPairs(points, radius, nullptr);
+}
+
+NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, float radius,
+                                  std::vector<std::uint32_t>& order) {
+  return findPairs(points, radius, &order);
+}
+
+namespace {
+
+NeighbourPairs findPairs(const std::vector<Eigen::Vector3f>& points, float radius, std::vector<std::uint32_t>* order) {
   NeighbourPairs out;
   const std::size_t n = points.size();
+  if (order != nullptr) order->clear();
   if (n < 2 || !(radius > 0.f)) return out;
   const float r2 = radius * radius;
   const double inv = 1.0 / static_cast<double>(radius);
@@ -37,7 +52,7 @@ NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, fl
     if (!voxelCoordInRange(cx, 1) || !voxelCoordInRange(cy, 1) || !voxelCoordInRange(cz, 1)) continue;
     keyed.emplace_back(packVoxelKey(cx, cy, cz), static_cast<std::uint32_t>(i));
   }
-  std::sort(keyed.begin(), keyed.end());
+  radixSortByKey(keyed);  // = std::sort: the input is in index order
   const std::size_t m = keyed.size();
   std::vector<float> xs(m), ys(m), zs(m);
   std::vector<std::uint32_t> ids(m);
@@ -53,6 +68,10 @@ NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, fl
     }
   }
   cell_begin.push_back(static_cast<std::uint32_t>(m));
+  if (order != nullptr) {  // pairs labelled by position instead of input index
+    *order = ids;
+    for (std::size_t s = 0; s < m; ++s) ids[s] = static_cast<std::uint32_t>(s);
+  }
   const std::size_t cells = cell_key.size();
   out.resize(n * 32);
   std::vector<float> d2_buffer;
@@ -87,19 +106,24 @@ NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, fl
       used += k_out;
     }
   };
+  // Each forward neighbour's key grows with the cell's key, so its cell is found by a cursor per offset that
+  // only moves forward over the sorted keys (a merge walk instead of a binary search per cell and offset).
+  std::size_t cursor[13] = {};
   for (std::size_t c = 0; c < cells; ++c) {
     emitPairs(cell_begin[c], cell_begin[c + 1], cell_begin[c], cell_begin[c + 1], true);
     for (int f = 0; f < nf; ++f) {
       // Packed keys add per axis without carries (every cell is at least one away from the packing bounds).
       const std::uint64_t key = static_cast<std::uint64_t>(static_cast<std::int64_t>(cell_key[c]) + forward[f]);
-      const auto it = std::lower_bound(cell_key.begin() + static_cast<std::ptrdiff_t>(c) + 1, cell_key.end(), key);
-      if (it == cell_key.end() || *it != key) continue;
-      const auto d = static_cast<std::size_t>(it - cell_key.begin());
+      std::size_t& d = cursor[f];
+      while (d < cells && cell_key[d] < key) ++d;
+      if (d == cells || cell_key[d] != key) continue;
       emitPairs(cell_begin[c], cell_begin[c + 1], cell_begin[d], cell_begin[d + 1], false);
     }
   }
   out.resize(used);
   return out;
 }
+
+}  // namespace
 
 }  // namespace cosmo

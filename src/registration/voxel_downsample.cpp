@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "cosmo/common/voxel_key.hpp"
+#include "cosmo/registration/radix_sort.hpp"
 
 namespace cosmo {
 
@@ -36,41 +37,55 @@ std::vector<Eigen::Vector3f> voxelDownsample(const std::vector<Eigen::Vector3f>&
   std::vector<std::uint64_t> keys;
   std::vector<Eigen::Vector3d> sums;
   std::vector<std::uint32_t> counts;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const Eigen::Vector3f& p = points[i];
-    if (!p.allFinite()) continue;
-    const double r2 = p.cast<double>().squaredNorm();
-    if (r2 < min2 || r2 > max2) continue;
-    const std::int64_t ix = voxelCoord(p.x(), inv), iy = voxelCoord(p.y(), inv), iz = voxelCoord(p.z(), inv);
-    if (!voxelCoordInRange(ix) || !voxelCoordInRange(iy) || !voxelCoordInRange(iz)) continue;  // +-1e6 voxels
-    const std::uint64_t key = packVoxelKey(ix, iy, iz);
-    if (key != last_key) {
-      std::size_t at = probe(key);
-      if (table_key[at] == kEmpty) {
-        if (2 * (keys.size() + 1) > capacity) {  // keep the load at most 1/2: rebuild twice as large
-          capacity *= 2, mask = capacity - 1;
-          table_key.assign(capacity, kEmpty);
-          table_slot.assign(capacity, 0);
-          for (std::size_t v = 0; v < keys.size(); ++v) {
-            const std::size_t b = probe(keys[v]);
-            table_key[b] = keys[v], table_slot[b] = static_cast<std::uint32_t>(v);
-          }
-          at = probe(key);
-        }
-        table_key[at] = key;
-        table_slot[at] = static_cast<std::uint32_t>(keys.size());
-        keys.push_back(key);
-        sums.emplace_back(Eigen::Vector3d::Zero());
-        counts.push_back(0);
-      }
-      last_key = key, last_slot = table_slot[at];
+  // In batches: the keys of the next kBatch points first (kEmpty = point skipped), with their table slots
+  // prefetched, then the points summed in order (the table's random accesses overlap instead of waiting in turn).
+  constexpr std::size_t kBatch = 32;
+  std::uint64_t batch_key[kBatch];
+  for (std::size_t i0 = 0; i0 < points.size(); i0 += kBatch) {
+    const std::size_t len = std::min(kBatch, points.size() - i0);
+    for (std::size_t b = 0; b < len; ++b) {
+      const Eigen::Vector3f& p = points[i0 + b];
+      batch_key[b] = kEmpty;
+      if (!p.allFinite()) continue;
+      const double r2 = p.cast<double>().squaredNorm();
+      if (r2 < min2 || r2 > max2) continue;
+      const std::int64_t ix = voxelCoord(p.x(), inv), iy = voxelCoord(p.y(), inv), iz = voxelCoord(p.z(), inv);
+      if (!voxelCoordInRange(ix) || !voxelCoordInRange(iy) || !voxelCoordInRange(iz)) continue;  // +-1e6 voxels
+      batch_key[b] = packVoxelKey(ix, iy, iz);
+      __builtin_prefetch(&table_key[((batch_key[b] * 0x9E3779B97F4A7C15ull) >> 20) & mask]);
     }
-    sums[last_slot] += p.cast<double>();
-    ++counts[last_slot];
+    for (std::size_t b = 0; b < len; ++b) {
+      const std::uint64_t key = batch_key[b];
+      if (key == kEmpty) continue;
+      const Eigen::Vector3f& p = points[i0 + b];
+      if (key != last_key) {
+        std::size_t at = probe(key);
+        if (table_key[at] == kEmpty) {
+          if (2 * (keys.size() + 1) > capacity) {  // keep the load at most 1/2: rebuild twice as large
+            capacity *= 2, mask = capacity - 1;
+            table_key.assign(capacity, kEmpty);
+            table_slot.assign(capacity, 0);
+            for (std::size_t v = 0; v < keys.size(); ++v) {
+              const std::size_t slot = probe(keys[v]);
+              table_key[slot] = keys[v], table_slot[slot] = static_cast<std::uint32_t>(v);
+            }
+            at = probe(key);
+          }
+          table_key[at] = key;
+          table_slot[at] = static_cast<std::uint32_t>(keys.size());
+          keys.push_back(key);
+          sums.emplace_back(Eigen::Vector3d::Zero());
+          counts.push_back(0);
+        }
+        last_key = key, last_slot = table_slot[at];
+      }
+      sums[last_slot] += p.cast<double>();
+      ++counts[last_slot];
+    }
   }
   std::vector<std::pair<std::uint64_t, std::uint32_t>> order(keys.size());
   for (std::size_t v = 0; v < keys.size(); ++v) order[v] = {keys[v], static_cast<std::uint32_t>(v)};
-  std::sort(order.begin(), order.end());
+  radixSortByKey(order);  // = std::sort (keys are unique)
   out.reserve(order.size());
   for (const auto& [key, v] : order) out.push_back((sums[v] / static_cast<double>(counts[v])).cast<float>());
   return out;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <set>
@@ -47,6 +48,28 @@ TEST(NeighbourPairs, MatchesBruteForce) {
       }
     EXPECT_EQ(got, want) << "radius " << radius;
     EXPECT_GT(want.size(), 1000u);
+  }
+}
+
+TEST(NeighbourPairs, CellOrderNumberingIsTheSameSequence) {
+  auto pts = randomCloud(1500, 9);
+  pts.emplace_back(std::nanf(""), 0.f, 0.f);  // no position in the grid
+  const NeighbourPairs plain = findNeighbourPairs(pts, 1.5f);
+  std::vector<std::uint32_t> order;
+  const NeighbourPairs numbered = findNeighbourPairs(pts, 1.5f, order);
+  EXPECT_EQ(order.size(), pts.size() - 1);
+  std::vector<int> seen(pts.size(), 0);
+  for (const std::uint32_t i : order) {
+    ASSERT_LT(i, pts.size());
+    EXPECT_EQ(seen[i]++, 0) << "input index listed twice";
+  }
+  ASSERT_EQ(numbered.size(), plain.size());
+  for (std::size_t e = 0; e < plain.size(); ++e) {
+    ASSERT_LT(numbered[e].first, order.size());
+    ASSERT_LT(numbered[e].second, order.size());
+    EXPECT_EQ(order[numbered[e].first], plain[e].first);
+    EXPECT_EQ(order[numbered[e].second], plain[e].second);
+    EXPECT_EQ(numbered[e].squared_distance, plain[e].squared_distance);
   }
 }
 

@@ -10,9 +10,12 @@ namespace cosmo {
 constexpr std::int64_t kVoxelKeyOffset = std::int64_t{1} << 20;  ///< offset coordinates lie in [0, 2^21)
 constexpr std::uint64_t kVoxelKeyAxisMask = (std::uint64_t{1} << 21) - 1;
 
-/// Offset cell coordinate of `v` on a grid of cell size 1 / inv_cell (floor).
+/// Offset cell coordinate of `v` on a grid of cell size 1 / inv_cell (floor; the same value as std::floor, which
+/// without SSE4.1 is a libm call: truncation corrected by one below zero).
 inline std::int64_t voxelCoord(double v, double inv_cell) {
-  return static_cast<std::int64_t>(std::floor(v * inv_cell)) + kVoxelKeyOffset;
+  const double t = v * inv_cell;
+  const auto i = static_cast<std::int64_t>(t);
+  return i - (static_cast<double>(i) > t ? 1 : 0) + kVoxelKeyOffset;
 }
 
 /// True when an offset coordinate has `margin` cells of room on both sides inside [0, 2^21).

@@ -39,6 +39,8 @@ struct Float4 {
   friend Float4 select(Float4 mask, Float4 a, Float4 b) {
     return _mm_or_ps(_mm_and_ps(mask.v, a.v), _mm_andnot_ps(mask.v, b.v));
   }
+  /// Rows a, b, c, d become columns (a 4 x 4 transpose).
+  friend void transpose4(Float4& a, Float4& b, Float4& c, Float4& d) { _MM_TRANSPOSE4_PS(a.v, b.v, c.v, d.v); }
   /// Truncation towards zero to int32 (the value must fit).
   void storeTruncated(std::int32_t* p) const { _mm_store_si128(reinterpret_cast<__m128i*>(p), _mm_cvttps_epi32(v)); }
   /// 1 where the mask is set, else 0.
@@ -90,6 +92,15 @@ struct Float4 {
   }
   friend Float4 select(Float4 mask, Float4 a, Float4 b) {
     return make([&](int k) { return isSet(mask.v[k]) ? a.v[k] : b.v[k]; });
+  }
+  friend void transpose4(Float4& a, Float4& b, Float4& c, Float4& d) {
+    Float4* r[4] = {&a, &b, &c, &d};
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const float t = r[i]->v[j];
+        r[i]->v[j] = r[j]->v[i];
+        r[j]->v[i] = t;
+      }
   }
   void storeTruncated(std::int32_t* p) const {
     for (int k = 0; k < 4; ++k) p[k] = static_cast<std::int32_t>(v[k]);

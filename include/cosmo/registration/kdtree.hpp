@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <nanoflann.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -72,8 +73,20 @@ class KdTree {
     std::size_t count;
     std::size_t kdtree_get_point_count() const { return count; }
     float kdtree_get_pt(std::size_t i, std::size_t d) const { return data[i * Dim + d]; }
+    /// The root bounding box, in one branch-free row-major pass (the same values nanoflann's own pass finds).
     template <class BBox>
-    bool kdtree_get_bbox(BBox&) const { return false; }
+    bool kdtree_get_bbox(BBox& bb) const {
+      if (count == 0) return false;
+      for (int d = 0; d < Dim; ++d) bb[d].low = bb[d].high = data[d];
+      for (std::size_t i = 1; i < count; ++i) {
+        const float* row = data + i * Dim;
+        for (int d = 0; d < Dim; ++d) {
+          bb[d].low = std::min(bb[d].low, row[d]);
+          bb[d].high = std::max(bb[d].high, row[d]);
+        }
+      }
+      return true;
+    }
   };
   /// Squared L2 over a whole row as one Eigen expression (SSE packets): for the high-dimensional feature rows.
   struct RowL2 {

@@ -14,10 +14,19 @@ struct NeighbourPair {
   std::uint32_t first;     ///< index of one point of the pair (input order)
   std::uint32_t second;    ///< index of the other point
   float squared_distance;  ///< |p_first - p_second|^2
+  /// Left uninitialised (the search sizes its output generously before filling it: no zeroing pass).
+  NeighbourPair() {}
+  NeighbourPair(std::uint32_t a, std::uint32_t b, float d2) : first(a), second(b), squared_distance(d2) {}
 };
 using NeighbourPairs = std::vector<NeighbourPair>;
 
 /// Pairs {i, j}, i != j, with |p_i - p_j|^2 < radius^2 (float, computed as ((dx^2 + dy^2) + dz^2)).
 NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, float radius);
+
+/// The same pairs in the same order, but numbered by position in the grid's cell-sorted order: order[s] is the
+/// input index of position s (points that are not finite or beyond the grid's range have no position). Per-point
+/// work indexed by position touches memory locally (a cell's points are contiguous).
+NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, float radius,
+                                  std::vector<std::uint32_t>& order);
 
 }  // namespace cosmo

@@ -25,7 +25,7 @@ struct RegistrationParams {
   // --- correspondences -----------------------------------------------------------------------------------
   std::size_t max_correspondences = 5000;  ///< cap on mutual-NN correspondences (best feature distance first)
   bool mutual_filter = true;      ///< keep only mutual nearest neighbours in feature space
-  double matching_eps = 2.0;      ///< (1+eps)-approximate kd-tree search in FPFH space; 0 = exact
+  double matching_eps = 5.0;      ///< (1+eps)-approximate kd-tree search in FPFH space; 0 = exact
   // --- pruning -------------------------------------------------------------------------------------------
   double noise_bound = 0.3;       ///< max residual (m) of an inlier correspondence; edges tolerate 2x this
   bool use_max_clique = true;     ///< max clique inside the max k-core (else the max k-core itself)
