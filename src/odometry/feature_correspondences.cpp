@@ -1,21 +1,25 @@
 #include "cosmo/odometry/feature_correspondences.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+
+#include "cosmo/odometry/symmetric_eigen3.hpp"
 
 namespace cosmo {
 namespace {
 void meanAndScatter(const std::vector<Eigen::Vector3d>& pts, Eigen::Vector3d& mean, Eigen::Matrix3d& scatter) {
-  mean.setZero();
-  for (const auto& p : pts) mean += p;
-  mean /= static_cast<double>(pts.size());
-  scatter.setZero();
+  double mx = 0.0, my = 0.0, mz = 0.0;
+  for (const auto& p : pts) mx += p.x(), my += p.y(), mz += p.z();
+  const double inv_n = 1.0 / static_cast<double>(pts.size());
+  mx *= inv_n, my *= inv_n, mz *= inv_n;
+  double xx = 0.0, xy = 0.0, xz = 0.0, yy = 0.0, yz = 0.0, zz = 0.0;  // upper triangle, about the mean
   for (const auto& p : pts) {
-    const Eigen::Vector3d d = p - mean;
-    scatter += d * d.transpose();
+    const double dx = p.x() - mx, dy = p.y() - my, dz = p.z() - mz;
+    xx += dx * dx, xy += dx * dy, xz += dx * dz, yy += dy * dy, yz += dy * dz, zz += dz * dz;
   }
-  scatter /= static_cast<double>(pts.size());
+  mean = {mx, my, mz};
+  scatter << xx, xy, xz, xy, yy, yz, xz, yz, zz;
+  scatter *= inv_n;
 }
 }  // namespace
 
@@ -24,11 +28,10 @@ std::optional<MapLine> fitMapLine(const std::vector<Eigen::Vector3d>& nb, const 
   Eigen::Vector3d mean;
   Eigen::Matrix3d scatter;
   meanAndScatter(nb, mean, scatter);
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-  es.computeDirect(scatter);
-  const Eigen::Vector3d ev = es.eigenvalues();  // ascending
+  const Eigen::Vector3d ev = symmetricEigenvalues3(scatter);  // ascending
   if (!(ev[2] > 0.0) || ev[2] < params.min_line_condition_number * std::max(ev[1], 1e-12)) return std::nullopt;
-  return MapLine{mean, es.eigenvectors().col(2), es.eigenvectors().col(1)};
+  const Eigen::Vector3d u = symmetricEigenvector3(scatter, ev[2]);
+  return MapLine{mean, u, anyPerpendicular(u)};
 }
 
 LinearConstraint lineConstraint(const MapLine& line, const Eigen::Vector3d& q) {
@@ -57,12 +60,10 @@ std::optional<LinearConstraint> fitPlaneConstraint(const std::vector<Eigen::Vect
   Eigen::Vector3d mean;
   Eigen::Matrix3d scatter;
   meanAndScatter(nb, mean, scatter);
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-  es.computeDirect(scatter);
+  const Eigen::Vector3d ev = symmetricEigenvalues3(scatter);  // ascending
   // Collinear neighbours (e.g. all on one scan line) do not define a plane.
-  if (!(es.eigenvalues()[1] > params.min_plane_spread_ratio * es.eigenvalues()[2]) || !(es.eigenvalues()[1] > 1e-12))
-    return std::nullopt;
-  const Eigen::Vector3d n = es.eigenvectors().col(0).normalized();
+  if (!(ev[1] > params.min_plane_spread_ratio * ev[2]) || !(ev[1] > 1e-12)) return std::nullopt;
+  const Eigen::Vector3d n = symmetricEigenvector3(scatter, ev[0]);
   const double offset = n.dot(mean);
   double sum = 0.0;
   for (const auto& p : nb) sum += std::abs(n.dot(p) - offset);
