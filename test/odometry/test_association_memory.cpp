@@ -68,7 +68,9 @@ TEST(AssociationMemory, ReusedConstraintsEqualAFreshAssociation) {
     associateFeaturesRemembering(s.edges, s.planes, map, T, params, remembered, memory, 1, true);
     associateFeatures(s.edges, s.planes, map, T, params, fresh);
     expectSameConstraints(remembered, fresh);
-    if (step <= 0.003) EXPECT_GT(memory.reused - reused_before, s.edges.size() / 2) << step;
+    if (step <= 0.003) {
+      EXPECT_GT(memory.reused - reused_before, s.edges.size() / 2) << step;
+    }
   }
 }
 

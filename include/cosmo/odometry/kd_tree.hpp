@@ -69,13 +69,16 @@ class KdTree3 {
     float c[3];           ///< x y z
     std::uint32_t index;  ///< into points_
   };
-  std::uint32_t buildNode(std::uint32_t begin, std::uint32_t end);
+  /// Builds the subtree over sorted_[begin, end) at `depth` (root 0); returns its node index.
+  std::uint32_t buildNode(std::uint32_t begin, std::uint32_t end, int depth);
   /// offset: per axis, the query's distance to the node's cell (0 inside); min_d2: its squared norm.
   void searchNode(std::uint32_t node, const float q[3], float offset[3], float min_d2, KnnResult& result) const;
 
   std::vector<Eigen::Vector3d> points_;
   std::vector<SortedPoint> sorted_;  ///< finite points in tree order
   std::vector<Node> nodes_;
+  static constexpr int kMaxStack = 96;  ///< pending far cells of the iterative search (one per level at most)
+  int depth_ = 0;                       ///< depth of the deepest node
 };
 
 }  // namespace cosmo
