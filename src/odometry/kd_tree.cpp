@@ -16,16 +16,39 @@ void KnnResult::reset(int k, double max_dist) {
   bound_ = k_ > 0 ? static_cast<float>(max_dist * max_dist) : -1.0f;  // k = 0: nothing can enter
 }
 
-void KdTree3::build(std::vector<Eigen::Vector3d> points) {
+void KdTree3::build(std::vector<Eigen::Vector3d> points) { build(std::move(points), {}); }
+
+void KdTree3::treeOrder(std::vector<std::uint32_t>& out) const {
+  out.resize(sorted_.size());
+  for (std::size_t i = 0; i < sorted_.size(); ++i) out[i] = sorted_[i].index;
+}
+
+void KdTree3::build(std::vector<Eigen::Vector3d> points, const std::vector<std::uint32_t>& order) {
   points_ = std::move(points);
   sorted_.clear();
   sorted_.reserve(points_.size());
-  for (std::size_t i = 0; i < points_.size(); ++i) {
+  auto add = [this](std::uint32_t i) {
     const Eigen::Vector3d& p = points_[i];
-    if (!p.allFinite()) continue;
-    sorted_.push_back({{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())},
-                       static_cast<std::uint32_t>(i)});
+    if (p.allFinite())
+      sorted_.push_back({{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())}, i});
+  };
+  bool ordered = !order.empty() && order.size() <= points_.size();
+  if (ordered) {
+    std::vector<std::uint8_t> seen(points_.size(), 0);
+    for (std::uint32_t i : order) {
+      if (i >= points_.size() || seen[i]) {
+        ordered = false;
+        break;
+      }
+      seen[i] = 1;
+      add(i);
+    }
+    for (std::size_t i = 0; ordered && i < points_.size(); ++i)
+      if (!seen[i] && points_[i].allFinite()) ordered = false;  // a finite point left out
+    if (!ordered) sorted_.clear();
   }
+  if (!ordered)
+    for (std::size_t i = 0; i < points_.size(); ++i) add(static_cast<std::uint32_t>(i));
   nodes_.clear();
   depth_ = 0;
   if (sorted_.empty()) return;

@@ -96,3 +96,27 @@ TEST(AssociationMemory, SubsampledListsUseTheFullIndex) {
   EXPECT_GE(memory.reused, searched_sub * 9 / 10);
   EXPECT_EQ(memory.reused + memory.searched, searched_sub + s.edges.size() + s.planes.size());
 }
+
+TEST(LocalFeatureMapWindow, SlidingMapAnswersLikeAFreshOne) {
+  // Four scans through a 3-scan window (the trees are rebuilt in the previous tree's order) against a map
+  // built from the last three scans only.
+  std::vector<Scene> scans;
+  for (std::uint64_t seed : {21, 22, 23, 24}) scans.push_back(makeScene(seed));
+  LocalFeatureMap sliding(3), fresh(3);
+  for (const Scene& s : scans) sliding.add(s.map_edges, s.map_planes);
+  for (std::size_t i = 1; i < scans.size(); ++i) fresh.add(scans[i].map_edges, scans[i].map_planes);
+  EXPECT_EQ(sliding.numPlanePoints(), fresh.numPlanePoints());
+  EXPECT_EQ(sliding.numEdgePoints(), fresh.numEdgePoints());
+  std::vector<Eigen::Vector3d> a, b;
+  for (const Eigen::Vector3d& q : scans[0].planes) {
+    sliding.nearestPlanes(q, 5, 4.0, a);
+    fresh.nearestPlanes(q, 5, 4.0, b);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ((a[i] - q).squaredNorm(), (b[i] - q).squaredNorm());
+  }
+  for (const Eigen::Vector3d& q : scans[0].edges) {
+    sliding.nearestEdges(q, 5, 2.0, a);
+    fresh.nearestEdges(q, 5, 2.0, b);
+    ASSERT_EQ(a, b);
+  }
+}

@@ -73,3 +73,31 @@ TEST(KdTree3Search, ClusteredPointsAllKAndBounds) {
     expectMatches(tree, pts, q, 1 + t % KnnResult::kMaxK, t % 2 ? 4.0 : 0.7);
   }
 }
+
+TEST(KdTree3Search, BuildOrderDoesNotChangeTheAnswers) {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(-20.0, 20.0);
+  std::vector<Eigen::Vector3d> pts;
+  for (int i = 0; i < 5000; ++i) pts.push_back({u(rng), u(rng), 0.1 * u(rng)});
+  pts.push_back({std::nan(""), 0.0, 0.0});
+  KdTree3 plain, reordered, bad;
+  plain.build(pts);
+  std::vector<std::uint32_t> order;
+  plain.treeOrder(order);  // the finite points only
+  EXPECT_EQ(order.size(), pts.size() - 1);
+  std::reverse(order.begin(), order.end());
+  reordered.build(pts, order);
+  bad.build(pts, {0, 0, 1});  // not a permutation: ignored
+  for (int t = 0; t < 1000; ++t) {
+    const Eigen::Vector3d q(u(rng), u(rng), 0.1 * u(rng));
+    for (const KdTree3* tree : {&reordered, &bad}) {
+      KnnResult a, b;
+      a.reset(5, 3.0);
+      b.reset(5, 3.0);
+      plain.search(q, a);
+      tree->search(q, b);
+      ASSERT_EQ(a.size(), b.size());
+      for (int i = 0; i < a.size(); ++i) EXPECT_EQ(a.squaredDistance(i), b.squaredDistance(i));
+    }
+  }
+}

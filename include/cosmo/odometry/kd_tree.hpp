@@ -50,6 +50,13 @@ class KdTree3 {
  public:
   /// Rebuilds the index over `points` (non-finite points are kept in point() but never found).
   void build(std::vector<Eigen::Vector3d> points);
+  /// The same tree, built with the points taken in the order `order` (indices into `points`; non-finite
+  /// points may be left out; an order that is not such a permutation is ignored). The tree's cells do not
+  /// depend on the order, but its build does: points already grouped by cell (a previous tree's order)
+  /// partition with predictable branches (LocalFeatureMap passes the last tree's order: its older scans).
+  void build(std::vector<Eigen::Vector3d> points, const std::vector<std::uint32_t>& order);
+  /// Indices of the finite points in tree order (leaves left to right).
+  void treeOrder(std::vector<std::uint32_t>& out) const;
   std::size_t size() const { return points_.size(); }
   const Eigen::Vector3d& point(std::size_t i) const { return points_[i]; }
   const std::vector<Eigen::Vector3d>& points() const { return points_; }
