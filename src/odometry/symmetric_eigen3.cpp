@@ -16,10 +16,11 @@ Eigen::Vector3d symmetricEigenvalues3(const Eigen::Matrix3d& a) {
   // det((A - qI) / p) / 2, in [-1, 1] up to rounding.
   const double det = b00 * (b11 * b22 - a12 * a12) - a01 * (a01 * b22 - a12 * a02) + a02 * (a01 * a12 - b11 * a02);
   const double r = std::clamp(det / (2.0 * p * p * p), -1.0, 1.0);
-  const double phi = std::acos(r) / 3.0;
-  constexpr double kTwoThirdsPi = 2.0943951023931954923;
-  const double largest = q + 2.0 * p * std::cos(phi);
-  const double smallest = q + 2.0 * p * std::cos(phi + kTwoThirdsPi);
+  const double phi = std::acos(r) / 3.0;  // in [0, pi / 3]
+  const double c = std::cos(phi), s = std::sqrt(std::max(0.0, 1.0 - c * c));
+  constexpr double kHalfSqrt3 = 0.86602540378443864676;
+  const double largest = q + 2.0 * p * c;
+  const double smallest = q + 2.0 * p * (-0.5 * c - kHalfSqrt3 * s);  // cos(phi + 2 pi / 3)
   const double middle = 3.0 * q - largest - smallest;
   return {smallest, std::clamp(middle, smallest, largest), largest};
 }
