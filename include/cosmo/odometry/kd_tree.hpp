@@ -2,7 +2,9 @@
 // k-nearest-neighbour search over a fixed set of 3D points, bounded by a maximum distance: a small k-d tree
 // built for speed (the local map builds one per scan): the points are copied as floats into one contiguous
 // array in tree order, each node is split at the middle of its points' widest extent (one partition pass),
-// and the search starts with the distance bound, so most branches are pruned at once.
+// and the search starts with the distance bound, so most branches are pruned at once; it runs without
+// recursion (a stack of pending far cells). Tried without gain: coordinate-wise leaf arrays for a vectorised
+// leaf scan, a branch-free partition through a scratch buffer, spatially sorted queries.
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
