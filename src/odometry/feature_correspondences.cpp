@@ -1,44 +1,58 @@
 #include "cosmo/odometry/feature_correspondences.hpp"
 
-#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+
+#include "cosmo/odometry/symmetric_eigen3.hpp"
 
 namespace cosmo {
 namespace {
 void meanAndScatter(const std::vector<Eigen::Vector3d>& pts, Eigen::Vector3d& mean, Eigen::Matrix3d& scatter) {
-  mean.setZero();
-  for (const auto& p : pts) mean += p;
-  mean /= static_cast<double>(pts.size());
-  scatter.setZero();
+  double mx = 0.0, my = 0.0, mz = 0.0;
+  for (const auto& p : pts) mx += p.x(), my += p.y(), mz += p.z();
+  const double inv_n = 1.0 / static_cast<double>(pts.size());
+  mx *= inv_n, my *= inv_n, mz *= inv_n;
+  double xx = 0.0, xy = 0.0, xz = 0.0, yy = 0.0, yz = 0.0, zz = 0.0;  // upper triangle, about the mean
   for (const auto& p : pts) {
-    const Eigen::Vector3d d = p - mean;
-    scatter += d * d.transpose();
+    const double dx = p.x() - mx, dy = p.y() - my, dz = p.z() - mz;
+    xx += dx * dx, xy += dx * dy, xz += dx * dz, yy += dy * dy, yz += dy * dz, zz += dz * dz;
   }
-  scatter /= static_cast<double>(pts.size());
+  mean = {mx, my, mz};
+  scatter << xx, xy, xz, xy, yy, yz, xz, yz, zz;
+  scatter *= inv_n;
 }
 }  // namespace
 
-std::optional<LinearConstraint> fitLineConstraint(const std::vector<Eigen::Vector3d>& nb, const Eigen::Vector3d& q,
-                                                  const LoamParams& params) {
+std::optional<MapLine> fitMapLine(const std::vector<Eigen::Vector3d>& nb, const LoamParams& params) {
   if (static_cast<int>(nb.size()) < std::max(2, params.min_line_fit_points)) return std::nullopt;
   Eigen::Vector3d mean;
   Eigen::Matrix3d scatter;
   meanAndScatter(nb, mean, scatter);
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-  es.computeDirect(scatter);
-  const Eigen::Vector3d ev = es.eigenvalues();  // ascending
+  const Eigen::Vector3d ev = symmetricEigenvalues3(scatter);  // ascending
   if (!(ev[2] > 0.0) || ev[2] < params.min_line_condition_number * std::max(ev[1], 1e-12)) return std::nullopt;
-  const Eigen::Vector3d u = es.eigenvectors().col(2);
-  const Eigen::Vector3d d = q - mean;
+  const Eigen::Vector3d u = symmetricEigenvector3(scatter, ev[2]);
+  return MapLine{mean, u, anyPerpendicular(u)};
+}
+
+LinearConstraint lineConstraint(const MapLine& line, const Eigen::Vector3d& q) {
+  const Eigen::Vector3d& u = line.direction;
+  const Eigen::Vector3d d = q - line.mean;
   Eigen::Vector3d w = d - u * u.dot(d);
   const double dist = w.norm();
   Eigen::Vector3d n;
   if (dist > 1e-9) {
     n = w / dist;
   } else {  // on the line: any perpendicular direction (residual 0)
-    n = es.eigenvectors().col(1);
+    n = line.normal_if_on_line;
   }
-  return LinearConstraint{n, n.dot(mean)};
+  return LinearConstraint{n, n.dot(line.mean)};
+}
+
+std::optional<LinearConstraint> fitLineConstraint(const std::vector<Eigen::Vector3d>& nb, const Eigen::Vector3d& q,
+                                                  const LoamParams& params) {
+  const std::optional<MapLine> line = fitMapLine(nb, params);
+  if (!line) return std::nullopt;
+  return lineConstraint(*line, q);
 }
 
 std::optional<LinearConstraint> fitPlaneConstraint(const std::vector<Eigen::Vector3d>& nb, const LoamParams& params) {
@@ -46,17 +60,120 @@ std::optional<LinearConstraint> fitPlaneConstraint(const std::vector<Eigen::Vect
   Eigen::Vector3d mean;
   Eigen::Matrix3d scatter;
   meanAndScatter(nb, mean, scatter);
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-  es.computeDirect(scatter);
+  const Eigen::Vector3d ev = symmetricEigenvalues3(scatter);  // ascending
   // Collinear neighbours (e.g. all on one scan line) do not define a plane.
-  if (!(es.eigenvalues()[1] > params.min_plane_spread_ratio * es.eigenvalues()[2]) || !(es.eigenvalues()[1] > 1e-12))
-    return std::nullopt;
-  const Eigen::Vector3d n = es.eigenvectors().col(0).normalized();
+  if (!(ev[1] > params.min_plane_spread_ratio * ev[2]) || !(ev[1] > 1e-12)) return std::nullopt;
+  const Eigen::Vector3d n = symmetricEigenvector3(scatter, ev[0]);
   const double offset = n.dot(mean);
   double sum = 0.0;
   for (const auto& p : nb) sum += std::abs(n.dot(p) - offset);
   if (sum / static_cast<double>(nb.size()) > params.max_avg_point_plane_dist) return std::nullopt;
   return LinearConstraint{n, offset};
+}
+
+void AssociationMemory::reset(std::size_t num_edges, std::size_t num_planes) {
+  edges.assign(num_edges, Entry{});
+  planes.assign(num_planes, Entry{});
+  reused = searched = 0;
+}
+
+namespace {
+/// Extra search distance (m) beyond the maximum neighbour distance, to bound how close the nearest point
+/// outside the neighbour set is (it decides the reuse radius).
+constexpr double kMemoryMargin = 0.1;
+/// Slack (m) for the float distances of the tree (coordinates up to a few km).
+constexpr double kMemorySlack = 1e-3;
+
+/// The neighbours of q in `tree` (k nearest within max_dist, as KdTree3::search gives them, into `nb`) and the
+/// radius around q within which a query keeps exactly this neighbour set.
+double searchWithReuseRadius(const KdTree3& tree, const Eigen::Vector3d& q, int k, double max_dist,
+                             std::vector<Eigen::Vector3d>& nb) {
+  nb.clear();
+  k = std::clamp(k, 0, KnnResult::kMaxK - 1);
+  KnnResult result;
+  result.reset(k + 1, max_dist + kMemoryMargin);
+  tree.search(q, result);
+  const float limit = static_cast<float>(max_dist * max_dist);  // as KnnResult::reset(k, max_dist) bounds it
+  int m = 0;
+  while (m < result.size() && m < k && result.squaredDistance(m) <= limit) {
+    nb.push_back(tree.point(result.index(m)));
+    ++m;
+  }
+  const double r_in = m > 0 ? std::sqrt(static_cast<double>(result.squaredDistance(m - 1))) : 0.0;
+  const double r_out =
+      m < result.size() ? std::sqrt(static_cast<double>(result.squaredDistance(m))) : max_dist + kMemoryMargin;
+  // A shift d of the query moves every distance by at most d: the set stays while no member leaves the
+  // max_dist ball and no outsider overtakes the k-th member (full set) or enters the ball (set not full).
+  double radius = max_dist - r_in;
+  radius = std::min(radius, m == k ? 0.5 * (r_out - r_in) : r_out - max_dist);
+  return radius - kMemorySlack;
+}
+}  // namespace
+
+void associateFeaturesRemembering(const std::vector<Eigen::Vector3d>& edges,
+                                  const std::vector<Eigen::Vector3d>& planes, const LocalFeatureMap& map,
+                                  const Pose3& T, const LoamParams& params, std::vector<FeatureConstraint>& out,
+                                  AssociationMemory& memory, std::size_t memory_stride, bool remember) {
+  out.clear();
+  out.reserve(edges.size() + planes.size());
+  memory_stride = std::max<std::size_t>(1, memory_stride);
+  std::vector<Eigen::Vector3d> nb;
+  if (map.numEdgePoints() > 0) {
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      const Eigen::Vector3d q = T * edges[i];
+      AssociationMemory::Entry& e = memory.edges[i * memory_stride];
+      if (e.reuse_radius >= 0.0 && (q - e.query).squaredNorm() < e.reuse_radius * e.reuse_radius) {
+        ++memory.reused;
+        if (e.fitted) {
+          const LinearConstraint c = lineConstraint(MapLine{e.a, e.b, e.c}, q);
+          out.push_back({edges[i], c.normal, c.offset, true, i, 1.0});
+        }
+        continue;
+      }
+      ++memory.searched;
+      std::optional<MapLine> line;
+      if (remember) {
+        e.reuse_radius = searchWithReuseRadius(map.edgeTree(), q, params.num_edge_neighbors,
+                                               params.max_edge_neighbor_dist, nb);
+        e.query = q;
+        line = fitMapLine(nb, params);
+        e.fitted = line.has_value();
+        if (line) e.a = line->mean, e.b = line->direction, e.c = line->normal_if_on_line;
+      } else {
+        map.nearestEdges(q, params.num_edge_neighbors, params.max_edge_neighbor_dist, nb);
+        line = fitMapLine(nb, params);
+      }
+      if (line) {
+        const LinearConstraint c = lineConstraint(*line, q);
+        out.push_back({edges[i], c.normal, c.offset, true, i, 1.0});
+      }
+    }
+  }
+  if (map.numPlanePoints() > 0) {
+    for (std::size_t i = 0; i < planes.size(); ++i) {
+      const Eigen::Vector3d q = T * planes[i];
+      AssociationMemory::Entry& e = memory.planes[i * memory_stride];
+      if (e.reuse_radius >= 0.0 && (q - e.query).squaredNorm() < e.reuse_radius * e.reuse_radius) {
+        ++memory.reused;
+        if (e.fitted) out.push_back({planes[i], e.a, e.offset, false, i, 1.0});
+        continue;
+      }
+      ++memory.searched;
+      std::optional<LinearConstraint> c;
+      if (remember) {
+        e.reuse_radius = searchWithReuseRadius(map.planeTree(), q, params.num_plane_neighbors,
+                                               params.max_plane_neighbor_dist, nb);
+        e.query = q;
+        c = fitPlaneConstraint(nb, params);
+        e.fitted = c.has_value();
+        if (c) e.a = c->normal, e.offset = c->offset;
+      } else {
+        map.nearestPlanes(q, params.num_plane_neighbors, params.max_plane_neighbor_dist, nb);
+        c = fitPlaneConstraint(nb, params);
+      }
+      if (c) out.push_back({planes[i], c->normal, c->offset, false, i, 1.0});
+    }
+  }
 }
 
 void associateFeatures(const std::vector<Eigen::Vector3d>& edges, const std::vector<Eigen::Vector3d>& planes,

@@ -109,6 +109,10 @@ RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFea
     stages.push_back({1, params.position_convergence_thresh, params.rotation_convergence_thresh});
   }
 
+  // Association memory over all rounds: a feature whose query point moved less than its reuse radius keeps its
+  // neighbours and fit without a new k-NN search (the same constraint as a new search would give).
+  AssociationMemory memory;
+  memory.reset(features.edge_points.size(), features.planar_points.size());
   int rounds = 0;
   for (std::size_t si = 0; si < stages.size(); ++si) {
     const Stage& st = stages[si];
@@ -126,7 +130,10 @@ RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFea
       planes = f.planar_points;
     }
     for (int it = 0; it < params.max_icf_iterations; ++it) {
-      associateFeatures(edges, planes, map, res.pose, params, cs);
+      // The last stage of two (all features) only reads the memory: its features mostly associate once, and
+      // the (k+1)-th neighbour that remembering needs cost more than the reuse saved (measured).
+      associateFeaturesRemembering(edges, planes, map, res.pose, params, cs, memory, st.stride,
+                                   !last_stage || stages.size() == 1);
       ++rounds;
       const Pose3 before = res.pose;
       for (int k = 0; k < kInnerSteps; ++k) {

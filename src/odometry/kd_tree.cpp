@@ -16,23 +16,48 @@ void KnnResult::reset(int k, double max_dist) {
   bound_ = k_ > 0 ? static_cast<float>(max_dist * max_dist) : -1.0f;  // k = 0: nothing can enter
 }
 
-void KdTree3::build(std::vector<Eigen::Vector3d> points) {
+void KdTree3::build(std::vector<Eigen::Vector3d> points) { build(std::move(points), {}); }
+
+void KdTree3::treeOrder(std::vector<std::uint32_t>& out) const {
+  out.resize(sorted_.size());
+  for (std::size_t i = 0; i < sorted_.size(); ++i) out[i] = sorted_[i].index;
+}
+
+void KdTree3::build(std::vector<Eigen::Vector3d> points, const std::vector<std::uint32_t>& order) {
   points_ = std::move(points);
   sorted_.clear();
   sorted_.reserve(points_.size());
-  for (std::size_t i = 0; i < points_.size(); ++i) {
+  auto add = [this](std::uint32_t i) {
     const Eigen::Vector3d& p = points_[i];
-    if (!p.allFinite()) continue;
-    sorted_.push_back({{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())},
-                       static_cast<std::uint32_t>(i)});
+    if (p.allFinite())
+      sorted_.push_back({{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())}, i});
+  };
+  bool ordered = !order.empty() && order.size() <= points_.size();
+  if (ordered) {
+    std::vector<std::uint8_t> seen(points_.size(), 0);
+    for (std::uint32_t i : order) {
+      if (i >= points_.size() || seen[i]) {
+        ordered = false;
+        break;
+      }
+      seen[i] = 1;
+      add(i);
+    }
+    for (std::size_t i = 0; ordered && i < points_.size(); ++i)
+      if (!seen[i] && points_[i].allFinite()) ordered = false;  // a finite point left out
+    if (!ordered) sorted_.clear();
   }
+  if (!ordered)
+    for (std::size_t i = 0; i < points_.size(); ++i) add(static_cast<std::uint32_t>(i));
   nodes_.clear();
+  depth_ = 0;
   if (sorted_.empty()) return;
   nodes_.reserve(4 * sorted_.size() / kLeafSize + 2);
-  buildNode(0, static_cast<std::uint32_t>(sorted_.size()));
+  buildNode(0, static_cast<std::uint32_t>(sorted_.size()), 0);
 }
 
-std::uint32_t KdTree3::buildNode(std::uint32_t begin, std::uint32_t end) {
+std::uint32_t KdTree3::buildNode(std::uint32_t begin, std::uint32_t end, int depth) {
+  depth_ = std::max(depth_, depth);
   const auto id = static_cast<std::uint32_t>(nodes_.size());
   nodes_.emplace_back();
   if (end - begin <= kLeafSize) {
@@ -67,8 +92,8 @@ std::uint32_t KdTree3::buildNode(std::uint32_t begin, std::uint32_t end) {
     split = mid_it->c[axis];
   }
   const auto mid = static_cast<std::uint32_t>(mid_it - sorted_.begin());
-  buildNode(begin, mid);  // left: coordinates <= split (< split unless the median fallback was used)
-  const std::uint32_t right = buildNode(mid, end);  // right: coordinates >= split
+  buildNode(begin, mid, depth + 1);  // left: coordinates <= split (< split unless the median fallback was used)
+  const std::uint32_t right = buildNode(mid, end, depth + 1);  // right: coordinates >= split
   nodes_[id].axis = axis;
   nodes_[id].split = split;
   nodes_[id].right = right;
@@ -109,7 +134,59 @@ void KdTree3::search(const Eigen::Vector3d& query, KnnResult& result) const {
   if (nodes_.empty()) return;
   const float q[3] = {static_cast<float>(query.x()), static_cast<float>(query.y()), static_cast<float>(query.z())};
   float offset[3] = {0.0f, 0.0f, 0.0f};
-  searchNode(0, q, offset, 0.0f, result);
+  if (depth_ >= kMaxStack) {  // a degenerate, very deep tree: the recursive search has no depth limit
+    searchNode(0, q, offset, 0.0f, result);
+    return;
+  }
+  // The recursive search without calls: the far children wait on a stack with their cell offsets and are
+  // visited in the same order (nearest subtree first, then the pending far cells, latest first), each only
+  // when its lower bound is still within the result's bound when its turn comes.
+  struct Pending {
+    std::uint32_t node;
+    float d2;
+    float offset[3];
+  };
+  Pending stack[kMaxStack];
+  int top = 0;
+  std::uint32_t n = 0;
+  float min_d2 = 0.0f;
+  for (;;) {
+    const Node& node = nodes_[n];
+    if (node.axis >= 0) {
+      const int a = node.axis;
+      const float diff = q[a] - node.split;
+      const float far_d2 = min_d2 - offset[a] * offset[a] + diff * diff;
+      const std::uint32_t far = diff < 0.0f ? node.right : n + 1;
+      n = diff < 0.0f ? n + 1 : node.right;
+      if (far_d2 <= result.bound()) {
+        Pending& p = stack[top++];
+        p.node = far;
+        p.d2 = far_d2;
+        p.offset[0] = offset[0], p.offset[1] = offset[1], p.offset[2] = offset[2];
+        p.offset[a] = diff;
+      }
+      continue;
+    }
+    for (std::uint32_t i = node.begin; i < node.end; ++i) {
+      const SortedPoint& p = sorted_[i];
+      const float dx = q[0] - p.c[0], dy = q[1] - p.c[1], dz = q[2] - p.c[2];
+      float d2 = 0.0f;
+      d2 += dx * dx;
+      d2 += dy * dy;
+      d2 += dz * dz;
+      if (d2 <= result.bound()) result.offer(d2, p.index);
+    }
+    for (;;) {
+      if (top == 0) return;
+      const Pending& p = stack[--top];
+      if (p.d2 <= result.bound()) {
+        n = p.node;
+        min_d2 = p.d2;
+        offset[0] = p.offset[0], offset[1] = p.offset[1], offset[2] = p.offset[2];
+        break;
+      }
+    }
+  }
 }
 
 void KdTree3::knn(const Eigen::Vector3d& query, int k, double max_dist, std::vector<std::size_t>& indices) const {

@@ -2,7 +2,9 @@
 // k-nearest-neighbour search over a fixed set of 3D points, bounded by a maximum distance: a small k-d tree
 // built for speed (the local map builds one per scan): the points are copied as floats into one contiguous
 // array in tree order, each node is split at the middle of its points' widest extent (one partition pass),
-// and the search starts with the distance bound, so most branches are pruned at once.
+// and the search starts with the distance bound, so most branches are pruned at once; it runs without
+// recursion (a stack of pending far cells). Tried without gain: coordinate-wise leaf arrays for a vectorised
+// leaf scan, a branch-free partition through a scratch buffer, spatially sorted queries.
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
@@ -50,6 +52,13 @@ class KdTree3 {
  public:
   /// Rebuilds the index over `points` (non-finite points are kept in point() but never found).
   void build(std::vector<Eigen::Vector3d> points);
+  /// The same tree, built with the points taken in the order `order` (indices into `points`; non-finite
+  /// points may be left out; an order that is not such a permutation is ignored). The tree's cells do not
+  /// depend on the order, but its build does: points already grouped by cell (a previous tree's order)
+  /// partition with predictable branches (LocalFeatureMap passes the last tree's order: its older scans).
+  void build(std::vector<Eigen::Vector3d> points, const std::vector<std::uint32_t>& order);
+  /// Indices of the finite points in tree order (leaves left to right).
+  void treeOrder(std::vector<std::uint32_t>& out) const;
   std::size_t size() const { return points_.size(); }
   const Eigen::Vector3d& point(std::size_t i) const { return points_[i]; }
   const std::vector<Eigen::Vector3d>& points() const { return points_; }
@@ -69,13 +78,16 @@ class KdTree3 {
     float c[3];           ///< x y z
     std::uint32_t index;  ///< into points_
   };
-  std::uint32_t buildNode(std::uint32_t begin, std::uint32_t end);
+  /// Builds the subtree over sorted_[begin, end) at `depth` (root 0); returns its node index.
+  std::uint32_t buildNode(std::uint32_t begin, std::uint32_t end, int depth);
   /// offset: per axis, the query's distance to the node's cell (0 inside); min_d2: its squared norm.
   void searchNode(std::uint32_t node, const float q[3], float offset[3], float min_d2, KnnResult& result) const;
 
   std::vector<Eigen::Vector3d> points_;
   std::vector<SortedPoint> sorted_;  ///< finite points in tree order
   std::vector<Node> nodes_;
+  static constexpr int kMaxStack = 96;  ///< pending far cells of the iterative search (one per level at most)
+  int depth_ = 0;                       ///< depth of the deepest node
 };
 
 }  // namespace cosmo

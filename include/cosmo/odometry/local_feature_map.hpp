@@ -27,6 +27,8 @@ class LocalFeatureMap {
   /// Up to k nearest map edge (planar) points within max_dist (m) of q, nearest first, into `out`.
   void nearestEdges(const Eigen::Vector3d& q, int k, double max_dist, std::vector<Eigen::Vector3d>& out) const;
   void nearestPlanes(const Eigen::Vector3d& q, int k, double max_dist, std::vector<Eigen::Vector3d>& out) const;
+  const KdTree3& edgeTree() const { return edge_tree_; }
+  const KdTree3& planeTree() const { return plane_tree_; }
 
  private:
   struct Entry {
@@ -36,6 +38,7 @@ class LocalFeatureMap {
   double edge_voxel_ = 0.0, planar_voxel_ = 0.0;
   std::deque<Entry> scans_;
   KdTree3 edge_tree_, plane_tree_;  ///< over the union of the scans (thinned when a voxel size is set)
+  std::vector<std::uint32_t> order_;  ///< scratch: the build order handed to the trees
 };
 
 }  // namespace cosmo
