@@ -100,18 +100,22 @@ std::uint32_t KdTree3::buildNode(std::uint32_t begin, std::uint32_t end, int dep
   return id;
 }
 
+void KdTree3::scanLeaf(const Node& node, const float q[3], KnnResult& result) const {
+  for (std::uint32_t i = node.begin; i < node.end; ++i) {
+    const SortedPoint& p = sorted_[i];
+    const float dx = q[0] - p.c[0], dy = q[1] - p.c[1], dz = q[2] - p.c[2];
+    float d2 = 0.0f;
+    d2 += dx * dx;
+    d2 += dy * dy;
+    d2 += dz * dz;
+    if (d2 <= result.bound()) result.offer(d2, p.index);
+  }
+}
+
 void KdTree3::searchNode(std::uint32_t n, const float q[3], float offset[3], float min_d2, KnnResult& result) const {
   const Node& node = nodes_[n];
   if (node.axis < 0) {
-    for (std::uint32_t i = node.begin; i < node.end; ++i) {
-      const SortedPoint& p = sorted_[i];
-      const float dx = q[0] - p.c[0], dy = q[1] - p.c[1], dz = q[2] - p.c[2];
-      float d2 = 0.0f;
-      d2 += dx * dx;
-      d2 += dy * dy;
-      d2 += dz * dz;
-      if (d2 <= result.bound()) result.offer(d2, p.index);
-    }
+    scanLeaf(node, q, result);
     return;
   }
   // The far child's cell is at least |diff| away along the split axis: its squared distance lower bound is
@@ -167,15 +171,7 @@ void KdTree3::search(const Eigen::Vector3d& query, KnnResult& result) const {
       }
       continue;
     }
-    for (std::uint32_t i = node.begin; i < node.end; ++i) {
-      const SortedPoint& p = sorted_[i];
-      const float dx = q[0] - p.c[0], dy = q[1] - p.c[1], dz = q[2] - p.c[2];
-      float d2 = 0.0f;
-      d2 += dx * dx;
-      d2 += dy * dy;
-      d2 += dz * dz;
-      if (d2 <= result.bound()) result.offer(d2, p.index);
-    }
+    scanLeaf(node, q, result);
     for (;;) {
       if (top == 0) return;
       const Pending& p = stack[--top];

@@ -82,6 +82,8 @@ class KdTree3 {
   std::uint32_t buildNode(std::uint32_t begin, std::uint32_t end, int depth);
   /// offset: per axis, the query's distance to the node's cell (0 inside); min_d2: its squared norm.
   void searchNode(std::uint32_t node, const float q[3], float offset[3], float min_d2, KnnResult& result) const;
+  /// Offers every point of leaf `node` to `result` (both searches).
+  void scanLeaf(const Node& node, const float q[3], KnnResult& result) const;
 
   std::vector<Eigen::Vector3d> points_;
   std::vector<SortedPoint> sorted_;  ///< finite points in tree order
