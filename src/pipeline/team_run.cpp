@@ -95,16 +95,6 @@ void TeamRun::addScan(char robot, const Scan& scan, const OdometryResult& loam_r
   addScan(robot, scan, &loam_result);
 }
 
-void TeamRun::addScan(const RunAheadScan& s) {
-  if (params_.reference_odometry)
-    throw std::invalid_argument("team run: run-ahead LOAM scans with reference odometry");
-  const std::size_t keyframes_before = counts_.keyframes;
-  addScan(s.robot, *s.scan, &s.odometry);
-  if (counts_.keyframes != keyframes_before && !s.keyframe)
-    throw std::logic_error(std::string("team run: robot ") + s.robot + "'s front-end made a keyframe at " +
-                           std::to_string(s.scan->stamp) + " that the run-ahead keyframe rule did not predict");
-}
-
 void TeamRun::addScan(char robot, const Scan& scan, const OdometryResult* loam_result) {
   auto it = frontends_.find(robot);
   if (it == frontends_.end()) throw std::invalid_argument(std::string("team run: unknown robot '") + robot + "'");

@@ -82,24 +82,16 @@ std::string runLoam(bool run_ahead, std::size_t max_scans) {
   TeamRunParams params;
   params.frontend = FrontendParams::loadDir(defaultConfigDir());
   TeamRun run("test_team", refs, params, cosmo::pipeline::deriveSeed(3, "radio"), timing.start());
+  std::unique_ptr<OdometryRunAhead> ahead;
+  if (run_ahead) ahead = std::make_unique<OdometryRunAhead>(sourcesOf(trials), timing, params.frontend.loam);
+  MergedScanStream stream = streamOf(trials, timing);
+  char robot;
+  Scan scan;
   StampNs last = 0;
-  std::size_t n = 0;
-  if (run_ahead) {
-    // at most 3 held scans per worker: the workers must wait for the team and still give the same bytes
-    OdometryRunAhead ahead(sourcesOf(trials), timing, params.frontend.loam, params.frontend.keyframe_distance, 3);
-    RunAheadScan next;
-    for (; n < max_scans && ahead.next(next); ++n) {
-      run.addScan(next);
-      last = next.scan->stamp;
-    }
-  } else {
-    MergedScanStream stream = streamOf(trials, timing);
-    char robot;
-    Scan scan;
-    for (; n < max_scans && stream.next(robot, scan); ++n) {
-      run.addScan(robot, scan);
-      last = scan.stamp;
-    }
+  for (std::size_t n = 0; n < max_scans && stream.next(robot, scan); ++n) {
+    if (ahead) run.addScan(robot, scan, ahead->next(robot, scan.stamp));
+    else run.addScan(robot, scan);
+    last = scan.stamp;
   }
   run.finish(last);
   const auto path = (std::filesystem::temp_directory_path() / (std::string("cosmo_team_run_loam_") + (run_ahead ? "p" : "s") + ".jrl")).string();
@@ -116,32 +108,32 @@ TEST(TeamRun, OdometryOnWorkerThreadsGivesTheSameJrl) {
   EXPECT_EQ(serial, parallel);
 }
 
-TEST(OdometryRunAhead, MergesRobotsLikeTheTeamStreamAndDropsNonIncreasingStamps) {
-  std::vector<Scan> a(4), b(3);
+TEST(OdometryRunAhead, SkipsTheScansTheTeamsStreamDropsAndNamesAReaderThatDisagrees) {
+  std::vector<Scan> a(4);
   for (int i = 0; i < 4; ++i) a[i].stamp = 10000000000ULL + i * 100000000ULL;
-  for (int i = 0; i < 3; ++i) b[i].stamp = 20000000000ULL + i * 100000000ULL;
-  a[2].stamp = a[1].stamp;  // not increasing: dropped
-  const SequenceTiming timing = SequenceTiming::synchronize(
-      {{'a', a.front().stamp, a.back().stamp}, {'b', b.front().stamp, b.back().stamp}}, 'a', 0.0, 1);
-  auto sources = [&] {
-    std::map<char, std::unique_ptr<ScanSource>> m;
-    m['a'] = std::make_unique<VectorScanSource>(a);
-    m['b'] = std::make_unique<VectorScanSource>(b);
-    return m;
-  };
-  MergedScanStream stream(sources(), timing);
-  OdometryRunAhead ahead(sources(), timing, LoamParams{}, 2.0);
+  a[2].stamp = a[1].stamp;  // not increasing: the team's stream drops it, so must the worker
+  const SequenceTiming timing = SequenceTiming::synchronize({{'a', a.front().stamp, a.back().stamp}}, 'a', 0.0, 1);
+  std::map<char, std::unique_ptr<ScanSource>> team_sources, worker_sources;
+  team_sources['a'] = std::make_unique<VectorScanSource>(a);
+  worker_sources['a'] = std::make_unique<VectorScanSource>(a);
+  MergedScanStream stream(std::move(team_sources), timing);
+  OdometryRunAhead ahead(std::move(worker_sources), timing, LoamParams{});
   char robot;
   Scan scan;
-  RunAheadScan next;
+  int n = 0;
   while (stream.next(robot, scan)) {
-    ASSERT_TRUE(ahead.next(next));
-    EXPECT_EQ(next.robot, robot);
-    EXPECT_EQ(next.scan->stamp, scan.stamp);
-    EXPECT_FALSE(next.odometry.ok);  // empty scans: motion-model fallback, never a throw
+    const OdometryResult r = ahead.next(robot, scan.stamp);  // empty scans: motion-model fallback, never a throw
+    EXPECT_FALSE(r.ok);
+    ++n;
   }
-  EXPECT_FALSE(ahead.next(next));
-  EXPECT_EQ(ahead.dropped().at('a'), 1u);
+  EXPECT_EQ(n, 3);
+  EXPECT_THROW(ahead.next('a', scan.stamp + 1), std::logic_error);  // the worker has no scan left
+  EXPECT_THROW(ahead.next('z', 0), std::invalid_argument);
+
+  std::map<char, std::unique_ptr<ScanSource>> other;
+  other['a'] = std::make_unique<VectorScanSource>(a);
+  OdometryRunAhead mismatched(std::move(other), timing, LoamParams{});
+  EXPECT_THROW(mismatched.next('a', timing.of('a').toSequence(a[1].stamp)), std::logic_error);  // it holds a[0]
 }
 
 TEST(MergedScanStream, MergesBySequenceTimeAndDropsNonIncreasingStamps) {

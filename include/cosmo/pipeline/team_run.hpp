@@ -26,7 +26,6 @@
 #include "cosmo/dataset/noise_models.hpp"
 #include "cosmo/dataset/outlier_rule.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
-#include "cosmo/pipeline/odometry_run_ahead.hpp"
 #include "cosmo/pipeline/robot_frontend.hpp"
 
 namespace cosmo::pipeline {
@@ -60,12 +59,8 @@ class TeamRun {
 
   /// Runs the radio through `scan.stamp`, then the scan through `robot`'s front-end.
   void addScan(char robot, const Scan& scan);
-  /// The same with the scan's LOAM odometry computed elsewhere; ignored with reference odometry.
+  /// The same with the scan's LOAM odometry computed ahead (OdometryRunAhead); ignored with reference odometry.
   void addScan(char robot, const Scan& scan, const OdometryResult& loam_result);
-  /// A scan from OdometryRunAhead (its LOAM odometry; points only for the keyframes its worker predicted).
-  /// Throws std::logic_error if the front-end makes a keyframe of a scan that came without its points, and
-  /// std::invalid_argument with reference odometry (the worker's keyframes follow LOAM).
-  void addScan(const RunAheadScan& scan);
   /// Runs the radio through `end` (the sequence end) so late transfers are delivered.
   void finish(StampNs end);
 

@@ -168,43 +168,34 @@ int main(int argc, char** argv) {
       bench::Stopwatch sw;
       const double cpu_before = processCpuSeconds();
       TeamRun run(config.name + "_" + label, references, params, deriveSeed(config.seed, "radio"), origin);
+      MergedScanStream stream = ros_glue::openSequenceStream(config, timing);
+      char robot;
+      Scan scan;
       double next_report = 0.0;
       const double duration = toSeconds(end - timing.start());
-      auto progress = [&](StampNs stamp) {
-        const double t = toSeconds(stamp - timing.start());
-        if (quiet || t < next_report) return;
-        const auto& c = run.counts();
-        std::printf("[%s] %6.1f / %.1f s  keyframes %zu  loop closures intra %zu (+%zu rejected) inter %zu (+%zu rejected)"
-                    "  transfers %zu delivered, %zu timed out  (%.1f s wall)\n",
-                    label.c_str(), t, duration, c.keyframes, c.intra_accepted, c.intra_rejected, c.inter_accepted,
-                    c.inter_rejected, c.transfers_delivered, c.transfers_timed_out, sw.elapsedMs() * 1e-3);
-        std::fflush(stdout);
-        next_report = t + std::max(10.0, duration / 20.0);
-      };
-      std::map<char, std::size_t> dropped;
-      if (!reference_odometry && !serial_odometry) {
-        // LOAM runs ahead on one thread per robot, each reading its robot's bag (same results: each robot's scans
-        // in order); the team takes the results in sequence order, with the points of the keyframe scans only.
-        OdometryRunAhead ahead(ros_glue::openTrialSources(config), timing, params.frontend.loam,
-                               params.frontend.keyframe_distance);
-        RunAheadScan next;
-        while (ahead.next(next) && next.scan->stamp <= end) {
-          run.addScan(next);
-          progress(next.scan->stamp);
+      // LOAM runs ahead on one thread per robot, from a second reader of the robot's bag (same results: each
+      // robot's scans in order); the team consumes the results in sequence order.
+      std::unique_ptr<OdometryRunAhead> ahead;
+      if (!reference_odometry && !serial_odometry)
+        ahead = std::make_unique<OdometryRunAhead>(ros_glue::openTrialSources(config), timing, params.frontend.loam);
+      while (stream.next(robot, scan)) {
+        if (scan.stamp > end) break;
+        if (ahead) run.addScan(robot, scan, ahead->next(robot, scan.stamp));
+        else run.addScan(robot, scan);
+        const double t = toSeconds(scan.stamp - timing.start());
+        if (!quiet && t >= next_report) {
+          const auto& c = run.counts();
+          std::printf("[%s] %6.1f / %.1f s  keyframes %zu  loop closures intra %zu (+%zu rejected) inter %zu (+%zu rejected)"
+                      "  transfers %zu delivered, %zu timed out  (%.1f s wall)\n",
+                      label.c_str(), t, duration, c.keyframes, c.intra_accepted, c.intra_rejected, c.inter_accepted,
+                      c.inter_rejected, c.transfers_delivered, c.transfers_timed_out, sw.elapsedMs() * 1e-3);
+          std::fflush(stdout);
+          next_report = t + std::max(10.0, duration / 20.0);
         }
-        dropped = ahead.dropped();
-      } else {
-        MergedScanStream stream = ros_glue::openSequenceStream(config, timing);
-        char robot;
-        Scan scan;
-        while (stream.next(robot, scan) && scan.stamp <= end) {
-          run.addScan(robot, scan);
-          progress(scan.stamp);
-        }
-        dropped = stream.dropped();
       }
+      ahead.reset();  // stops the workers (they may have run past --max-seconds)
       run.finish(end);
-      for (const auto& [r, n] : dropped)
+      for (const auto& [r, n] : stream.dropped())
         std::fprintf(stderr, "warning: robot %c: %zu scans dropped (stamps not increasing)\n", r, n);
       for (const auto& w : run.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
