@@ -123,8 +123,7 @@ RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFea
     f.edge_time = subsample(features.edge_time, st.stride);
     f.planar_time = subsample(features.planar_time, st.stride);
     if (do_deskew) {
-      deskewConstantVelocity(f.edge_points, f.edge_time, deskew->delta, deskew->period, edges);
-      deskewConstantVelocity(f.planar_points, f.planar_time, deskew->delta, deskew->period, planes);
+      deskewFeatures(f, deskew->delta, deskew->period, edges, planes);
     } else {
       edges = f.edge_points;
       planes = f.planar_points;
@@ -166,12 +165,17 @@ RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFea
   return res;
 }
 
+void deskewFeatures(const LoamFeatures& features, const Pose3& delta, double period, std::vector<Eigen::Vector3d>& edges,
+                    std::vector<Eigen::Vector3d>& planes) {
+  deskewConstantVelocity(features.edge_points, features.edge_time, delta, period, edges);
+  deskewConstantVelocity(features.planar_points, features.planar_time, delta, period, planes);
+}
+
 RegistrationResult refineRedeskewed(const LoamFeatures& features, RegistrationResult previous,
                                     const LoamParams& params, const DeskewReference& deskew, int max_steps) {
   RegistrationResult res = std::move(previous);
   std::vector<Eigen::Vector3d> edges, planes;
-  deskewConstantVelocity(features.edge_points, features.edge_time, deskew.delta, deskew.period, edges);
-  deskewConstantVelocity(features.planar_points, features.planar_time, deskew.delta, deskew.period, planes);
+  deskewFeatures(features, deskew.delta, deskew.period, edges, planes);
   for (auto& c : res.constraints) c.point = c.edge ? edges[c.feature] : planes[c.feature];
   int steps = 0;
   for (; steps < max_steps; ++steps) {

@@ -11,6 +11,10 @@ namespace cosmo {
 namespace {
 constexpr std::size_t kMinPoints = 100;
 constexpr double kPi = 3.14159265358979323846;
+// A yaw-search registration replaces the first one when its inlier fraction is higher by this much (after an
+// unpredicted turn the first one is already suspect, so less is asked).
+constexpr double kYawSearchMargin = 0.1;
+constexpr double kYawSearchMarginAfterTurn = 0.02;
 
 std::vector<Eigen::Vector3d> transformed(const Pose3& T, const std::vector<Eigen::Vector3d>& pts) {
   std::vector<Eigen::Vector3d> out;
@@ -91,8 +95,7 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
   // The constant-velocity guess is scored with the features deskewed by that motion, zero motion with the raw.
   LoamFeatures cv_features = last_features_;
   if (has_times) {
-    deskewConstantVelocity(last_features_.edge_points, last_features_.edge_time, deskewMotion(cv_delta), period, cv_features.edge_points);
-    deskewConstantVelocity(last_features_.planar_points, last_features_.planar_time, deskewMotion(cv_delta), period, cv_features.planar_points);
+    deskewFeatures(last_features_, deskewMotion(cv_delta), period, cv_features.edge_points, cv_features.planar_points);
   }
   double best = scorePose(cv_features, map_, guess, params_, stride);
   r.initial_guess = "constant_velocity";
@@ -120,8 +123,7 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
     const RegistrationResult raw = registerFeatures(last_features_, map_, guess, params_, std::nullopt);
     const Pose3 delta = deskewMotion(pose_.inverse() * raw.pose);
     std::vector<Eigen::Vector3d> e0, p0;
-    deskewConstantVelocity(first_features_.edge_points, first_features_.edge_time, delta, period, e0);
-    deskewConstantVelocity(first_features_.planar_points, first_features_.planar_time, delta, period, p0);
+    deskewFeatures(first_features_, delta, period, e0, p0);
     map_.clear();
     map_.add(transformed(pose_, e0), transformed(pose_, p0));
     guess = raw.pose;
@@ -171,9 +173,8 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
     LoamFeatures deskewed = last_features_;
     auto scoreMotion = [&](const Pose3& cand) {
       if (!has_times) return scorePose(last_features_, map_, cand, params_, stride);
-      const Pose3 motion = deskewMotion(pose_.inverse() * cand);
-      deskewConstantVelocity(last_features_.edge_points, last_features_.edge_time, motion, period, deskewed.edge_points);
-      deskewConstantVelocity(last_features_.planar_points, last_features_.planar_time, motion, period, deskewed.planar_points);
+      deskewFeatures(last_features_, deskewMotion(pose_.inverse() * cand), period, deskewed.edge_points,
+                     deskewed.planar_points);
       return scorePose(deskewed, map_, cand, params_, stride);
     };
     double best_yaw_score = base;
@@ -193,7 +194,7 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
       const Pose3 predicted_deskew = deskew_delta;
       deskew_delta = deskewMotion(pose_.inverse() * best_yaw);
       const RegistrationResult alt = registerFrom(best_yaw);
-      if (alt.inlier_fraction > reg.inlier_fraction + (unpredicted_turn ? 0.02 : 0.1)) {
+      if (alt.inlier_fraction > reg.inlier_fraction + (unpredicted_turn ? kYawSearchMarginAfterTurn : kYawSearchMargin)) {
         reg = alt;
         r.initial_guess = "yaw_search";
       } else {
@@ -221,8 +222,7 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
   // Insert this scan's (deskewed) features into the local map.
   std::vector<Eigen::Vector3d> edges, planes;
   if (has_times) {  // deskewed with the final motion
-    deskewConstantVelocity(last_features_.edge_points, last_features_.edge_time, deskewMotion(r.delta), period, edges);
-    deskewConstantVelocity(last_features_.planar_points, last_features_.planar_time, deskewMotion(r.delta), period, planes);
+    deskewFeatures(last_features_, deskewMotion(r.delta), period, edges, planes);
   } else {
     edges = last_features_.edge_points;
     planes = last_features_.planar_points;

@@ -34,6 +34,11 @@ struct DeskewReference {
   double period = 0.0;  ///< s
 };
 
+/// The edge and planar feature points of `features` deskewed with constant velocity `delta` over `period`
+/// (deskewConstantVelocity on both sets).
+void deskewFeatures(const LoamFeatures& features, const Pose3& delta, double period, std::vector<Eigen::Vector3d>& edges,
+                    std::vector<Eigen::Vector3d>& planes);
+
 /// One robust Gauss-Newton step for the constraints at pose T; returns the update [rot, trans] as a perturbation
 /// about the sensor position (apply with applyCentredUpdate) and the number of degenerate directions through
 /// `degenerate`. (A left perturbation about the odometry origin made the degeneracy test depend on the
