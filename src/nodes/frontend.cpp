@@ -33,6 +33,7 @@
 #include <deque>
 #include <map>
 
+#include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/ros/pose_msg.hpp"
 #include "cosmo/ros/resolved_sequence.hpp"
 #include "cosmo/FrontendAck.h"
@@ -410,6 +411,7 @@ class FrontendNode {
 }  // namespace
 
 int main(int argc, char** argv) {
+  cosmo::keepScanBuffersInProcess();
   ros::init(argc, argv, "frontend");
   ros::NodeHandle nh, pnh("~");
   try {

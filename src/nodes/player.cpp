@@ -43,6 +43,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/FrontendAck.h"
 #include "cosmo/RadioStepDone.h"
 #include "cosmo/RadioStepRequest.h"
@@ -76,6 +77,7 @@ struct Acks {
 }  // namespace
 
 int main(int argc, char** argv) {
+  cosmo::keepScanBuffersInProcess();
   ros::init(argc, argv, "player");
   ros::NodeHandle nh, pnh("~");
   std::string sequence_path, mode, world_frame;

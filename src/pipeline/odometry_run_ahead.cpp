@@ -6,11 +6,13 @@
 namespace cosmo::pipeline {
 
 OdometryRunAhead::OdometryRunAhead(std::map<char, std::unique_ptr<ScanSource>> sources, const SequenceTiming& timing,
-                                   const LoamParams& params) {
+                                   const FrontendParams& params, const std::map<char, Trajectory>& references) {
   for (auto& [robot, source] : sources) {
     std::map<char, std::unique_ptr<ScanSource>> one;
     one[robot] = std::move(source);
-    workers_[robot] = std::make_unique<Worker>(MergedScanStream(std::move(one), timing), params);
+    auto ref = references.find(robot);
+    workers_[robot] = std::make_unique<Worker>(MergedScanStream(std::move(one), timing), params,
+                                               ref == references.end() ? Trajectory{} : ref->second);
   }
   for (auto& [robot, w] : workers_) {
     Worker* worker = w.get();
@@ -18,9 +20,17 @@ OdometryRunAhead::OdometryRunAhead(std::map<char, std::unique_ptr<ScanSource>> s
   }
 }
 
-OdometryRunAhead::~OdometryRunAhead() {
+OdometryRunAhead::~OdometryRunAhead() { stop(); }
+
+void OdometryRunAhead::stop() {
   stop_ = true;
-  for (auto& [robot, w] : workers_) w->thread.join();
+  for (auto& [robot, w] : workers_) {
+    {
+      std::lock_guard<std::mutex> lock(w->mutex);
+      w->space.notify_all();
+    }
+    if (w->thread.joinable()) w->thread.join();
+  }
 }
 
 void OdometryRunAhead::run(Worker& w) {
@@ -28,9 +38,15 @@ void OdometryRunAhead::run(Worker& w) {
     char robot;
     Scan scan;
     while (!stop_ && w.stream.next(robot, scan)) {
-      Computed c{scan.stamp, w.odometry.update(scan)};
-      std::lock_guard<std::mutex> lock(w.mutex);
-      w.results.push_back(std::move(c));
+      AheadScan a;
+      a.robot = robot;
+      a.stamp = scan.stamp;
+      a.odometry = w.odometry.update(scan);
+      if (w.taker.update(scan.stamp, a.odometry.pose).is_keyframe)
+        a.keyframe_scan = std::make_shared<const Scan>(w.taker.keyframeScan(scan, w.reference));
+      std::unique_lock<std::mutex> lock(w.mutex);
+      w.space.wait(lock, [&] { return stop_ || w.results.size() < kMaxAhead; });
+      w.results.push_back(std::move(a));
       w.ready.notify_one();
     }
   } catch (...) {
@@ -38,28 +54,41 @@ void OdometryRunAhead::run(Worker& w) {
     w.error = std::current_exception();
   }
   std::lock_guard<std::mutex> lock(w.mutex);
+  w.dropped = w.stream.dropped();
   w.done = true;
   w.ready.notify_one();
 }
 
-OdometryResult OdometryRunAhead::next(char robot, StampNs stamp) {
-  auto it = workers_.find(robot);
-  if (it == workers_.end())
-    throw std::invalid_argument(std::string("odometry run-ahead: unknown robot '") + robot + "'");
-  Worker& w = *it->second;
-  std::unique_lock<std::mutex> lock(w.mutex);
-  w.ready.wait(lock, [&] { return !w.results.empty() || w.done; });
-  if (w.results.empty()) {
-    if (w.error) std::rethrow_exception(w.error);
-    throw std::logic_error(std::string("odometry run-ahead: robot ") + robot + " has no scan left for stamp " +
-                           std::to_string(stamp));
+bool OdometryRunAhead::next(AheadScan& out) {
+  Worker* best = nullptr;
+  StampNs best_stamp = 0;
+  for (auto& [robot, w] : workers_) {  // robot id order: ties go to the lower id, as in MergedScanStream
+    std::unique_lock<std::mutex> lock(w->mutex);
+    w->ready.wait(lock, [&] { return !w->results.empty() || w->done; });
+    if (w->results.empty()) {
+      if (w->error) std::rethrow_exception(w->error);
+      continue;
+    }
+    if (!best || w->results.front().stamp < best_stamp) {
+      best = w.get();
+      best_stamp = w->results.front().stamp;
+    }
   }
-  Computed c = std::move(w.results.front());
-  w.results.pop_front();
-  if (c.stamp != stamp)
-    throw std::logic_error(std::string("odometry run-ahead: robot ") + robot + "'s reader gave the scan at " +
-                           std::to_string(c.stamp) + " where the team's stream has " + std::to_string(stamp));
-  return std::move(c.result);
+  if (!best) return false;
+  std::lock_guard<std::mutex> lock(best->mutex);
+  out = std::move(best->results.front());
+  best->results.pop_front();
+  best->space.notify_one();
+  return true;
+}
+
+std::map<char, std::size_t> OdometryRunAhead::dropped() {
+  std::map<char, std::size_t> all;
+  for (auto& [robot, w] : workers_) {
+    std::lock_guard<std::mutex> lock(w->mutex);
+    for (const auto& [r, n] : w->dropped) all[r] += n;
+  }
+  return all;
 }
 
 }  // namespace cosmo::pipeline

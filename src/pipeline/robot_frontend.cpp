@@ -3,8 +3,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "cosmo/odometry/dewarp.hpp"
-
 namespace cosmo::pipeline {
 
 RobotFrontend::RobotFrontend(char robot, const FrontendParams& params, Trajectory reference)
@@ -12,7 +10,7 @@ RobotFrontend::RobotFrontend(char robot, const FrontendParams& params, Trajector
       params_(params),
       reference_(std::move(reference)),
       odometry_(params.loam),
-      keyframer_(params.keyframe_distance),
+      taker_(params),
       recognizer_(robot, params.place),
       registration_(params.registration) {}
 
@@ -52,56 +50,53 @@ ScanOutcome RobotFrontend::processScan(const Scan& scan, const Pose3& external_o
   return afterOdometry(scan, r);
 }
 
-Scan RobotFrontend::keyframeScanOf(const Scan& scan) const {
-  // Dewarp with the reference trajectory when there is one (no odometry error inherited), else odometry.
-  Scan dewarped;
-  if (scan.hasTime()) {
-    if (params_.dewarp_with_reference && !reference_.empty()) {
-      dewarped = dewarp(scan, [this](StampNs t) { return reference_.atClamped(t); });
-    } else {
-      dewarped = dewarp(scan, [this](StampNs t) { return recent_odometry_.atClamped(t); });
-    }
-  } else {
-    dewarped = scan;
-  }
-  // The kept / offered scan carries only points (the radio payload), without NaN or too-close points.
-  Scan out;
-  out.stamp = scan.stamp;
-  const Scan valid = removeInvalidPoints(dewarped, static_cast<float>(params_.keyframe_min_range));
-  out.points = valid.points;
+ScanOutcome RobotFrontend::processPrepared(StampNs stamp, const OdometryResult& loam_result,
+                                           std::shared_ptr<const Scan> keyframe_scan) {
+  bool taken = false;
+  ScanOutcome out = afterOdometry(stamp, loam_result, [&]() {
+    if (!keyframe_scan)
+      throw std::logic_error(std::string("robot ") + robot_ + ": keyframe " + std::to_string(keyframes_.size() - 1) +
+                             " at stamp " + std::to_string(stamp) + " was not prepared");
+    taken = true;
+    return std::move(keyframe_scan);
+  });
+  if (keyframe_scan && !taken)
+    throw std::logic_error(std::string("robot ") + robot_ + ": a keyframe was prepared for stamp " +
+                           std::to_string(stamp) + ", which is none");
   return out;
 }
 
 ScanOutcome RobotFrontend::afterOdometry(const Scan& scan, OdometryResult odometry) {
+  return afterOdometry(scan.stamp, std::move(odometry), [&]() {
+    return std::make_shared<const Scan>(taker_.keyframeScan(scan, reference_));
+  });
+}
+
+ScanOutcome RobotFrontend::afterOdometry(StampNs stamp, OdometryResult odometry,
+                                         const std::function<std::shared_ptr<const Scan>()>& take_keyframe) {
   ScanOutcome out;
   ++scans_;
-  // The odometry track for dewarping: the previous pose and this one cover the sweep.
-  std::vector<StampedPose> track;
-  if (!recent_odometry_.empty() && recent_odometry_.endStamp() < scan.stamp)
-    track.push_back(recent_odometry_.poses().back());
-  track.push_back({scan.stamp, odometry.pose});
-  recent_odometry_ = Trajectory(track);
   last_pose_ = odometry.pose;
-  last_stamp_ = scan.stamp;
+  last_stamp_ = stamp;
   out.odometry = odometry;
 
-  const KeyframeDecision kd = keyframer_.update(odometry.pose);
+  const KeyframeDecision kd = taker_.update(stamp, odometry.pose);
   if (!kd.is_keyframe) return out;
 
   KeyframeRecord kf;
   kf.robot = robot_;
   kf.index = kd.index;
-  kf.stamp = scan.stamp;
+  kf.stamp = stamp;
   kf.odom_pose = odometry.pose;
   kf.relative = kd.index == 0 ? Pose3::Identity() : kd.relative;
-  kf.reference = referenceAt(scan.stamp);
+  kf.reference = referenceAt(stamp);
   keyframes_.push_back(kf);
   out.keyframe = kf;
 
-  Scan kf_scan = keyframeScanOf(scan);
-  const std::vector<LoopCandidate> candidates = recognizer_.addOwnKeyframe(kd.index, kf_scan);
-  own_scans_[kd.index] = std::make_shared<const Scan>(std::move(kf_scan));
-  for (const auto& c : candidates) out.loop_closures.push_back(registerPair(robot_, c, scan.stamp));
+  std::shared_ptr<const Scan> kf_scan = take_keyframe();
+  const std::vector<LoopCandidate> candidates = recognizer_.addOwnKeyframe(kd.index, *kf_scan);
+  own_scans_[kd.index] = std::move(kf_scan);
+  for (const auto& c : candidates) out.loop_closures.push_back(registerPair(robot_, c, stamp));
   return out;
 }
 

@@ -95,16 +95,35 @@ void TeamRun::addScan(char robot, const Scan& scan, const OdometryResult& loam_r
   addScan(robot, scan, &loam_result);
 }
 
-void TeamRun::addScan(char robot, const Scan& scan, const OdometryResult* loam_result) {
+RobotFrontend& TeamRun::frontendFor(char robot) {
   auto it = frontends_.find(robot);
   if (it == frontends_.end()) throw std::invalid_argument(std::string("team run: unknown robot '") + robot + "'");
+  return *it->second;
+}
+
+void TeamRun::addScan(char robot, const Scan& scan, const OdometryResult* loam_result) {
+  RobotFrontend& fe = frontendFor(robot);
   advanceRadioTo(scan.stamp);
-  RobotFrontend& fe = *it->second;
   ++counts_.scans;
   const ScanOutcome out = params_.reference_odometry && fe.hasReference()
                               ? fe.processScan(scan, fe.reference().atClamped(scan.stamp))
                           : loam_result ? fe.processScan(scan, *loam_result)
                                         : fe.processScan(scan);
+  take(robot, out);
+}
+
+void TeamRun::addPrepared(char robot, StampNs stamp, const OdometryResult& loam_result,
+                          std::shared_ptr<const Scan> keyframe_scan) {
+  RobotFrontend& fe = frontendFor(robot);
+  if (params_.reference_odometry && fe.hasReference())
+    throw std::logic_error("team run: prepared scans carry LOAM odometry, but the run uses the reference odometry");
+  advanceRadioTo(stamp);
+  ++counts_.scans;
+  take(robot, fe.processPrepared(stamp, loam_result, std::move(keyframe_scan)));
+}
+
+void TeamRun::take(char robot, const ScanOutcome& out) {
+  RobotFrontend& fe = frontendFor(robot);
   if (out.keyframe) {
     const KeyframeRecord& kf = *out.keyframe;
     ++counts_.keyframes;

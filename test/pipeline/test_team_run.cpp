@@ -82,16 +82,22 @@ std::string runLoam(bool run_ahead, std::size_t max_scans) {
   TeamRunParams params;
   params.frontend = FrontendParams::loadDir(defaultConfigDir());
   TeamRun run("test_team", refs, params, cosmo::pipeline::deriveSeed(3, "radio"), timing.start());
-  std::unique_ptr<OdometryRunAhead> ahead;
-  if (run_ahead) ahead = std::make_unique<OdometryRunAhead>(sourcesOf(trials), timing, params.frontend.loam);
-  MergedScanStream stream = streamOf(trials, timing);
-  char robot;
-  Scan scan;
   StampNs last = 0;
-  for (std::size_t n = 0; n < max_scans && stream.next(robot, scan); ++n) {
-    if (ahead) run.addScan(robot, scan, ahead->next(robot, scan.stamp));
-    else run.addScan(robot, scan);
-    last = scan.stamp;
+  if (run_ahead) {
+    OdometryRunAhead ahead(sourcesOf(trials), timing, params.frontend, refs);
+    AheadScan s;
+    for (std::size_t n = 0; n < max_scans && ahead.next(s); ++n) {
+      run.addPrepared(s.robot, s.stamp, s.odometry, std::move(s.keyframe_scan));
+      last = s.stamp;
+    }
+  } else {
+    MergedScanStream stream = streamOf(trials, timing);
+    char robot;
+    Scan scan;
+    for (std::size_t n = 0; n < max_scans && stream.next(robot, scan); ++n) {
+      run.addScan(robot, scan);
+      last = scan.stamp;
+    }
   }
   run.finish(last);
   const auto path = (std::filesystem::temp_directory_path() / (std::string("cosmo_team_run_loam_") + (run_ahead ? "p" : "s") + ".jrl")).string();
@@ -108,32 +114,50 @@ TEST(TeamRun, OdometryOnWorkerThreadsGivesTheSameJrl) {
   EXPECT_EQ(serial, parallel);
 }
 
-TEST(OdometryRunAhead, SkipsTheScansTheTeamsStreamDropsAndNamesAReaderThatDisagrees) {
-  std::vector<Scan> a(4);
+TEST(OdometryRunAhead, HandsOverInTheTeamsStreamOrderWithItsDroppedScans) {
+  std::vector<Scan> a(4), b(3);
   for (int i = 0; i < 4; ++i) a[i].stamp = 10000000000ULL + i * 100000000ULL;
+  for (int i = 0; i < 3; ++i) b[i].stamp = 10000000000ULL + i * 150000000ULL;
   a[2].stamp = a[1].stamp;  // not increasing: the team's stream drops it, so must the worker
-  const SequenceTiming timing = SequenceTiming::synchronize({{'a', a.front().stamp, a.back().stamp}}, 'a', 0.0, 1);
+  const SequenceTiming timing = SequenceTiming::synchronize(
+      {{'a', a.front().stamp, a.back().stamp}, {'b', b.front().stamp, b.back().stamp}}, 'a', 0.0, 1);
   std::map<char, std::unique_ptr<ScanSource>> team_sources, worker_sources;
   team_sources['a'] = std::make_unique<VectorScanSource>(a);
+  team_sources['b'] = std::make_unique<VectorScanSource>(b);
   worker_sources['a'] = std::make_unique<VectorScanSource>(a);
+  worker_sources['b'] = std::make_unique<VectorScanSource>(b);
   MergedScanStream stream(std::move(team_sources), timing);
-  OdometryRunAhead ahead(std::move(worker_sources), timing, LoamParams{});
+  OdometryRunAhead ahead(std::move(worker_sources), timing, FrontendParams{}, {});
   char robot;
   Scan scan;
+  AheadScan s;
   int n = 0;
   while (stream.next(robot, scan)) {
-    const OdometryResult r = ahead.next(robot, scan.stamp);  // empty scans: motion-model fallback, never a throw
-    EXPECT_FALSE(r.ok);
+    ASSERT_TRUE(ahead.next(s));
+    EXPECT_EQ(s.robot, robot);
+    EXPECT_EQ(s.stamp, scan.stamp);
+    EXPECT_FALSE(s.odometry.ok);  // empty scans: motion-model fallback, never a throw
+    EXPECT_EQ(s.keyframe_scan != nullptr, n < 2);  // each robot's first scan is its keyframe 0 (ties: 'a' first)
     ++n;
   }
-  EXPECT_EQ(n, 3);
-  EXPECT_THROW(ahead.next('a', scan.stamp + 1), std::logic_error);  // the worker has no scan left
-  EXPECT_THROW(ahead.next('z', 0), std::invalid_argument);
+  EXPECT_EQ(n, 6);
+  EXPECT_FALSE(ahead.next(s));
+  ahead.stop();
+  EXPECT_EQ(ahead.dropped(), stream.dropped());
+  EXPECT_EQ(ahead.dropped().at('a'), 1u);
+}
 
-  std::map<char, std::unique_ptr<ScanSource>> other;
-  other['a'] = std::make_unique<VectorScanSource>(a);
-  OdometryRunAhead mismatched(std::move(other), timing, LoamParams{});
-  EXPECT_THROW(mismatched.next('a', timing.of('a').toSequence(a[1].stamp)), std::logic_error);  // it holds a[0]
+TEST(TeamRun, PreparedKeyframesMustMatchTheFrontendsKeyframer) {
+  TeamRunParams params;
+  std::map<char, Trajectory> refs{{'a', Trajectory{}}};
+  TeamRun run("t", refs, params, 1, 0);
+  OdometryResult r;
+  const auto kf = std::make_shared<const Scan>();
+  EXPECT_THROW(run.addPrepared('a', 1000, r, nullptr), std::logic_error);  // keyframe 0 not prepared
+  TeamRun run2("t", refs, params, 1, 0);
+  run2.addPrepared('a', 1000, r, kf);
+  EXPECT_THROW(run2.addPrepared('a', 2000, r, kf), std::logic_error);  // no motion: not a keyframe
+  EXPECT_THROW(run2.addPrepared('z', 3000, r, nullptr), std::invalid_argument);
 }
 
 TEST(MergedScanStream, MergesBySequenceTimeAndDropsNonIncreasingStamps) {

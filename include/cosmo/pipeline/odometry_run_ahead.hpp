@@ -1,12 +1,18 @@
 #pragma once
-// Each robot's LOAM odometry computed on its own thread from its own reader of the robot's scans, as far ahead of
-// the team as the CPU allows. A robot's odometry depends only on its own scans, so it need not wait for the
-// team's sequence order: while only one robot is on the move at the start of a sequence, the others' odometry is
-// already being computed. The team (radio, place recognition, registration) then consumes the results in
-// sequence order with next(). Each worker reads its scans through a one-robot MergedScanStream (same time shift,
-// same dropped scans as the team's stream) and feeds them to its own LoamOdometry in order, so every result is
-// exactly what RobotFrontend's own LoamOdometry would compute: the output does not depend on threads or timing.
-// Results are small (a pose and diagnostics), so a worker never waits for the team.
+// Each robot's robot-local work computed on its own thread from its own reader of the robot's scans, as far ahead
+// of the team as the CPU allows: LOAM odometry, the keyframer and every keyframe's dewarped scan (KeyframeTaker).
+// None of it depends on the other robots, so
+// it need not wait for the team's sequence order: while only one robot is on the move at the start of a sequence,
+// the others' odometry is already being computed, and the team's thread (radio, place recognition, pairwise
+// registration, recording) never decodes a scan. next() hands the results over in the team's sequence order
+// (MergedScanStream's: stamp, ties to the lower robot id). Each worker reads its scans through a one-robot
+// MergedScanStream (same time shift, same dropped scans as the team's stream would have) and feeds them to its
+// own objects in order, so every result is exactly what the RobotFrontend's own would compute: the output does
+// not depend on threads or timing (test TeamRun.OdometryOnWorkerThreadsGivesTheSameJrl).
+// A worker stays at most kMaxAhead scans ahead of the team (a bound on the keyframe scans waiting in memory).
+// Registration features are left to the team's thread, which computes them only for the keyframes that become
+// loop-closure candidates (about 70 % of them on the default sequence): computed ahead for every keyframe they
+// cost more CPU in all, and the CPU in all is what bounds a run on two cores.
 #include <atomic>
 #include <condition_variable>
 #include <deque>
@@ -14,44 +20,63 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 
+#include "cosmo/common/trajectory.hpp"
 #include "cosmo/odometry/loam_odometry.hpp"
-#include "cosmo/odometry/loam_params.hpp"
+#include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/pipeline/keyframe_taker.hpp"
 #include "cosmo/pipeline/scan_stream.hpp"
 #include "cosmo/pipeline/sequence_timing.hpp"
 
 namespace cosmo::pipeline {
 
+/// One scan's robot-local results (the scan itself is not kept: a keyframe's prepared scan is).
+struct AheadScan {
+  char robot = 'a';
+  StampNs stamp = 0;  ///< sequence time
+  OdometryResult odometry;
+  std::shared_ptr<const Scan> keyframe_scan;  ///< the keyframe scan when the scan is a keyframe
+};
+
 class OdometryRunAhead {
  public:
-  /// `sources`: robot -> a reader of the same scans the team's stream holds for that robot (a second reader of
-  /// the same bag); `timing` as for the team's MergedScanStream. Starts one worker thread per robot.
+  /// Results a worker may hold before it waits for the team (about 100 s of a 10 Hz sensor).
+  static constexpr std::size_t kMaxAhead = 1000;
+
+  /// `sources`: robot -> a reader of the robot's scans in recorded time; `timing` as for the team's
+  /// MergedScanStream; `references`: robot -> its sensor reference trajectory in sequence time (keyframe dewarping,
+  /// as the robot's RobotFrontend holds it; a robot missing or empty: dewarped with odometry). Starts one worker
+  /// thread per robot.
   OdometryRunAhead(std::map<char, std::unique_ptr<ScanSource>> sources, const SequenceTiming& timing,
-                   const LoamParams& params);
+                   const FrontendParams& params, const std::map<char, Trajectory>& references);
   ~OdometryRunAhead();
   OdometryRunAhead(const OdometryRunAhead&) = delete;
   OdometryRunAhead& operator=(const OdometryRunAhead&) = delete;
 
-  /// The odometry of `robot`'s next scan, which must carry `stamp` (sequence time); waits until it is computed.
-  /// Throws std::logic_error when the worker's scan differs (the readers disagree) or it has no scan left, and
-  /// rethrows a worker's exception.
-  OdometryResult next(char robot, StampNs stamp);
+  /// The next scan of any robot in sequence order; waits until it is computed. False when every robot's scans
+  /// are done. Rethrows a worker's exception.
+  bool next(AheadScan& out);
+  /// Stops and joins the workers (idempotent; next() then returns what was computed before).
+  void stop();
+  /// Scans each robot's stream dropped (stamps not increasing); complete once the workers finished or stopped.
+  std::map<char, std::size_t> dropped();
 
  private:
-  struct Computed {
-    StampNs stamp;
-    OdometryResult result;
-  };
   struct Worker {
-    Worker(MergedScanStream s, const LoamParams& params) : stream(std::move(s)), odometry(params) {}
+    Worker(MergedScanStream s, const FrontendParams& params, Trajectory ref)
+        : stream(std::move(s)), odometry(params.loam), taker(params), reference(std::move(ref)) {}
     MergedScanStream stream;
     LoamOdometry odometry;
-    std::deque<Computed> results;
-    bool done = false;  ///< the worker's stream is exhausted (or it failed)
+    KeyframeTaker taker;
+    Trajectory reference;
+    std::deque<AheadScan> results;
+    bool done = false;  ///< the worker's stream is exhausted (or it failed, or was stopped)
+    std::map<char, std::size_t> dropped;
     std::exception_ptr error;
     std::mutex mutex;
-    std::condition_variable ready;
+    std::condition_variable ready, space;
     std::thread thread;
   };
   void run(Worker& w);

@@ -11,6 +11,7 @@
 // measurement = T_key1^-1 * T_key2, i.e. GlobalRegistration's T_target_source with target = own keyframe scan
 // and source = the matched scan. For an intra-robot closure key1 is the newer keyframe (the query).
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -20,10 +21,10 @@
 #include "cosmo/common/pose.hpp"
 #include "cosmo/common/scan.hpp"
 #include "cosmo/common/trajectory.hpp"
-#include "cosmo/odometry/keyframer.hpp"
 #include "cosmo/odometry/loam_odometry.hpp"
 #include "cosmo/pipeline/feature_cache.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/pipeline/keyframe_taker.hpp"
 #include "cosmo/place_recognition/place_recognizer.hpp"
 #include "cosmo/registration/global_registration.hpp"
 
@@ -74,6 +75,12 @@ class RobotFrontend {
   /// Next scan with LOAM odometry computed elsewhere (OdometryRunAhead: a LoamOdometry with these parameters fed
   /// exactly this robot's scans in order); the same outcome as processScan(scan).
   ScanOutcome processScan(const Scan& scan, const OdometryResult& loam_result);
+  /// The next scan known by its stamp, with its LOAM odometry and, when it is a keyframe, the keyframe scan made
+  /// from it by a KeyframeTaker fed the same poses (OdometryRunAhead): the same outcome as processScan(scan).
+  /// Throws std::logic_error when this front-end takes a keyframe whose scan was not given, or a scan was given
+  /// for a scan that is no keyframe.
+  ScanOutcome processPrepared(StampNs stamp, const OdometryResult& loam_result,
+                              std::shared_ptr<const Scan> keyframe_scan);
   /// A teammate's keyframe scan (points, sensor frame) received at `received_at`: searched against the own
   /// database, stored in that teammate's database; returns the registered candidates.
   std::vector<LoopClosureAttempt> receiveTeammateScan(char teammate, std::size_t index, const Scan& scan,
@@ -108,8 +115,10 @@ class RobotFrontend {
   std::size_t teammateScansReceived() const { return received_; }
 
  private:
+  /// `take_keyframe`: the keyframe scan of this scan when it becomes one.
+  ScanOutcome afterOdometry(StampNs stamp, OdometryResult odometry,
+                            const std::function<std::shared_ptr<const Scan>()>& take_keyframe);
   ScanOutcome afterOdometry(const Scan& scan, OdometryResult odometry);
-  Scan keyframeScanOf(const Scan& scan) const;
   LoopClosureAttempt registerPair(char own_query_robot, const LoopCandidate& c, StampNs computed_at);
   const FeatureCloud& features(char robot, std::size_t index);
   const Scan* storedScan(char robot, std::size_t index) const;
@@ -119,7 +128,7 @@ class RobotFrontend {
   FrontendParams params_;
   Trajectory reference_;
   LoamOdometry odometry_;
-  Keyframer keyframer_;
+  KeyframeTaker taker_;
   PlaceRecognizer recognizer_;
   GlobalRegistration registration_;
 
@@ -129,7 +138,6 @@ class RobotFrontend {
   std::shared_ptr<FeatureCache> feature_cache_ = std::make_shared<FeatureCache>();
   FeatureCloud scratch_features_;
 
-  Trajectory recent_odometry_;  ///< last few odometry poses (dewarping without a reference)
   Pose3 last_pose_ = Pose3::Identity();
   StampNs last_stamp_ = 0;
   std::size_t scans_ = 0, accepted_ = 0, rejected_ = 0, received_ = 0;

@@ -61,6 +61,10 @@ class TeamRun {
   void addScan(char robot, const Scan& scan);
   /// The same with the scan's LOAM odometry computed ahead (OdometryRunAhead); ignored with reference odometry.
   void addScan(char robot, const Scan& scan, const OdometryResult& loam_result);
+  /// The same with the scan known by its stamp and its keyframe scan made ahead (RobotFrontend::processPrepared);
+  /// without reference odometry only.
+  void addPrepared(char robot, StampNs stamp, const OdometryResult& loam_result,
+                   std::shared_ptr<const Scan> keyframe_scan);
   /// Runs the radio through `end` (the sequence end) so late transfers are delivered.
   void finish(StampNs end);
 
@@ -77,6 +81,9 @@ class TeamRun {
  private:
   void advanceRadioTo(StampNs t);
   void addScan(char robot, const Scan& scan, const OdometryResult* loam_result);
+  RobotFrontend& frontendFor(char robot);
+  /// Bookkeeping of a scan's outcome: the keyframe recorded and offered to the radio, loop closures recorded.
+  void take(char robot, const ScanOutcome& out);
   void record(const LoopClosureAttempt& a);
 
   TeamRunParams params_;

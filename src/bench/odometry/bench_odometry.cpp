@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/common/config.hpp"
 #include "cosmo/common/pose_io.hpp"
@@ -262,6 +263,7 @@ void sectionDrift(const LoamParams& params) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  cosmo::keepScanBuffersInProcess();
   std::map<std::string, std::string> a;
   for (int i = 1; i + 1 < argc; i += 2) a[std::string(argv[i]).substr(2)] = argv[i + 1];
   try {

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/common/config.hpp"
 #include "cosmo/common/pose_io.hpp"
@@ -63,6 +64,7 @@ long frameIndexOf(const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  cosmo::keepScanBuffersInProcess();
   std::map<std::string, std::string> a;
   bool quiet = false;
   for (int i = 1; i < argc; ++i) {

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/comm/transfer_log.hpp"
 #include "cosmo/jrl/stats.hpp"
@@ -49,8 +50,9 @@ void usage() {
                "  --noise-models FILE  noise-model YAML (default: the sequence's noise_models, else\n"
                "                       <config-dir>/noise_models/<environment>.yaml)\n"
                "  --reference-odometry take odometry from the reference trajectories instead of LOAM\n"
-               "  --serial-odometry    run LOAM in the main thread (default: one thread per robot, reading its own bag\n"
-               "                       and running ahead of the team; the output is the same byte for byte)\n"
+               "  --serial-odometry    everything in the main thread (default: one thread per robot reads its own bag and\n"
+               "                       runs its LOAM and keyframes ahead of the team; the output is the same byte\n"
+               "                       for byte)\n"
                "  --max-seconds S      stop after S seconds of sequence time (quick looks)\n";
 }
 
@@ -75,9 +77,10 @@ RadioParams radioFor(const std::string& comm, const std::string& config_dir, std
 }
 
 /// CPU seconds (user + system) of every thread of this process so far.
-double processCpuSeconds() {
+/// CPU seconds of the process (RUSAGE_SELF) or of the calling thread (RUSAGE_THREAD).
+double cpuSeconds(int who = RUSAGE_SELF) {
   struct rusage ru {};
-  getrusage(RUSAGE_SELF, &ru);
+  getrusage(who, &ru);
   return static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
          1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
 }
@@ -91,6 +94,7 @@ double peakRssMb() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  cosmo::keepScanBuffersInProcess();
   std::string sequence_path, out_dir = ".", config_dir = defaultConfigDir(), noise_path, rule_name = "fidelity";
   std::vector<std::string> comms{"wifi"};
   bool seed_given = false, reference_odometry = false, quiet = false, serial_odometry = false;
@@ -166,36 +170,46 @@ int main(int argc, char** argv) {
       params.radio = radioFor(comm, config_dir, label);
       const StampNs origin = radioGridOrigin(timing.start(), params.radio.step);
       bench::Stopwatch sw;
-      const double cpu_before = processCpuSeconds();
+      const double cpu_before = cpuSeconds(), team_cpu_before = cpuSeconds(RUSAGE_THREAD);
       TeamRun run(config.name + "_" + label, references, params, deriveSeed(config.seed, "radio"), origin);
-      MergedScanStream stream = ros_glue::openSequenceStream(config, timing);
-      char robot;
-      Scan scan;
       double next_report = 0.0;
       const double duration = toSeconds(end - timing.start());
-      // LOAM runs ahead on one thread per robot, from a second reader of the robot's bag (same results: each
-      // robot's scans in order); the team consumes the results in sequence order.
-      std::unique_ptr<OdometryRunAhead> ahead;
-      if (!reference_odometry && !serial_odometry)
-        ahead = std::make_unique<OdometryRunAhead>(ros_glue::openTrialSources(config), timing, params.frontend.loam);
-      while (stream.next(robot, scan)) {
-        if (scan.stamp > end) break;
-        if (ahead) run.addScan(robot, scan, ahead->next(robot, scan.stamp));
-        else run.addScan(robot, scan);
-        const double t = toSeconds(scan.stamp - timing.start());
-        if (!quiet && t >= next_report) {
-          const auto& c = run.counts();
-          std::printf("[%s] %6.1f / %.1f s  keyframes %zu  loop closures intra %zu (+%zu rejected) inter %zu (+%zu rejected)"
-                      "  transfers %zu delivered, %zu timed out  (%.1f s wall)\n",
-                      label.c_str(), t, duration, c.keyframes, c.intra_accepted, c.intra_rejected, c.inter_accepted,
-                      c.inter_rejected, c.transfers_delivered, c.transfers_timed_out, sw.elapsedMs() * 1e-3);
-          std::fflush(stdout);
-          next_report = t + std::max(10.0, duration / 20.0);
+      auto progress = [&](StampNs stamp) {
+        const double t = toSeconds(stamp - timing.start());
+        if (quiet || t < next_report) return;
+        const auto& c = run.counts();
+        std::printf("[%s] %6.1f / %.1f s  keyframes %zu  loop closures intra %zu (+%zu rejected) inter %zu (+%zu rejected)"
+                    "  transfers %zu delivered, %zu timed out  (%.1f s wall)\n",
+                    label.c_str(), t, duration, c.keyframes, c.intra_accepted, c.intra_rejected, c.inter_accepted,
+                    c.inter_rejected, c.transfers_delivered, c.transfers_timed_out, sw.elapsedMs() * 1e-3);
+        std::fflush(stdout);
+        next_report = t + std::max(10.0, duration / 20.0);
+      };
+      std::map<char, std::size_t> dropped;
+      if (!reference_odometry && !serial_odometry) {
+        // The robots' own work (LOAM, keyframes) on worker threads; this thread runs the team.
+        OdometryRunAhead ahead(ros_glue::openTrialSources(config), timing, params.frontend, references);
+        AheadScan s;
+        while (ahead.next(s)) {
+          if (s.stamp > end) break;
+          run.addPrepared(s.robot, s.stamp, s.odometry, std::move(s.keyframe_scan));
+          progress(s.stamp);
         }
+        ahead.stop();  // the workers may have run past --max-seconds
+        dropped = ahead.dropped();
+      } else {
+        MergedScanStream stream = ros_glue::openSequenceStream(config, timing);
+        char robot;
+        Scan scan;
+        while (stream.next(robot, scan)) {
+          if (scan.stamp > end) break;
+          run.addScan(robot, scan);
+          progress(scan.stamp);
+        }
+        dropped = stream.dropped();
       }
-      ahead.reset();  // stops the workers (they may have run past --max-seconds)
       run.finish(end);
-      for (const auto& [r, n] : stream.dropped())
+      for (const auto& [r, n] : dropped)
         std::fprintf(stderr, "warning: robot %c: %zu scans dropped (stamps not increasing)\n", r, n);
       for (const auto& w : run.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
@@ -212,10 +226,10 @@ int main(int argc, char** argv) {
       std::printf("  validate: %zu violations\n", violations.size());
       for (std::size_t i = 0; i < violations.size() && i < 10; ++i)
         std::printf("    %s\n", violations[i].str().c_str());
-      const double cpu = processCpuSeconds() - cpu_before;
-      std::printf("  wall %.1f s for %.1f s of sequence (%.2fx real time), CPU %.1f s (%.0f %% of one core), peak memory "
-                  "%.0f MB\n", wall, duration, duration / std::max(wall, 1e-9), cpu, 100.0 * cpu / std::max(wall, 1e-9),
-                  peakRssMb());
+      const double cpu = cpuSeconds() - cpu_before, team_cpu = cpuSeconds(RUSAGE_THREAD) - team_cpu_before;
+      std::printf("  wall %.1f s for %.1f s of sequence (%.2fx real time), CPU %.1f s (%.0f %% of one core; the team's "
+                  "thread %.1f s), peak memory %.0f MB\n", wall, duration, duration / std::max(wall, 1e-9), cpu,
+                  100.0 * cpu / std::max(wall, 1e-9), team_cpu, peakRssMb());
     }
     std::printf("total wall %.1f s\n", total.elapsedMs() * 1e-3);
   } catch (const std::exception& e) {
