@@ -18,31 +18,24 @@ const sensor_msgs::PointField* findField(const sensor_msgs::PointCloud2& msg, co
   return nullptr;
 }
 
-/// Calls f(i, value) with every point's value of `field` (as stored: int8 ... float64), one pass over the data;
-/// the datatype switch is outside the loop. An unknown datatype gives NaN.
-template <typename F>
-void forEachValue(const sensor_msgs::PointCloud2& msg, std::size_t n, const sensor_msgs::PointField& field, F&& f) {
-  const uint8_t* p = msg.data.data() + field.offset;
-  const std::size_t step = msg.point_step;
-  auto loop = [&](auto zero) {
-    using T = decltype(zero);
-    for (std::size_t i = 0; i < n; ++i, p += step) {
-      T v;
-      std::memcpy(&v, p, sizeof v);
-      f(i, v);
-    }
+/// The value at `p` stored as `datatype` (int8 ... float64); NaN for an unknown datatype. Every stored type is
+/// exactly representable in double, so converting the result to float rounds as converting the stored value would.
+inline double readValue(const uint8_t* p, uint8_t datatype) {
+  auto as = [p](auto zero) {
+    decltype(zero) v;
+    std::memcpy(&v, p, sizeof v);
+    return static_cast<double>(v);
   };
-  switch (field.datatype) {
-    case sensor_msgs::PointField::INT8: loop(int8_t{}); break;
-    case sensor_msgs::PointField::UINT8: loop(uint8_t{}); break;
-    case sensor_msgs::PointField::INT16: loop(int16_t{}); break;
-    case sensor_msgs::PointField::UINT16: loop(uint16_t{}); break;
-    case sensor_msgs::PointField::INT32: loop(int32_t{}); break;
-    case sensor_msgs::PointField::UINT32: loop(uint32_t{}); break;
-    case sensor_msgs::PointField::FLOAT32: loop(float{}); break;
-    case sensor_msgs::PointField::FLOAT64: loop(double{}); break;
-    default:
-      for (std::size_t i = 0; i < n; ++i) f(i, std::numeric_limits<double>::quiet_NaN());
+  switch (datatype) {
+    case sensor_msgs::PointField::INT8: return as(int8_t{});
+    case sensor_msgs::PointField::UINT8: return as(uint8_t{});
+    case sensor_msgs::PointField::INT16: return as(int16_t{});
+    case sensor_msgs::PointField::UINT16: return as(uint16_t{});
+    case sensor_msgs::PointField::INT32: return as(int32_t{});
+    case sensor_msgs::PointField::UINT32: return as(uint32_t{});
+    case sensor_msgs::PointField::FLOAT32: return as(float{});
+    case sensor_msgs::PointField::FLOAT64: return as(double{});
+    default: return std::numeric_limits<double>::quiet_NaN();
   }
 }
 
@@ -82,25 +75,35 @@ Scan fromPointCloud2(const sensor_msgs::PointCloud2& msg, bool stamp_at_end, con
       throw std::runtime_error(source + ": field '" + f->name + "' lies outside point_step");
   Scan scan;
   scan.stamp = static_cast<StampNs>(msg.header.stamp.sec) * 1000000000ULL + msg.header.stamp.nsec;
+  // One pass over the points (a cloud is megabytes: a pass per field streamed it from memory six times).
   scan.points.resize(n);
-  forEachValue(msg, n, *fx, [&scan](std::size_t i, auto v) { scan.points[i].x() = static_cast<float>(v); });
-  forEachValue(msg, n, *fy, [&scan](std::size_t i, auto v) { scan.points[i].y() = static_cast<float>(v); });
-  forEachValue(msg, n, *fz, [&scan](std::size_t i, auto v) { scan.points[i].z() = static_cast<float>(v); });
-  if (fi) {
-    scan.intensity.resize(n);
-    forEachValue(msg, n, *fi, [&scan](std::size_t i, auto v) { scan.intensity[i] = static_cast<float>(v); });
-  }
-  if (fr) {
-    scan.ring.resize(n);
-    forEachValue(msg, n, *fr, [&scan](std::size_t i, auto v) {
-      const double d = static_cast<double>(v);  // a float ring field may hold NaN: line 0, never UB
+  if (fi) scan.intensity.resize(n);
+  if (fr) scan.ring.resize(n);
+  std::vector<double> t(ft ? n : 0);  // in double until made relative (see below)
+  const bool xyz_float = fx->datatype == sensor_msgs::PointField::FLOAT32 &&
+                         fy->datatype == sensor_msgs::PointField::FLOAT32 &&
+                         fz->datatype == sensor_msgs::PointField::FLOAT32;
+  const uint8_t* base = msg.data.data();
+  for (std::size_t i = 0; i < n; ++i, base += msg.point_step) {
+    Eigen::Vector3f& p = scan.points[i];
+    if (xyz_float) {
+      std::memcpy(&p.x(), base + fx->offset, 4);
+      std::memcpy(&p.y(), base + fy->offset, 4);
+      std::memcpy(&p.z(), base + fz->offset, 4);
+    } else {
+      p = Eigen::Vector3f(static_cast<float>(readValue(base + fx->offset, fx->datatype)),
+                          static_cast<float>(readValue(base + fy->offset, fy->datatype)),
+                          static_cast<float>(readValue(base + fz->offset, fz->datatype)));
+    }
+    if (fi) scan.intensity[i] = static_cast<float>(readValue(base + fi->offset, fi->datatype));
+    if (fr) {
+      const double d = readValue(base + fr->offset, fr->datatype);  // a float ring field may hold NaN: line 0, never UB
       scan.ring[i] = static_cast<uint16_t>(std::isfinite(d) ? std::clamp(d, 0.0, 65535.0) : 0.0);
-    });
+    }
+    if (ft) t[i] = readValue(base + ft->offset, ft->datatype) * t_scale;
   }
   if (ft && n > 0) {
     // In double until made relative: absolute epoch seconds (Velodyne `time`) would lose minutes in float.
-    std::vector<double> t(n);
-    forEachValue(msg, n, *ft, [&t, t_scale](std::size_t i, auto v) { t[i] = static_cast<double>(v) * t_scale; });
     double t_max = -std::numeric_limits<double>::infinity(), t_min = -t_max;
     for (double ti : t) {
       if (std::isfinite(ti)) { t_max = std::max(t_max, ti); t_min = std::min(t_min, ti); }
