@@ -10,6 +10,11 @@
 // own objects in order, so every result is exactly what the RobotFrontend's own would compute: the output does
 // not depend on threads or timing (test TeamRun.OdometryOnWorkerThreadsGivesTheSameJrl).
 // A worker stays at most kMaxAhead scans ahead of the team (a bound on the keyframe scans waiting in memory).
+// Admission keeps the team's thread, the serial part of a run, from being starved: a worker starts a scan only while
+// fewer threads than cores are busy, counting the team's thread whenever it is not waiting for a result, and the
+// worker the team waits for always may. With more threads than cores the workers otherwise ran ahead at the
+// team's expense, finished first, and left the team's loop-closure work (concentrated late in a sequence) to run
+// alone on one core at the end.
 // Registration features are left to the team's thread, which computes them only for the keyframes that become
 // loop-closure candidates (about 70 % of them on the default sequence): computed ahead for every keyframe they
 // cost more CPU in all, and the CPU in all is what bounds a run on two cores.
@@ -44,13 +49,14 @@ class OdometryRunAhead {
  public:
   /// Results a worker may hold before it waits for the team (about 100 s of a 10 Hz sensor).
   static constexpr std::size_t kMaxAhead = 1000;
+  /// `cores`: how many threads may be busy at once (0: the machine's hardware concurrency).
 
   /// `sources`: robot -> a reader of the robot's scans in recorded time; `timing` as for the team's
   /// MergedScanStream; `references`: robot -> its sensor reference trajectory in sequence time (keyframe dewarping,
   /// as the robot's RobotFrontend holds it; a robot missing or empty: dewarped with odometry). Starts one worker
   /// thread per robot.
   OdometryRunAhead(std::map<char, std::unique_ptr<ScanSource>> sources, const SequenceTiming& timing,
-                   const FrontendParams& params, const std::map<char, Trajectory>& references);
+                   const FrontendParams& params, const std::map<char, Trajectory>& references, unsigned cores = 0);
   ~OdometryRunAhead();
   OdometryRunAhead(const OdometryRunAhead&) = delete;
   OdometryRunAhead& operator=(const OdometryRunAhead&) = delete;
@@ -65,8 +71,9 @@ class OdometryRunAhead {
 
  private:
   struct Worker {
-    Worker(MergedScanStream s, const FrontendParams& params, Trajectory ref)
-        : stream(std::move(s)), odometry(params.loam), taker(params), reference(std::move(ref)) {}
+    Worker(char r, MergedScanStream s, const FrontendParams& params, Trajectory ref)
+        : robot(r), stream(std::move(s)), odometry(params.loam), taker(params), reference(std::move(ref)) {}
+    char robot;
     MergedScanStream stream;
     LoamOdometry odometry;
     KeyframeTaker taker;
@@ -80,9 +87,23 @@ class OdometryRunAhead {
     std::thread thread;
   };
   void run(Worker& w);
+  /// Waits until worker `w` may start a scan (see the admission rule above); false when stopping.
+  bool admit(const Worker& w);
+  void release();
+  struct Admitted {
+    OdometryRunAhead& owner;
+    ~Admitted() { owner.release(); }
+  };
+  /// The team's thread waits for `robot`'s next result (0: it is busy again).
+  void teamWaitsFor(char robot);
 
   std::map<char, std::unique_ptr<Worker>> workers_;
   std::atomic<bool> stop_{false};
+  unsigned cores_;
+  std::mutex admit_mutex_;
+  std::condition_variable admitted_;
+  unsigned running_ = 0;  ///< workers inside a scan
+  char awaited_ = 0;      ///< the robot the team's thread waits for; 0 while it is busy
 };
 
 }  // namespace cosmo::pipeline
