@@ -74,7 +74,7 @@ std::map<char, std::unique_ptr<ScanSource>> sourcesOf(const std::vector<test::Sy
 
 /// A LOAM run of the first `max_scans` merged scans; `run_ahead`: odometry on worker threads that read their own
 /// copies of the scans (OdometryRunAhead), as cosmo_generate does.
-std::string runLoam(bool run_ahead, std::size_t max_scans) {
+std::string runLoam(bool run_ahead, std::size_t max_scans, unsigned cores = 0) {
   const auto& trials = team();
   const SequenceTiming timing = timingOf(trials, 3, 0.5);
   std::map<char, Trajectory> refs;
@@ -84,7 +84,7 @@ std::string runLoam(bool run_ahead, std::size_t max_scans) {
   TeamRun run("test_team", refs, params, cosmo::pipeline::deriveSeed(3, "radio"), timing.start());
   StampNs last = 0;
   if (run_ahead) {
-    OdometryRunAhead ahead(sourcesOf(trials), timing, params.frontend, refs);
+    OdometryRunAhead ahead(sourcesOf(trials), timing, params.frontend, refs, cores);
     AheadScan s;
     for (std::size_t n = 0; n < max_scans && ahead.next(s); ++n) {
       run.addPrepared(s.robot, s.stamp, s.odometry, std::move(s.keyframe_scan));
@@ -112,6 +112,8 @@ TEST(TeamRun, OdometryOnWorkerThreadsGivesTheSameJrl) {
   const std::string serial = runLoam(false, 100), parallel = runLoam(true, 100);
   ASSERT_FALSE(serial.empty());
   EXPECT_EQ(serial, parallel);
+  // One core: a worker runs only while the team's thread waits for it (admission), and nothing deadlocks.
+  EXPECT_EQ(serial, runLoam(true, 100, 1));
 }
 
 TEST(OdometryRunAhead, HandsOverInTheTeamsStreamOrderWithItsDroppedScans) {
