@@ -53,7 +53,8 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
   ConsistencyGraph graph;
   if (corr.size() >= 3) {
     graph = ConsistencyGraph::fromCorrespondences(cs, ct, 2.0 * p.noise_bound);
-    r.max_core_size = maxKCore(graph).size();
+    // The first maximum-clique search finds the max k-core on the way; otherwise it is computed here.
+    if (!p.use_max_clique || p.max_hypotheses < 1) r.max_core_size = maxKCore(graph).size();
   }
   notifyStage(observer, "pruning");
 
@@ -89,6 +90,7 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
       std::vector<int> local;
       if (p.use_max_clique) {
         CliqueResult clique = maxClique(g, p.max_clique_nodes);
+        if (h == 0) r.max_core_size = clique.max_core_size;
         local = std::move(clique.vertices);
         proven = clique.proven_maximum;
       } else {
