@@ -53,16 +53,18 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
   ConsistencyGraph graph;
   if (corr.size() >= 3) {
     graph = ConsistencyGraph::fromCorrespondences(cs, ct, 2.0 * p.noise_bound);
-    r.max_core_size = maxKCore(graph).size();
+    // The first maximum-clique search finds the max k-core on the way; otherwise it is computed here.
+    if (!p.use_max_clique || p.max_hypotheses < 1) r.max_core_size = maxKCore(graph).size();
   }
   notifyStage(observer, "pruning");
 
   std::optional<KdTree<3>> target_tree;
   if (!tgt.points.empty()) target_tree.emplace(tgt.points.front().data(), tgt.points.size());
-  // Structure points (not ground-like) of the source, for the structure overlap.
-  std::vector<Eigen::Vector3f> src_structure;
+  // Structure points (not ground-like) of the source, for the structure overlap (measured in the same pass as
+  // the overlap of all points).
+  std::vector<unsigned char> src_structure(src.points.size(), 0);
   for (std::size_t i = 0; i < src.points.size() && i < src.normals.size(); ++i)
-    if (std::fabs(src.normals[i].z()) < static_cast<float>(p.structure_max_normal_z)) src_structure.push_back(src.points[i]);
+    src_structure[i] = std::fabs(src.normals[i].z()) < static_cast<float>(p.structure_max_normal_z);
   // ICP iterates on an evenly strided subset of the source (every k-th point); the overlap uses all points.
   std::vector<Eigen::Vector3f> icp_source;
   const std::size_t stride = p.icp_max_points > 0 ? (src.points.size() + p.icp_max_points - 1) / p.icp_max_points : 1;
@@ -88,6 +90,7 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
       std::vector<int> local;
       if (p.use_max_clique) {
         CliqueResult clique = maxClique(g, p.max_clique_nodes);
+        if (h == 0) r.max_core_size = clique.max_core_size;
         local = std::move(clique.vertices);
         proven = clique.proven_maximum;
       } else {
@@ -130,8 +133,10 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
     // Local refinement on the downsampled clouds; kept when small, or when it raises the overlap (the overlap
     // before it is only needed for that comparison).
     if (target_tree) {
-      auto overlapAt = [&](const Pose3& T) { return overlapFraction(src.points, *target_tree, T, p.icp_max_distance); };
-      bool have_overlap = false;
+      auto overlapAt = [&](const Pose3& T) {
+        return overlapFractions(src.points, src_structure, *target_tree, T, p.icp_max_distance);
+      };
+      std::optional<Overlaps> overlap;
       if (p.refine && p.icp_iterations > 0) {
         const IcpResult icp = refinePointToPlane(icp_points, *target_tree, tgt.points, tgt.normals,
                                                  cand.T_target_source, p.icp_max_distance, p.icp_iterations);
@@ -139,22 +144,21 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
         const bool small = delta.translation().norm() <= p.icp_max_correction_m &&
                            rotationAngle(delta) <= p.icp_max_correction_deg * M_PI / 180.0;
         if (icp.matched >= 6 && icp.T.matrix().allFinite()) {
-          const double overlap1 = overlapAt(icp.T);
-          const double overlap0 = small ? 0.0 : overlapAt(cand.T_target_source);
-          if (small || overlap1 > overlap0) {
+          const Overlaps overlap1 = overlapAt(icp.T);
+          const Overlaps overlap0 = small ? Overlaps() : overlapAt(cand.T_target_source);
+          if (small || overlap1.all > overlap0.all) {
             cand.T_target_source = icp.T;
             cand.refined = true;
-            cand.overlap = overlap1;
+            overlap = overlap1;
           } else {
-            cand.overlap = overlap0;
+            overlap = overlap0;
           }
-          have_overlap = true;
         }
       }
-      if (!have_overlap) cand.overlap = overlapAt(cand.T_target_source);
+      if (!overlap) overlap = overlapAt(cand.T_target_source);
+      cand.overlap = overlap->all;
+      cand.structure_overlap = overlap->flagged;
     }
-    if (target_tree)
-      cand.structure_overlap = overlapFraction(src_structure, *target_tree, cand.T_target_source, p.icp_max_distance);
     notifyStage(observer, "refine");
     solved = true;
     cand.hypotheses = h + 1;

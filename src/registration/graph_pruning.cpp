@@ -172,6 +172,8 @@ CliqueResult maxClique(const ConsistencyGraph& graph, std::uint64_t node_budget)
   std::vector<int> core, order;
   coreDecomposition(graph, core, order);
   std::vector<int> best{order.back()};  // any single vertex is a clique
+  const int k_max = *std::max_element(core.begin(), core.end());
+  if (k_max > 0) result.max_core_size = static_cast<std::size_t>(std::count(core.begin(), core.end(), k_max));
 
   // Greedy lower bound from the highest-core vertices (PMC heuristic): grow a clique from v's neighbours in
   // order of decreasing core number.

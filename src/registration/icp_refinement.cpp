@@ -34,6 +34,27 @@ double overlapFraction(const std::vector<Eigen::Vector3f>& source, const KdTree<
   return static_cast<double>(matched) / static_cast<double>(source.size());
 }
 
+Overlaps overlapFractions(const std::vector<Eigen::Vector3f>& source, const std::vector<unsigned char>& flagged,
+                          const KdTree<3>& target_tree, const Eigen::Isometry3d& T, double max_distance) {
+  Overlaps out;
+  if (source.empty() || target_tree.size() == 0) return out;
+  const float max_d2 = static_cast<float>(max_distance * max_distance);
+  const Eigen::Matrix3f Rf = T.linear().cast<float>();
+  const Eigen::Vector3f tf = T.translation().cast<float>();
+  std::size_t matched = 0, flagged_count = 0, flagged_matched = 0;
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    const Eigen::Vector3f p = Rf * source[i] + tf;
+    const bool hit = target_tree.anyWithin(p.data(), max_d2);
+    const bool f = i < flagged.size() && flagged[i];
+    matched += hit;
+    flagged_count += f;
+    flagged_matched += f && hit;
+  }
+  out.all = static_cast<double>(matched) / static_cast<double>(source.size());
+  if (flagged_count > 0) out.flagged = static_cast<double>(flagged_matched) / static_cast<double>(flagged_count);
+  return out;
+}
+
 IcpResult refinePointToPlane(const std::vector<Eigen::Vector3f>& source, const KdTree<3>& tree,
                              const std::vector<Eigen::Vector3f>& target,
                              const std::vector<Eigen::Vector3f>& target_normals, const Eigen::Isometry3d& initial,

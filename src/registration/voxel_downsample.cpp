@@ -37,6 +37,15 @@ std::vector<Eigen::Vector3f> voxelDownsample(const std::vector<Eigen::Vector3f>&
   std::vector<std::uint64_t> keys;
   std::vector<Eigen::Vector3d> sums;
   std::vector<std::uint32_t> counts;
+  // The current voxel's sum and count stay in registers while consecutive points fall into it (the same
+  // additions in the same order as through memory, without a store-to-load dependency per point).
+  Eigen::Vector3d run_sum = Eigen::Vector3d::Zero();
+  std::uint32_t run_count = 0;
+  auto flushRun = [&]() {
+    if (last_key == kEmpty) return;
+    sums[last_slot] = run_sum;
+    counts[last_slot] = run_count;
+  };
   // In batches: the keys of the next kBatch points first (kEmpty = point skipped), with their table slots
   // prefetched, then the points summed in order (the table's random accesses overlap instead of waiting in turn).
   constexpr std::size_t kBatch = 32;
@@ -59,6 +68,7 @@ std::vector<Eigen::Vector3f> voxelDownsample(const std::vector<Eigen::Vector3f>&
       if (key == kEmpty) continue;
       const Eigen::Vector3f& p = points[i0 + b];
       if (key != last_key) {
+        flushRun();
         std::size_t at = probe(key);
         if (table_key[at] == kEmpty) {
           if (2 * (keys.size() + 1) > capacity) {  // keep the load at most 1/2: rebuild twice as large
@@ -78,11 +88,13 @@ std::vector<Eigen::Vector3f> voxelDownsample(const std::vector<Eigen::Vector3f>&
           counts.push_back(0);
         }
         last_key = key, last_slot = table_slot[at];
+        run_sum = sums[last_slot], run_count = counts[last_slot];
       }
-      sums[last_slot] += p.cast<double>();
-      ++counts[last_slot];
+      run_sum += p.cast<double>();
+      ++run_count;
     }
   }
+  flushRun();
   std::vector<std::pair<std::uint64_t, std::uint32_t>> order(keys.size());
   for (std::size_t v = 0; v < keys.size(); ++v) order[v] = {keys[v], static_cast<std::uint32_t>(v)};
   radixSortByKey(order);  // = std::sort (keys are unique)

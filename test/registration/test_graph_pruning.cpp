@@ -41,12 +41,14 @@ TEST(GraphPruning, CoreNumbersOfKnownGraph) {
   const auto clique = maxClique(g);
   EXPECT_EQ(clique.vertices, (std::vector<int>{0, 1, 2, 3}));
   EXPECT_TRUE(clique.proven_maximum);
+  EXPECT_EQ(clique.max_core_size, 4u);  // the max k-core found on the way
 }
 
 TEST(GraphPruning, EmptyAndEdgelessGraphs) {
   EXPECT_TRUE(maxClique(ConsistencyGraph(0)).vertices.empty());
   EXPECT_TRUE(maxKCore(ConsistencyGraph(5)).empty());
   EXPECT_EQ(maxClique(ConsistencyGraph(5)).vertices.size(), 1u);
+  EXPECT_EQ(maxClique(ConsistencyGraph(5)).max_core_size, 0u);
 }
 
 TEST(GraphPruning, MaxCliqueMatchesBruteForceOnRandomGraphs) {
@@ -64,6 +66,7 @@ TEST(GraphPruning, MaxCliqueMatchesBruteForceOnRandomGraphs) {
     EXPECT_TRUE(isClique(g, c.vertices)) << "trial " << trial;
     EXPECT_EQ(c.vertices.size(), bruteForceCliqueSize(g)) << "trial " << trial;
     EXPECT_TRUE(std::is_sorted(c.vertices.begin(), c.vertices.end()));
+    EXPECT_EQ(c.max_core_size, maxKCore(g).size()) << "trial " << trial;
   }
 }
 

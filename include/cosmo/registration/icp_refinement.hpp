@@ -1,7 +1,7 @@
 #pragma once
 // Local refinement after the global solve: point-to-plane ICP (Gauss-Newton on SE(3)) between the
 // downsampled source points and the downsampled target points with normals, nearest neighbours by an exact
-// nanoflann kd-tree; and the overlap measure of the gate. Deterministic.
+// kd-tree; and the overlap measure of the gate. Deterministic.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <vector>
@@ -31,5 +31,14 @@ IcpResult refinePointToPlane(const std::vector<Eigen::Vector3f>& source, const K
 /// Fraction of `source` points that have a target point within `max_distance` after applying T.
 double overlapFraction(const std::vector<Eigen::Vector3f>& source, const KdTree<3>& target_tree,
                        const Eigen::Isometry3d& T, double max_distance);
+
+/// overlapFraction() of `source` and, in the same pass, of its points flagged in `flagged` (one flag per point):
+/// {fraction of all points, fraction of the flagged points} (0 for none), the same values as two separate calls.
+struct Overlaps {
+  double all = 0.0;
+  double flagged = 0.0;
+};
+Overlaps overlapFractions(const std::vector<Eigen::Vector3f>& source, const std::vector<unsigned char>& flagged,
+                          const KdTree<3>& target_tree, const Eigen::Isometry3d& T, double max_distance);
 
 }  // namespace cosmo

@@ -25,7 +25,7 @@ struct RegistrationParams {
   // --- correspondences -----------------------------------------------------------------------------------
   std::size_t max_correspondences = 5000;  ///< cap on mutual-NN correspondences (best feature distance first)
   bool mutual_filter = true;      ///< keep only mutual nearest neighbours in feature space
-  double matching_eps = 5.0;      ///< (1+eps)-approximate kd-tree search in FPFH space; 0 = exact
+  double matching_eps = 10.0;     ///< (1+eps)-approximate kd-tree search in FPFH space; 0 = exact
   // --- pruning -------------------------------------------------------------------------------------------
   double noise_bound = 0.3;       ///< max residual (m) of an inlier correspondence; edges tolerate 2x this
   bool use_max_clique = true;     ///< max clique inside the max k-core (else the max k-core itself)
@@ -41,7 +41,7 @@ struct RegistrationParams {
   bool refine = true;             ///< point-to-plane ICP on the downsampled full clouds after the global solve
   int icp_iterations = 20;        ///< ICP iteration cap
   double icp_max_distance = 0.9;  ///< ICP correspondence distance (m)
-  std::size_t icp_max_points = 4000;  ///< ICP iterates on every k-th source point, k = ceil(n / this); 0 = all
+  std::size_t icp_max_points = 2500;  ///< ICP iterates on every k-th source point, k = ceil(n / this); 0 = all
   double icp_max_correction_m = 1.0;    ///< a refinement that moves farther than this is discarded (m) ...
   double icp_max_correction_deg = 5.0;  ///< ... or rotates more than this (deg), unless it raises the overlap
   // --- validity gate (never looks at ground truth) -------------------------------------------------------
