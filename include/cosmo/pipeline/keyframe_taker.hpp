@@ -12,7 +12,6 @@
 
 namespace cosmo::pipeline {
 
-
 class KeyframeTaker {
  public:
   explicit KeyframeTaker(const FrontendParams& params);
@@ -21,14 +20,12 @@ class KeyframeTaker {
   /// The keyframe scan of `scan`, the scan last given to update(); `reference`: the robot's sensor trajectory in
   /// the world frame (empty: dewarped with the odometry).
   Scan keyframeScan(const Scan& scan, const Trajectory& reference) const;
-  /// The odometry of the last two scans (the sweep of the latest one).
-  const Trajectory& recentOdometry() const { return recent_odometry_; }
 
  private:
   double min_range_;
   bool dewarp_with_reference_;
   Keyframer keyframer_;
-  Trajectory recent_odometry_;
+  Trajectory recent_odometry_;  ///< the odometry of the last two scans (the sweep of the latest one)
 };
 
 }  // namespace cosmo::pipeline

@@ -1,10 +1,9 @@
 #pragma once
 // Each robot's robot-local work computed on its own thread from its own reader of the robot's scans, as far ahead
 // of the team as the CPU allows: LOAM odometry, the keyframer and every keyframe's dewarped scan (KeyframeTaker).
-// None of it depends on the other robots, so
-// it need not wait for the team's sequence order: while only one robot is on the move at the start of a sequence,
-// the others' odometry is already being computed, and the team's thread (radio, place recognition, pairwise
-// registration, recording) never decodes a scan. next() hands the results over in the team's sequence order
+// None of it depends on the other robots, so it need not wait for the team's sequence order: while only one robot
+// is on the move at the start of a sequence, the others' odometry is already being computed, and the team's thread
+// (radio, place recognition, pairwise registration, recording) never decodes a scan. next() hands the results over in the team's sequence order
 // (MergedScanStream's: stamp, ties to the lower robot id). Each worker reads its scans through a one-robot
 // MergedScanStream (same time shift, same dropped scans as the team's stream would have) and feeds them to its
 // own objects in order, so every result is exactly what the RobotFrontend's own would compute: the output does
@@ -25,7 +24,6 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <optional>
 #include <thread>
 
 #include "cosmo/common/trajectory.hpp"
@@ -37,7 +35,7 @@
 
 namespace cosmo::pipeline {
 
-/// One scan's robot-local results (the scan itself is not kept: a keyframe's prepared scan is).
+/// One scan's robot-local results (the scan itself is not kept, only a keyframe's dewarped scan).
 struct AheadScan {
   char robot = 'a';
   StampNs stamp = 0;  ///< sequence time
@@ -49,12 +47,11 @@ class OdometryRunAhead {
  public:
   /// Results a worker may hold before it waits for the team (about 100 s of a 10 Hz sensor).
   static constexpr std::size_t kMaxAhead = 1000;
-  /// `cores`: how many threads may be busy at once (0: the machine's hardware concurrency).
 
   /// `sources`: robot -> a reader of the robot's scans in recorded time; `timing` as for the team's
   /// MergedScanStream; `references`: robot -> its sensor reference trajectory in sequence time (keyframe dewarping,
-  /// as the robot's RobotFrontend holds it; a robot missing or empty: dewarped with odometry). Starts one worker
-  /// thread per robot.
+  /// as the robot's RobotFrontend holds it; a robot missing or empty: dewarped with odometry); `cores`: how many
+  /// threads may be busy at once (0: the machine's hardware concurrency). Starts one worker thread per robot.
   OdometryRunAhead(std::map<char, std::unique_ptr<ScanSource>> sources, const SequenceTiming& timing,
                    const FrontendParams& params, const std::map<char, Trajectory>& references, unsigned cores = 0);
   ~OdometryRunAhead();

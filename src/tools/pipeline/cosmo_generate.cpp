@@ -42,7 +42,8 @@ void usage() {
   std::cerr << "usage: cosmo_generate SEQUENCE.yaml [--comm wifi,proradio] [--seed N] [--out DIR]\n"
                "         [--config-dir DIR] [--noise-models FILE] [--outlier-rule fidelity|squared]\n"
                "         [--reference-odometry] [--serial-odometry] [--max-seconds S] [--quiet]\n"
-               "  --comm LIST          comm models, comma separated (wifi, proradio, or a config/comm/*.yaml); default wifi\n"
+               "  --comm LIST          comm models, comma separated (wifi, proradio, or a config/comm/*.yaml); default wifi.\n"
+               "                       The robots' odometry and keyframes are computed once for all of them\n"
                "  --seed N             overrides the sequence config's seed\n"
                "  --out DIR            output folder (default: current folder)\n"
                "  --config-dir DIR     frontend/odometry/place_recognition/registration/comm/noise_models configs\n"
@@ -165,6 +166,11 @@ int main(int argc, char** argv) {
 
     // Radio steps on the absolute grid k * delta (as the comm_broker node does on ROS time).
     const StampNs end = max_seconds > 0 ? std::min(timing.end(), timing.start() + toStampNs(max_seconds)) : timing.end();
+    // The robots' own results (odometry, keyframe scans) do not depend on the comm model: with several models they
+    // are computed once and replayed for the others.
+    std::vector<AheadScan> computed;
+    std::map<char, std::size_t> computed_dropped;
+    bool replay = false;
     for (const std::string& comm : comms) {
       std::string label;
       params.radio = radioFor(comm, config_dir, label);
@@ -186,17 +192,27 @@ int main(int argc, char** argv) {
         next_report = t + std::max(10.0, duration / 20.0);
       };
       std::map<char, std::size_t> dropped;
-      if (!reference_odometry && !serial_odometry) {
+      if (replay) {
+        for (const AheadScan& s : computed) {
+          run.addPrepared(s.robot, s.stamp, s.odometry, s.keyframe_scan);
+          progress(s.stamp);
+        }
+        dropped = computed_dropped;
+      } else if (!reference_odometry && !serial_odometry) {
         // The robots' own work (LOAM, keyframes) on worker threads; this thread runs the team.
+        const bool keep = comms.size() > 1;
         OdometryRunAhead ahead(ros_glue::openTrialSources(config), timing, params.frontend, references);
         AheadScan s;
         while (ahead.next(s)) {
           if (s.stamp > end) break;
+          if (keep) computed.push_back(s);
           run.addPrepared(s.robot, s.stamp, s.odometry, std::move(s.keyframe_scan));
           progress(s.stamp);
         }
         ahead.stop();  // the workers may have run past --max-seconds
         dropped = ahead.dropped();
+        computed_dropped = dropped;
+        replay = keep;
       } else {
         MergedScanStream stream = ros_glue::openSequenceStream(config, timing);
         char robot;
