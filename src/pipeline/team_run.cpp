@@ -96,9 +96,7 @@ void TeamRun::addScan(char robot, const Scan& scan, const OdometryResult& loam_r
 }
 
 RobotFrontend& TeamRun::frontendFor(char robot) {
-  auto it = frontends_.find(robot);
-  if (it == frontends_.end()) throw std::invalid_argument(std::string("team run: unknown robot '") + robot + "'");
-  return *it->second;
+  return const_cast<RobotFrontend&>(frontend(robot));  // the front-ends themselves are not const
 }
 
 void TeamRun::addScan(char robot, const Scan& scan, const OdometryResult* loam_result) {
@@ -109,7 +107,7 @@ void TeamRun::addScan(char robot, const Scan& scan, const OdometryResult* loam_r
                               ? fe.processScan(scan, fe.reference().atClamped(scan.stamp))
                           : loam_result ? fe.processScan(scan, *loam_result)
                                         : fe.processScan(scan);
-  take(robot, out);
+  take(fe, out);
 }
 
 void TeamRun::addPrepared(char robot, StampNs stamp, const OdometryResult& loam_result,
@@ -119,11 +117,11 @@ void TeamRun::addPrepared(char robot, StampNs stamp, const OdometryResult& loam_
     throw std::logic_error("team run: prepared scans carry LOAM odometry, but the run uses the reference odometry");
   advanceRadioTo(stamp);
   ++counts_.scans;
-  take(robot, fe.processPrepared(stamp, loam_result, std::move(keyframe_scan)));
+  take(fe, fe.processPrepared(stamp, loam_result, std::move(keyframe_scan)));
 }
 
-void TeamRun::take(char robot, const ScanOutcome& out) {
-  RobotFrontend& fe = frontendFor(robot);
+void TeamRun::take(const RobotFrontend& fe, const ScanOutcome& out) {
+  const char robot = fe.robot();
   if (out.keyframe) {
     const KeyframeRecord& kf = *out.keyframe;
     ++counts_.keyframes;

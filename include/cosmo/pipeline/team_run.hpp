@@ -83,7 +83,7 @@ class TeamRun {
   void addScan(char robot, const Scan& scan, const OdometryResult* loam_result);
   RobotFrontend& frontendFor(char robot);
   /// Bookkeeping of a scan's outcome: the keyframe recorded and offered to the radio, loop closures recorded.
-  void take(char robot, const ScanOutcome& out);
+  void take(const RobotFrontend& fe, const ScanOutcome& out);
   void record(const LoopClosureAttempt& a);
 
   TeamRunParams params_;
