@@ -1,7 +1,7 @@
 // bench_odometry: accuracy of the LOAM odometry on real scan snippets (../shared/data/scan_snippets), speed per
 // scan (real KITTI HDL-64 scans, synthetic 64x1024 and 128x1024 sweeps) and drift on synthetic trials.
 //
-//   bench_odometry [--config config/odometry.yaml] [--repeat N] [--sim-dir DIR]
+//   bench_odometry [--config config/odometry.yaml] [--repeat N] [--sim-dir DIR] [--only abcd]
 //
 // --sim-dir: a folder of simulator sequences (each with a bag + pose_inW.csv) for the drift section; without
 // it the built-in synthetic street trials are used (our own ray-cast street, walking and driving speeds).
@@ -20,6 +20,7 @@
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/common/scan_io.hpp"
 #include "cosmo/common/shared_data.hpp"
+#include "cosmo/odometry/dewarp.hpp"
 #include "cosmo/odometry/local_feature_map.hpp"
 #include "cosmo/odometry/loam_odometry.hpp"
 #include "cosmo/odometry/scan_lines.hpp"
@@ -153,8 +154,10 @@ void sectionReal(const LoamParams& params, std::vector<double>& kitti_times, int
 
 /// A synthetic trial: the sensor drives / walks along the street (gentle S-curve, small pitch / roll sway),
 /// sweeps with motion distortion. Returns scans and the sensor pose at each stamp.
+/// `dewarp_with_truth`: each sweep is dewarped with the true motion and handed over without point times (what a
+/// perfect deskew would give the odometry).
 void syntheticTrial(const SyntheticLidar& lidar, double speed, double yaw_rate_amp, int n_scans, std::uint64_t seed,
-                    std::vector<Scan>& scans, std::vector<Pose3>& gt, bool walking) {
+                    std::vector<Scan>& scans, std::vector<Pose3>& gt, bool walking, bool dewarp_with_truth = false) {
   const SyntheticScene scene = SyntheticScene::street(speed * n_scans * lidar.period + 60.0, 9.0);
   std::mt19937_64 rng(seed);
   auto pose_at_abs = [&](double t) {
@@ -171,6 +174,10 @@ void syntheticTrial(const SyntheticLidar& lidar, double speed, double yaw_rate_a
     const double t_end = 0.1 + lidar.period * k;
     scans.push_back(simulateSweep(scene, lidar, toStampNs(1.0 + t_end),
                                   [&](double dt) { return pose_at_abs(t_end + dt); }, &rng));
+    if (dewarp_with_truth) {
+      scans.back() = dewarp(scans.back(), [&](StampNs st) { return pose_at_abs(toSeconds(st) - 1.0); });
+      scans.back().time.clear();
+    }
     gt.push_back(pose_at_abs(t_end));
   }
   const Pose3 g0inv = gt.front().inverse();
@@ -260,6 +267,42 @@ void sectionDrift(const LoamParams& params) {
     }
   }
 }
+/// Where the walk's rotation drift comes from: the same street walk with its sway, with the sweeps dewarped by
+/// the true motion (a perfect deskew), and without the sway; per variant the 25 m drift and the mean and spread
+/// of the per-scan rotation error about the sensor's roll / pitch / yaw axes (the mean, times the scans per
+/// metre, is the part of the drift that is a bias).
+void sectionDriftSources(const LoamParams& params) {
+  std::cout << "\n== (d) sources of the walk's rotation drift (street, 1.4 m/s, 800 scans, 1 cm range noise) ==\n";
+  struct Variant {
+    const char* name;
+    bool sway, truth_dewarp;
+  };
+  for (const Variant& v : {Variant{"walking with sway (as in c)", true, false},
+                           Variant{"same, sweeps dewarped with the true motion", true, true},
+                           Variant{"walking without sway", false, false}}) {
+    SyntheticLidar lidar;
+    lidar.range_noise = 0.01;
+    std::vector<Scan> scans;
+    std::vector<Pose3> gt;
+    syntheticTrial(lidar, 1.4, 1.0, 800, 11, scans, gt, v.sway, v.truth_dewarp);
+    const auto est = runOdometry(scans, params, nullptr);
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero(), sum2 = Eigen::Vector3d::Zero();
+    for (std::size_t k = 1; k < est.size(); ++k) {
+      const Pose3 e = (gt[k - 1].inverse() * gt[k]).inverse() * (est[k - 1].inverse() * est[k]);
+      const Eigen::Vector3d w = logSO3(e.linear()) * kRadToDeg;
+      sum += w;
+      sum2 += w.cwiseProduct(w);
+    }
+    const double n = static_cast<double>(est.size() - 1);
+    const Eigen::Vector3d mean = sum / n;
+    const Eigen::Vector3d sd = (sum2 / n - mean.cwiseProduct(mean)).cwiseMax(0.0).cwiseSqrt();
+    const auto seg = segmentErrors(est, gt, {25.0}, 1);
+    std::cout << "  " << std::left << std::setw(44) << v.name << std::right << std::fixed << std::setprecision(5)
+              << "25 m: " << seg[0].rotation_deg_per_m << " deg/m;  per scan (deg) roll/pitch/yaw mean "
+              << mean.x() << " " << mean.y() << " " << mean.z() << ", sd " << std::setprecision(4) << sd.x() << " "
+              << sd.y() << " " << sd.z() << "\n";
+  }
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -270,11 +313,12 @@ int main(int argc, char** argv) {
     LoamParams params;
     if (a.count("config")) params = LoamParams::fromConfig(ConfigNode::load(a["config"]));
     const int repeat = a.count("repeat") ? std::stoi(a["repeat"]) : 5;
-    const std::string only = a.count("only") ? a["only"] : "abc";
+    const std::string only = a.count("only") ? a["only"] : "abcd";
     std::vector<double> kitti_times;
     if (only.find('a') != std::string::npos) sectionReal(params, kitti_times, repeat);
     if (only.find('b') != std::string::npos) sectionSpeed(params, kitti_times);
     if (only.find('c') != std::string::npos) sectionDrift(params);
+    if (only.find('d') != std::string::npos) sectionDriftSources(params);
   } catch (const std::exception& e) {
     std::cerr << "bench_odometry: " << e.what() << "\n";
     return 1;
