@@ -5,7 +5,7 @@
 //
 //   cosmo_generate SEQUENCE.yaml [--comm wifi,proradio] [--seed N] [--out DIR] [--config-dir DIR]
 //                  [--noise-models FILE] [--outlier-rule fidelity|squared] [--reference-odometry]
-//                  [--max-seconds S] [--quiet]
+//                  [--registration-threads N] [--max-seconds S] [--quiet]
 //
 // Determinism: the same sequence, seed and parameters give a byte-identical JRL (single-threaded event order,
 // randomness from the seed only). Wall time and peak memory are printed at the end (tool only).
@@ -17,6 +17,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cosmo/common/allocator_tuning.hpp"
@@ -41,7 +42,7 @@ namespace {
 void usage() {
   std::cerr << "usage: cosmo_generate SEQUENCE.yaml [--comm wifi,proradio] [--seed N] [--out DIR]\n"
                "         [--config-dir DIR] [--noise-models FILE] [--outlier-rule fidelity|squared]\n"
-               "         [--reference-odometry] [--serial-odometry] [--max-seconds S] [--quiet]\n"
+               "         [--reference-odometry] [--serial-odometry] [--registration-threads N] [--max-seconds S] [--quiet]\n"
                "  --comm LIST          comm models, comma separated (wifi, proradio, or a config/comm/*.yaml); default wifi.\n"
                "                       The robots' odometry and keyframes are computed once for all of them\n"
                "  --seed N             overrides the sequence config's seed\n"
@@ -54,6 +55,9 @@ void usage() {
                "  --serial-odometry    everything in the main thread (default: one thread per robot reads its own bag and\n"
                "                       runs its LOAM and keyframes ahead of the team; the output is the same byte\n"
                "                       for byte)\n"
+               "  --registration-threads N  threads running the loop-closure registrations while the team's thread goes\n"
+               "                       on (0: on the team's thread; default: the machine's cores; 0 with --serial-odometry);\n"
+               "                       the output is the same byte for byte\n"
                "  --max-seconds S      stop after S seconds of sequence time (quick looks)\n";
 }
 
@@ -101,6 +105,7 @@ int main(int argc, char** argv) {
   bool seed_given = false, reference_odometry = false, quiet = false, serial_odometry = false;
   unsigned long long seed = 0;
   double max_seconds = 0.0;
+  int registration_threads = -1;  // -1: the default
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -120,6 +125,7 @@ int main(int argc, char** argv) {
       else if (a == "--outlier-rule") rule_name = value();
       else if (a == "--reference-odometry") reference_odometry = true;
       else if (a == "--serial-odometry") serial_odometry = true;
+      else if (a == "--registration-threads") registration_threads = std::stoi(value());
       else if (a == "--max-seconds") max_seconds = std::stod(value());
       else if (a == "--quiet") quiet = true;
       else if (a == "-h" || a == "--help") { usage(); return 0; }
@@ -151,6 +157,9 @@ int main(int argc, char** argv) {
     params.noise = noise_path.empty() ? NoiseModels{} : NoiseModels::load(noise_path);
     params.outlier_rule = *rule;
     params.reference_odometry = reference_odometry;
+    params.registration_threads = registration_threads >= 0 ? static_cast<unsigned>(registration_threads)
+                                  : serial_odometry           ? 0u
+                                                              : std::max(1u, std::thread::hardware_concurrency());
     fs::create_directories(out_dir);
 
     const SequenceTiming timing = ros_glue::synchronizeSequence(config);
@@ -244,8 +253,11 @@ int main(int argc, char** argv) {
         std::printf("    %s\n", violations[i].str().c_str());
       const double cpu = cpuSeconds() - cpu_before, team_cpu = cpuSeconds(RUSAGE_THREAD) - team_cpu_before;
       std::printf("  wall %.1f s for %.1f s of sequence (%.2fx real time), CPU %.1f s (%.0f %% of one core; the team's "
-                  "thread %.1f s), peak memory %.0f MB\n", wall, duration, duration / std::max(wall, 1e-9), cpu,
-                  100.0 * cpu / std::max(wall, 1e-9), team_cpu, peakRssMb());
+                  "thread %.1f s", wall, duration, duration / std::max(wall, 1e-9), cpu,
+                  100.0 * cpu / std::max(wall, 1e-9), team_cpu);
+      if (const RegistrationPool* pool = run.registrationPool())
+        std::printf(", %u registration threads %.1f s", pool->threads(), pool->cpuSeconds());
+      std::printf("), peak memory %.0f MB\n", peakRssMb());
     }
     std::printf("total wall %.1f s\n", total.elapsedMs() * 1e-3);
   } catch (const std::exception& e) {
