@@ -1,7 +1,7 @@
 #pragma once
 // The whole team in one process, the offline driver of the shared object graph (design.md principle 4):
 // one RobotFrontend per robot, the RadioSimulator (comm) between them and the DatasetRecorder (dataset)
-// gathering every measurement. Deterministic: single-threaded order of events, all randomness from the seed.
+// gathering every measurement. Deterministic: one order of events (below), all randomness from the seed.
 //
 // Event order (what the lockstep ROS launch reproduces): radio steps lie on the grid origin + k * delta. Before
 // a scan stamped s is processed, every radio step at a time <= s runs (advanceRadio, team_radio.hpp, which the
@@ -84,6 +84,7 @@ class TeamRun {
   /// The registration threads (nullptr without).
   const RegistrationPool* registrationPool() const { return pool_.get(); }
 
+  /// The recorder; with registration threads complete only after finish() (or drain()).
   const DatasetRecorder& recorder() const { return recorder_; }
   const RadioSimulator& radio() const { return radio_; }
   const RobotFrontend& frontend(char robot) const;

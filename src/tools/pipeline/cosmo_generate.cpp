@@ -7,8 +7,10 @@
 //                  [--noise-models FILE] [--outlier-rule fidelity|squared] [--reference-odometry]
 //                  [--registration-threads N] [--max-seconds S] [--quiet]
 //
-// Determinism: the same sequence, seed and parameters give a byte-identical JRL (single-threaded event order,
-// randomness from the seed only). Wall time and peak memory are printed at the end (tool only).
+// Determinism: the same sequence, seed and parameters give a byte-identical JRL (the team's events in one order,
+// randomness from the seed only), whatever the threads: the robots' LOAM and keyframes run ahead on one thread per
+// robot (OdometryRunAhead), the loop-closure registrations on --registration-threads threads (RegistrationPool),
+// their results are consumed in the single-threaded order. Wall time and peak memory are printed at the end (tool only).
 #include <sys/resource.h>
 
 #include <cstdio>
