@@ -203,6 +203,7 @@ int main(int argc, char** argv) {
         next_report = t + std::max(10.0, duration / 20.0);
       };
       std::map<char, std::size_t> dropped;
+      double wait_odometry_s = 0.0, team_work_s = 0.0;  // the team thread's wall time (run-ahead path)
       if (replay) {
         for (const AheadScan& s : computed) {
           run.addPrepared(s.robot, s.stamp, s.odometry, s.keyframe_scan);
@@ -214,10 +215,15 @@ int main(int argc, char** argv) {
         const bool keep = comms.size() > 1;
         OdometryRunAhead ahead(ros_glue::openTrialSources(config), timing, params.frontend, references);
         AheadScan s;
-        while (ahead.next(s)) {
-          if (s.stamp > end) break;
+        for (;;) {
+          bench::Stopwatch waited;
+          const bool more = ahead.next(s);
+          wait_odometry_s += waited.elapsedMs() * 1e-3;
+          if (!more || s.stamp > end) break;
           if (keep) computed.push_back(s);
+          bench::Stopwatch worked;
           run.addPrepared(s.robot, s.stamp, s.odometry, std::move(s.keyframe_scan));
+          team_work_s += worked.elapsedMs() * 1e-3;
           progress(s.stamp);
         }
         ahead.stop();  // the workers may have run past --max-seconds
@@ -235,7 +241,9 @@ int main(int argc, char** argv) {
         }
         dropped = stream.dropped();
       }
+      bench::Stopwatch finishing;
       run.finish(end);
+      const double finish_s = finishing.elapsedMs() * 1e-3;
       for (const auto& [r, n] : dropped)
         std::fprintf(stderr, "warning: robot %c: %zu scans dropped (stamps not increasing)\n", r, n);
       for (const auto& w : run.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -260,6 +268,10 @@ int main(int argc, char** argv) {
       if (const RegistrationPool* pool = run.registrationPool())
         std::printf(", %u registration threads %.1f s", pool->threads(), pool->cpuSeconds());
       std::printf("), peak memory %.0f MB\n", peakRssMb());
+      if (wait_odometry_s + team_work_s > 0.0)
+        std::printf("  the team's thread: %.1f s waiting for the robots' odometry, %.1f s on the team's work (with "
+                    "waits for registrations), %.1f s finishing (the last transfers and registrations)\n",
+                    wait_odometry_s, team_work_s, finish_s);
     }
     std::printf("total wall %.1f s\n", total.elapsedMs() * 1e-3);
   } catch (const std::exception& e) {
