@@ -245,3 +245,27 @@ TEST(TeamRun, RegistrationThreadsKeepInterRobotClosuresAndTheirOrder) {
   EXPECT_EQ(threaded_counts.inter_accepted, inline_counts.inter_accepted);
   EXPECT_EQ(threaded_counts.transfers_delivered, inline_counts.transfers_delivered);
 }
+
+TEST(TeamRun, RegistrationThreadsStopCleanlyWithoutFinish) {
+  // A run abandoned midway (an exception in the driver, Ctrl-C): destroying it with registrations still queued or
+  // running must neither hang nor crash.
+  const auto& trials = team();
+  const SequenceTiming timing = timingOf(trials, 5, 0.5);
+  std::map<char, Trajectory> refs;
+  for (const auto& t : trials) refs[t.robot] = toSensorReference(t.body, t.extrinsic, timing.of(t.robot));
+  TeamRunParams params;
+  params.frontend = FrontendParams::loadDir(defaultConfigDir());
+  params.reference_odometry = true;
+  params.registration_threads = 2;
+  std::size_t keyframes = 0;
+  {
+    TeamRun run("test_team", refs, params, cosmo::pipeline::deriveSeed(5, "radio"), timing.start());
+    ASSERT_NE(run.registrationPool(), nullptr);
+    MergedScanStream stream = streamOf(trials, timing);
+    char robot;
+    Scan scan;
+    for (int n = 0; n < 60 && stream.next(robot, scan); ++n) run.addScan(robot, scan);
+    keyframes = run.counts().keyframes;
+  }
+  EXPECT_GT(keyframes, 2u);
+}
