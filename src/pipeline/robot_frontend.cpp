@@ -1,5 +1,6 @@
 #include "cosmo/pipeline/robot_frontend.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -96,7 +97,14 @@ ScanOutcome RobotFrontend::afterOdometry(StampNs stamp, OdometryResult odometry,
   std::shared_ptr<const Scan> kf_scan = take_keyframe();
   const std::vector<LoopCandidate> candidates = recognizer_.addOwnKeyframe(kd.index, *kf_scan);
   own_scans_[kd.index] = std::move(kf_scan);
-  for (const auto& c : candidates) out.loop_closures.push_back(registerPair(robot_, c, stamp));
+  for (const auto& c : candidates) {
+    PendingLoopClosure p = registerPair(c, stamp);
+    if (pool_) {
+      out.pending_loop_closures.push_back(std::move(p));
+    } else {
+      out.loop_closures.push_back(completeLoopClosure(p));
+    }
+  }
   return out;
 }
 
@@ -111,13 +119,22 @@ std::vector<LoopClosureAttempt> RobotFrontend::receiveTeammateScan(char teammate
 std::vector<LoopClosureAttempt> RobotFrontend::receiveTeammateScan(char teammate, std::size_t index,
                                                                    std::shared_ptr<const Scan> scan,
                                                                    StampNs received_at) {
+  std::vector<LoopClosureAttempt> out;
+  for (const auto& p : receiveTeammateScanPending(teammate, index, std::move(scan), received_at))
+    out.push_back(completeLoopClosure(p));
+  return out;
+}
+
+std::vector<PendingLoopClosure> RobotFrontend::receiveTeammateScanPending(char teammate, std::size_t index,
+                                                                          std::shared_ptr<const Scan> scan,
+                                                                          StampNs received_at) {
   if (teammate == robot_) throw std::invalid_argument(std::string("robot ") + robot_ + ": received its own scan");
   if (!scan) throw std::invalid_argument(std::string("robot ") + robot_ + ": received a null scan");
   ++received_;
   const std::vector<LoopCandidate> candidates = recognizer_.addTeammateScan(teammate, index, *scan);
   teammate_scans_[teammate][index] = std::move(scan);
-  std::vector<LoopClosureAttempt> out;
-  for (const auto& c : candidates) out.push_back(registerPair(teammate, c, received_at));
+  std::vector<PendingLoopClosure> out;
+  for (const auto& c : candidates) out.push_back(registerPair(c, received_at));
   return out;
 }
 
@@ -148,19 +165,14 @@ void RobotFrontend::shareFeatureCache(std::shared_ptr<FeatureCache> cache) {
   feature_cache_ = std::move(cache);
 }
 
-const FeatureCloud& RobotFrontend::features(char robot, std::size_t index) {
-  const std::shared_ptr<const Scan> scan = storedScanShared(robot, index);
-  if (!scan) throw std::logic_error("robot frontend: no stored scan for a place-recognition candidate");
-  if (!params_.cache_features) {
-    scratch_features_ = registration_.prepare(*scan);
-    return scratch_features_;
-  }
-  return feature_cache_->get(scan, [this](const Scan& s) { return registration_.prepare(s); });
+bool PendingLoopClosure::ready() const {
+  return result.valid() && result.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
 }
 
-LoopClosureAttempt RobotFrontend::registerPair(char query_robot, const LoopCandidate& c, StampNs computed_at) {
+PendingLoopClosure RobotFrontend::registerPair(const LoopCandidate& c, StampNs computed_at) {
   // key1 = the own pose: the query when the query is an own keyframe, else the matched own keyframe.
-  LoopClosureAttempt a;
+  PendingLoopClosure p;
+  LoopClosureAttempt& a = p.attempt;
   a.owner = robot_;
   a.computed_at = computed_at;
   a.descriptor_distance = c.distance;
@@ -175,19 +187,35 @@ LoopClosureAttempt RobotFrontend::registerPair(char query_robot, const LoopCandi
     a.robot2 = c.query_robot;
     a.index2 = c.query_index;
   }
-  (void)query_robot;
   // target = own keyframe scan (key1), source = the other scan (key2): T_target_source = T_key1^-1 T_key2.
-  RegistrationResult r;
-  if (params_.cache_features) {
-    const FeatureCloud& target = features(a.robot1, a.index1);
-    const FeatureCloud& source = features(a.robot2, a.index2);
-    r = registration_.align(source, target);
+  std::shared_ptr<const Scan> target = storedScanShared(a.robot1, a.index1);
+  std::shared_ptr<const Scan> source = storedScanShared(a.robot2, a.index2);
+  if (!target || !source) throw std::logic_error("robot frontend: no stored scan for a place-recognition candidate");
+  // The job holds copies of all it reads, so it runs the same on any thread (and after this front-end is gone).
+  std::shared_ptr<FeatureCache> cache = params_.cache_features ? feature_cache_ : nullptr;
+  auto job = [registration = registration_, cache = std::move(cache), target = std::move(target),
+              source = std::move(source)]() -> RegistrationResult {
+    if (!cache) return registration.align(*source, *target);
+    const auto prepare = [&registration](const Scan& s) { return registration.prepare(s); };
+    const FeatureCloud& target_features = cache->get(target, prepare);
+    const FeatureCloud& source_features = cache->get(source, prepare);
+    return registration.align(source_features, target_features);
+  };
+  if (pool_) {
+    p.result = pool_->submit(std::move(job));
   } else {
-    const Scan* target = storedScan(a.robot1, a.index1);
-    const Scan* source = storedScan(a.robot2, a.index2);
-    if (!target || !source) throw std::logic_error("robot frontend: no stored scan for a candidate");
-    r = registration_.align(*source, *target);
+    std::promise<RegistrationResult> done;
+    done.set_value(job());
+    p.result = done.get_future().share();
   }
+  return p;
+}
+
+LoopClosureAttempt RobotFrontend::completeLoopClosure(const PendingLoopClosure& pending) {
+  if (pending.attempt.owner != robot_)
+    throw std::invalid_argument(std::string("robot ") + robot_ + ": completing another robot's loop closure");
+  const RegistrationResult& r = pending.result.get();
+  LoopClosureAttempt a = pending.attempt;
   a.measurement = r.T_target_source;
   a.inliers = r.final_inliers;
   a.reason = r.reason;

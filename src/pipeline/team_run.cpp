@@ -26,9 +26,11 @@ TeamRun::TeamRun(std::string dataset_name, std::map<char, Trajectory> references
   // One feature cache for the team: a delivered scan is the sender's own object, so its features are computed
   // once, not once per robot that registers against it (same results).
   auto features = std::make_shared<FeatureCache>();
+  if (params.registration_threads > 0) pool_ = std::make_shared<RegistrationPool>(params.registration_threads);
   for (auto& [robot, ref] : references) {
     frontends_[robot] = std::make_unique<RobotFrontend>(robot, params.frontend, std::move(ref));
     frontends_[robot]->shareFeatureCache(features);
+    frontends_[robot]->setRegistrationPool(pool_);
   }
 }
 
@@ -83,8 +85,11 @@ void TeamRun::advanceRadioTo(StampNs t) {
       received.stamp = scan->stamp;
       scan = std::make_shared<const Scan>(std::move(received));
     }
-    for (const auto& a : frontends_.at(tr.receiver)->receiveTeammateScan(tr.sender, tr.keyframe, scan, step_stamp))
-      record(a);
+    for (auto& p : frontends_.at(tr.receiver)->receiveTeammateScanPending(tr.sender, tr.keyframe, scan, step_stamp)) {
+      pending_.push_back(PendingRecord{std::nullopt, std::move(p)});
+      ++pending_loop_closures_;
+    }
+    flush(false);
   };
   advanceRadio(radio_, origin_, t, state, deliver);
 }
@@ -125,21 +130,55 @@ void TeamRun::take(const RobotFrontend& fe, const ScanOutcome& out) {
   if (out.keyframe) {
     const KeyframeRecord& kf = *out.keyframe;
     ++counts_.keyframes;
-    try {
-      recorder_.addKeyframe(robot, kf.index, kf.stamp, kf.relative, kf.reference);
-    } catch (const std::exception& e) {
-      ++counts_.recorder_rejected;
-      warnings_.push_back(std::string("keyframe refused by the recorder: ") + e.what());
-    }
+    pending_.push_back(PendingRecord{kf, {}});
     const Scan* kf_scan = fe.keyframeScan(kf.index);
     const std::size_t raw = rawPayloadBytes(*kf_scan);
     std::size_t payload = raw;
     if (params_.radio.size_model == RadioParams::SizeModel::RealCompressed) payload = compressScan(*kf_scan).size();
     radio_.offerKeyframe(robot, kf.index, payload, raw);
   }
-  for (const auto& a : out.loop_closures) record(a);
+  for (const auto& a : out.loop_closures) {  // registered inline: ready
+    PendingRecord r;
+    r.loop_closure.attempt = a;
+    pending_.push_back(std::move(r));
+  }
+  for (const auto& p : out.pending_loop_closures) {
+    pending_.push_back(PendingRecord{std::nullopt, p});
+    ++pending_loop_closures_;
+  }
+  flush(false);
 }
 
-void TeamRun::finish(StampNs end) { advanceRadioTo(end); }
+void TeamRun::recordKeyframe(const KeyframeRecord& kf) {
+  try {
+    recorder_.addKeyframe(kf.robot, kf.index, kf.stamp, kf.relative, kf.reference);
+  } catch (const std::exception& e) {
+    ++counts_.recorder_rejected;
+    warnings_.push_back(std::string("keyframe refused by the recorder: ") + e.what());
+  }
+}
+
+void TeamRun::flush(bool wait) {
+  while (!pending_.empty()) {
+    PendingRecord& front = pending_.front();
+    if (front.keyframe) {
+      recordKeyframe(*front.keyframe);
+    } else if (!front.loop_closure.result.valid()) {  // an attempt registered inline
+      record(front.loop_closure.attempt);
+    } else {
+      if (!wait && pending_loop_closures_ <= kMaxPending && !front.loop_closure.ready()) return;
+      record(frontendFor(front.loop_closure.attempt.owner).completeLoopClosure(front.loop_closure));
+      --pending_loop_closures_;
+    }
+    pending_.pop_front();
+  }
+}
+
+void TeamRun::drain() { flush(true); }
+
+void TeamRun::finish(StampNs end) {
+  advanceRadioTo(end);
+  drain();
+}
 
 }  // namespace cosmo::pipeline

@@ -45,7 +45,7 @@ std::string readFile(const std::string& path) {
 }
 
 /// One offline run; returns the JRL bytes.
-std::string runOnce(std::uint64_t seed, TeamCounts* counts = nullptr) {
+std::string runOnce(std::uint64_t seed, TeamCounts* counts = nullptr, unsigned registration_threads = 0) {
   const auto& trials = team();
   // sigma 0.5 s: the short trials overlap in time, so the robots meet at the shared start
   const SequenceTiming timing = timingOf(trials, seed, 0.5);
@@ -54,13 +54,16 @@ std::string runOnce(std::uint64_t seed, TeamCounts* counts = nullptr) {
   TeamRunParams params;
   params.frontend = FrontendParams::loadDir(defaultConfigDir());
   params.reference_odometry = true;
+  params.registration_threads = registration_threads;
   TeamRun run("test_team", refs, params, cosmo::pipeline::deriveSeed(seed, "radio"), timing.start());
   MergedScanStream stream = streamOf(trials, timing);
   char robot;
   Scan scan;
   while (stream.next(robot, scan)) run.addScan(robot, scan);
   run.finish(timing.end());
-  const auto path = (std::filesystem::temp_directory_path() / ("cosmo_team_run_" + std::to_string(seed) + ".jrl")).string();
+  const auto path = (std::filesystem::temp_directory_path() /
+                     ("cosmo_team_run_" + std::to_string(seed) + "_" + std::to_string(registration_threads) + ".jrl"))
+                        .string();
   run.recorder().write(path);
   if (counts) *counts = run.counts();
   return readFile(path);
@@ -74,13 +77,15 @@ std::map<char, std::unique_ptr<ScanSource>> sourcesOf(const std::vector<test::Sy
 
 /// A LOAM run of the first `max_scans` merged scans; `run_ahead`: odometry on worker threads that read their own
 /// copies of the scans (OdometryRunAhead), as cosmo_generate does.
-std::string runLoam(bool run_ahead, std::size_t max_scans, unsigned cores = 0) {
+std::string runLoam(bool run_ahead, std::size_t max_scans, unsigned cores = 0, unsigned registration_threads = 0,
+                    TeamCounts* counts = nullptr) {
   const auto& trials = team();
   const SequenceTiming timing = timingOf(trials, 3, 0.5);
   std::map<char, Trajectory> refs;
   for (const auto& t : trials) refs[t.robot] = toSensorReference(t.body, t.extrinsic, timing.of(t.robot));
   TeamRunParams params;
   params.frontend = FrontendParams::loadDir(defaultConfigDir());
+  params.registration_threads = registration_threads;
   TeamRun run("test_team", refs, params, cosmo::pipeline::deriveSeed(3, "radio"), timing.start());
   StampNs last = 0;
   if (run_ahead) {
@@ -100,9 +105,13 @@ std::string runLoam(bool run_ahead, std::size_t max_scans, unsigned cores = 0) {
     }
   }
   run.finish(last);
-  const auto path = (std::filesystem::temp_directory_path() / (std::string("cosmo_team_run_loam_") + (run_ahead ? "p" : "s") + ".jrl")).string();
+  const auto path = (std::filesystem::temp_directory_path() /
+                     (std::string("cosmo_team_run_loam_") + (run_ahead ? "p" : "s") + std::to_string(cores) + "_" +
+                      std::to_string(registration_threads) + ".jrl"))
+                        .string();
   run.recorder().write(path);
   EXPECT_GT(run.counts().keyframes, 2u);
+  if (counts) *counts = run.counts();
   return readFile(path);
 }
 
@@ -200,4 +209,63 @@ TEST(TeamRun, SameInputAndSeedGiveAByteIdenticalJrl) {
   // an inter-robot loop closure.
   EXPECT_GT(counts.transfers_delivered, 0u);
   EXPECT_GT(counts.inter_accepted, 0u);
+}
+
+TEST(TeamRun, RegistrationThreadsGiveTheSameJrlOnOneAndTwoCores) {
+  TeamCounts serial_counts;
+  const std::string serial = runLoam(false, 100, 0, 0, &serial_counts);
+  ASSERT_FALSE(serial.empty());
+  // the registrations ran: there is something to reorder
+  ASSERT_GT(serial_counts.intra_accepted + serial_counts.intra_rejected + serial_counts.inter_accepted +
+                serial_counts.inter_rejected,
+            0u);
+  for (unsigned cores : {1u, 2u}) {
+    for (unsigned threads : {1u, 2u}) {
+      SCOPED_TRACE("cores " + std::to_string(cores) + ", registration threads " + std::to_string(threads));
+      TeamCounts counts;
+      EXPECT_EQ(serial, runLoam(true, 100, cores, threads, &counts));
+      // after finish() every registration is recorded and counted
+      EXPECT_EQ(counts.intra_accepted, serial_counts.intra_accepted);
+      EXPECT_EQ(counts.intra_rejected, serial_counts.intra_rejected);
+      EXPECT_EQ(counts.inter_accepted, serial_counts.inter_accepted);
+      EXPECT_EQ(counts.inter_rejected, serial_counts.inter_rejected);
+    }
+  }
+  // registrations on threads with the scans fed on the team's thread (no run-ahead) too
+  EXPECT_EQ(serial, runLoam(false, 100, 0, 2));
+}
+
+TEST(TeamRun, RegistrationThreadsKeepInterRobotClosuresAndTheirOrder) {
+  TeamCounts inline_counts, threaded_counts;
+  const std::string inline_jrl = runOnce(5, &inline_counts, 0);
+  const std::string threaded = runOnce(5, &threaded_counts, 3);
+  ASSERT_FALSE(inline_jrl.empty());
+  EXPECT_EQ(inline_jrl, threaded);
+  EXPECT_GT(threaded_counts.inter_accepted, 0u);
+  EXPECT_EQ(threaded_counts.inter_accepted, inline_counts.inter_accepted);
+  EXPECT_EQ(threaded_counts.transfers_delivered, inline_counts.transfers_delivered);
+}
+
+TEST(TeamRun, RegistrationThreadsStopCleanlyWithoutFinish) {
+  // A run abandoned midway (an exception in the driver, Ctrl-C): destroying it with registrations still queued or
+  // running must neither hang nor crash.
+  const auto& trials = team();
+  const SequenceTiming timing = timingOf(trials, 5, 0.5);
+  std::map<char, Trajectory> refs;
+  for (const auto& t : trials) refs[t.robot] = toSensorReference(t.body, t.extrinsic, timing.of(t.robot));
+  TeamRunParams params;
+  params.frontend = FrontendParams::loadDir(defaultConfigDir());
+  params.reference_odometry = true;
+  params.registration_threads = 2;
+  std::size_t keyframes = 0;
+  {
+    TeamRun run("test_team", refs, params, cosmo::pipeline::deriveSeed(5, "radio"), timing.start());
+    ASSERT_NE(run.registrationPool(), nullptr);
+    MergedScanStream stream = streamOf(trials, timing);
+    char robot;
+    Scan scan;
+    for (int n = 0; n < 60 && stream.next(robot, scan); ++n) run.addScan(robot, scan);
+    keyframes = run.counts().keyframes;
+  }
+  EXPECT_GT(keyframes, 2u);
 }

@@ -14,9 +14,10 @@
 // worker the team waits for always may. With more threads than cores the workers otherwise ran ahead at the
 // team's expense, finished first, and left the team's loop-closure work (concentrated late in a sequence) to run
 // alone on one core at the end.
-// Registration features are left to the team's thread, which computes them only for the keyframes that become
-// loop-closure candidates (about 70 % of them on the default sequence): computed ahead for every keyframe they
-// cost more CPU in all, and the CPU in all is what bounds a run on two cores.
+// Registration features are left to the registrations (on the team's thread, or on TeamRun's RegistrationPool),
+// which compute them only for the keyframes that become loop-closure candidates (about 70 % of them on the default
+// sequence): computed ahead for every keyframe they cost more CPU in all, and the CPU in all is what bounds a run on
+// two cores. The pool's threads are not counted by the admission rule (see team_run.hpp).
 #include <atomic>
 #include <condition_variable>
 #include <deque>

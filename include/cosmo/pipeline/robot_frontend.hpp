@@ -12,6 +12,7 @@
 // and source = the matched scan. For an intra-robot closure key1 is the newer keyframe (the query).
 #include <cstddef>
 #include <functional>
+#include <future>
 #include <map>
 #include <memory>
 #include <optional>
@@ -25,6 +26,7 @@
 #include "cosmo/pipeline/feature_cache.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/pipeline/keyframe_taker.hpp"
+#include "cosmo/pipeline/registration_pool.hpp"
 #include "cosmo/place_recognition/place_recognizer.hpp"
 #include "cosmo/registration/global_registration.hpp"
 
@@ -56,11 +58,20 @@ struct LoopClosureAttempt {
   bool inter() const { return robot1 != robot2; }
 };
 
+/// A candidate whose registration runs on a RegistrationPool: the attempt without its registration's verdict,
+/// and the registration's result to come. RobotFrontend::completeLoopClosure() turns it into the attempt.
+struct PendingLoopClosure {
+  LoopClosureAttempt attempt;  ///< keys, owner, computed_at, descriptor distance; not yet the measurement
+  std::shared_future<RegistrationResult> result;
+  bool ready() const;  ///< the result has arrived (completeLoopClosure() will not wait)
+};
+
 /// What one scan produced.
 struct ScanOutcome {
   OdometryResult odometry;                  ///< pose (sensor, odometry frame) at the scan stamp
   std::optional<KeyframeRecord> keyframe;   ///< set when the scan became a keyframe
-  std::vector<LoopClosureAttempt> loop_closures;
+  std::vector<LoopClosureAttempt> loop_closures;  ///< registered inline (no RegistrationPool set)
+  std::vector<PendingLoopClosure> pending_loop_closures;  ///< with a RegistrationPool, instead of loop_closures
 };
 
 class RobotFrontend {
@@ -88,6 +99,18 @@ class RobotFrontend {
   /// The same sharing the scan (the offline driver hands the sender's own copy: xz is lossless).
   std::vector<LoopClosureAttempt> receiveTeammateScan(char teammate, std::size_t index,
                                                       std::shared_ptr<const Scan> scan, StampNs received_at);
+  /// The same with the registrations left pending (on the RegistrationPool when one is set, else computed
+  /// already); complete each with completeLoopClosure(), in order.
+  std::vector<PendingLoopClosure> receiveTeammateScanPending(char teammate, std::size_t index,
+                                                             std::shared_ptr<const Scan> scan, StampNs received_at);
+  /// Waits for a pending registration and returns the finished attempt (counted as accepted or rejected).
+  /// The same attempt, bit for bit, as the inline registration gives.
+  LoopClosureAttempt completeLoopClosure(const PendingLoopClosure& pending);
+
+  /// Registrations run on `pool` from now on (nullptr: inline, the default): ScanOutcome then carries
+  /// pending_loop_closures instead of loop_closures. The jobs share this front-end's feature cache, which is
+  /// thread-safe, and hold copies of what they need (the pool may outlive the front-end).
+  void setRegistrationPool(std::shared_ptr<RegistrationPool> pool) { pool_ = std::move(pool); }
 
   /// Registration features cached in `cache` from now on, shared with other front-ends of this process that use
   /// the same registration parameters (TeamRun); the results are the same as with the own cache.
@@ -119,8 +142,8 @@ class RobotFrontend {
   ScanOutcome afterOdometry(StampNs stamp, OdometryResult odometry,
                             const std::function<std::shared_ptr<const Scan>()>& take_keyframe);
   ScanOutcome afterOdometry(const Scan& scan, OdometryResult odometry);
-  LoopClosureAttempt registerPair(char own_query_robot, const LoopCandidate& c, StampNs computed_at);
-  const FeatureCloud& features(char robot, std::size_t index);
+  /// Starts the registration of candidate `c` (on the pool, else inline).
+  PendingLoopClosure registerPair(const LoopCandidate& c, StampNs computed_at);
   const Scan* storedScan(char robot, std::size_t index) const;
   std::shared_ptr<const Scan> storedScanShared(char robot, std::size_t index) const;
 
@@ -136,7 +159,7 @@ class RobotFrontend {
   std::map<std::size_t, std::shared_ptr<const Scan>> own_scans_;
   std::map<char, std::map<std::size_t, std::shared_ptr<const Scan>>> teammate_scans_;
   std::shared_ptr<FeatureCache> feature_cache_ = std::make_shared<FeatureCache>();
-  FeatureCloud scratch_features_;
+  std::shared_ptr<RegistrationPool> pool_;
 
   Pose3 last_pose_ = Pose3::Identity();
   StampNs last_stamp_ = 0;

@@ -1,7 +1,7 @@
 #pragma once
 // The whole team in one process, the offline driver of the shared object graph (design.md principle 4):
 // one RobotFrontend per robot, the RadioSimulator (comm) between them and the DatasetRecorder (dataset)
-// gathering every measurement. Deterministic: single-threaded order of events, all randomness from the seed.
+// gathering every measurement. Deterministic: one order of events (below), all randomness from the seed.
 //
 // Event order (what the lockstep ROS launch reproduces): radio steps lie on the grid origin + k * delta. Before
 // a scan stamped s is processed, every radio step at a time <= s runs (advanceRadio, team_radio.hpp, which the
@@ -10,12 +10,21 @@
 // delivered scan is handed to its receiver at the step time (the time its loop closures are computed at). Then the scan goes through its robot's front-end; a new keyframe is
 // offered to the radio and recorded, accepted loop closures are recorded.
 //
+// Registration threads (TeamRunParams::registration_threads > 0): the loop-closure registrations run on a
+// RegistrationPool while this thread goes on with the radio, place recognition and the next scans. Nothing the
+// team does depends on a registration's verdict except what is recorded, so the recorder calls (keyframes and loop
+// closures) wait in a queue in the order the single-threaded run makes them and are made, in that order, as soon
+// as the registrations before them are done: the same JRL, byte for byte. counts() and on_loop_closure lag
+// behind until finish(), which waits for every registration.
+//
 // Payload: with the paper's size model the delivered scan is the sender's own keyframe scan (xz is lossless,
 // so decompress(compress(scan)) is the same points); with the real size model the scan is compressed for its
 // size and the receiver gets the decompressed copy.
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <map>
+#include <optional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -38,6 +47,8 @@ struct TeamRunParams {
   /// Take each robot's odometry from its reference trajectory instead of LOAM (perfect odometry: tests, and
   /// isolating loop-closure errors). Robots without a reference use LOAM.
   bool reference_odometry = false;
+  /// Threads that run the loop-closure registrations (0: inline on the caller's thread). Same output either way.
+  unsigned registration_threads = 0;
 };
 
 /// Running totals for progress output.
@@ -65,9 +76,15 @@ class TeamRun {
   /// without reference odometry only.
   void addPrepared(char robot, StampNs stamp, const OdometryResult& loam_result,
                    std::shared_ptr<const Scan> keyframe_scan);
-  /// Runs the radio through `end` (the sequence end) so late transfers are delivered.
+  /// Runs the radio through `end` (the sequence end) so late transfers are delivered, and waits for every
+  /// pending registration (the recorder is complete afterwards).
   void finish(StampNs end);
+  /// Records what is pending, waiting for the registrations (finish() does it too).
+  void drain();
+  /// The registration threads (nullptr without).
+  const RegistrationPool* registrationPool() const { return pool_.get(); }
 
+  /// The recorder; with registration threads complete only after finish() (or drain()).
   const DatasetRecorder& recorder() const { return recorder_; }
   const RadioSimulator& radio() const { return radio_; }
   const RobotFrontend& frontend(char robot) const;
@@ -85,6 +102,18 @@ class TeamRun {
   /// Bookkeeping of a scan's outcome: the keyframe recorded and offered to the radio, loop closures recorded.
   void take(const RobotFrontend& fe, const ScanOutcome& out);
   void record(const LoopClosureAttempt& a);
+  void recordKeyframe(const KeyframeRecord& kf);
+  /// Records the queue's front while it is ready (`wait`: waits for every pending registration), and waits for the
+  /// front while more than kMaxPending registrations are pending.
+  void flush(bool wait);
+
+  /// A recorder call in the single-threaded order: a keyframe, or a loop closure whose registration may be pending.
+  struct PendingRecord {
+    std::optional<KeyframeRecord> keyframe;
+    PendingLoopClosure loop_closure;
+  };
+  /// Registrations the team may run ahead of (bounds the lag of counts() and the queue's memory).
+  static constexpr std::size_t kMaxPending = 64;
 
   TeamRunParams params_;
   std::map<char, std::unique_ptr<RobotFrontend>> frontends_;
@@ -93,6 +122,9 @@ class TeamRun {
   StampNs origin_;
   TeamCounts counts_;
   std::vector<std::string> warnings_;
+  std::shared_ptr<RegistrationPool> pool_;
+  std::deque<PendingRecord> pending_;
+  std::size_t pending_loop_closures_ = 0;
 };
 
 }  // namespace cosmo::pipeline

@@ -5,10 +5,12 @@
 //
 //   cosmo_generate SEQUENCE.yaml [--comm wifi,proradio] [--seed N] [--out DIR] [--config-dir DIR]
 //                  [--noise-models FILE] [--outlier-rule fidelity|squared] [--reference-odometry]
-//                  [--max-seconds S] [--quiet]
+//                  [--registration-threads N] [--max-seconds S] [--quiet]
 //
-// Determinism: the same sequence, seed and parameters give a byte-identical JRL (single-threaded event order,
-// randomness from the seed only). Wall time and peak memory are printed at the end (tool only).
+// Determinism: the same sequence, seed and parameters give a byte-identical JRL (the team's events in one order,
+// randomness from the seed only), whatever the threads: the robots' LOAM and keyframes run ahead on one thread per
+// robot (OdometryRunAhead), the loop-closure registrations on --registration-threads threads (RegistrationPool),
+// their results are consumed in the single-threaded order. Wall time and peak memory are printed at the end (tool only).
 #include <sys/resource.h>
 
 #include <cstdio>
@@ -17,6 +19,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cosmo/common/allocator_tuning.hpp"
@@ -41,7 +44,7 @@ namespace {
 void usage() {
   std::cerr << "usage: cosmo_generate SEQUENCE.yaml [--comm wifi,proradio] [--seed N] [--out DIR]\n"
                "         [--config-dir DIR] [--noise-models FILE] [--outlier-rule fidelity|squared]\n"
-               "         [--reference-odometry] [--serial-odometry] [--max-seconds S] [--quiet]\n"
+               "         [--reference-odometry] [--serial-odometry] [--registration-threads N] [--max-seconds S] [--quiet]\n"
                "  --comm LIST          comm models, comma separated (wifi, proradio, or a config/comm/*.yaml); default wifi.\n"
                "                       The robots' odometry and keyframes are computed once for all of them\n"
                "  --seed N             overrides the sequence config's seed\n"
@@ -54,6 +57,9 @@ void usage() {
                "  --serial-odometry    everything in the main thread (default: one thread per robot reads its own bag and\n"
                "                       runs its LOAM and keyframes ahead of the team; the output is the same byte\n"
                "                       for byte)\n"
+               "  --registration-threads N  threads running the loop-closure registrations while the team's thread goes\n"
+               "                       on (0: on the team's thread; default: the machine's cores; 0 with --serial-odometry);\n"
+               "                       the output is the same byte for byte\n"
                "  --max-seconds S      stop after S seconds of sequence time (quick looks)\n";
 }
 
@@ -101,6 +107,7 @@ int main(int argc, char** argv) {
   bool seed_given = false, reference_odometry = false, quiet = false, serial_odometry = false;
   unsigned long long seed = 0;
   double max_seconds = 0.0;
+  int registration_threads = -1;  // -1: the default
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -120,6 +127,7 @@ int main(int argc, char** argv) {
       else if (a == "--outlier-rule") rule_name = value();
       else if (a == "--reference-odometry") reference_odometry = true;
       else if (a == "--serial-odometry") serial_odometry = true;
+      else if (a == "--registration-threads") registration_threads = std::stoi(value());
       else if (a == "--max-seconds") max_seconds = std::stod(value());
       else if (a == "--quiet") quiet = true;
       else if (a == "-h" || a == "--help") { usage(); return 0; }
@@ -151,6 +159,9 @@ int main(int argc, char** argv) {
     params.noise = noise_path.empty() ? NoiseModels{} : NoiseModels::load(noise_path);
     params.outlier_rule = *rule;
     params.reference_odometry = reference_odometry;
+    params.registration_threads = registration_threads >= 0 ? static_cast<unsigned>(registration_threads)
+                                  : serial_odometry           ? 0u
+                                                              : std::max(1u, std::thread::hardware_concurrency());
     fs::create_directories(out_dir);
 
     const SequenceTiming timing = ros_glue::synchronizeSequence(config);
@@ -192,6 +203,7 @@ int main(int argc, char** argv) {
         next_report = t + std::max(10.0, duration / 20.0);
       };
       std::map<char, std::size_t> dropped;
+      double wait_odometry_s = 0.0, team_work_s = 0.0;  // the team thread's wall time (run-ahead path)
       if (replay) {
         for (const AheadScan& s : computed) {
           run.addPrepared(s.robot, s.stamp, s.odometry, s.keyframe_scan);
@@ -203,10 +215,15 @@ int main(int argc, char** argv) {
         const bool keep = comms.size() > 1;
         OdometryRunAhead ahead(ros_glue::openTrialSources(config), timing, params.frontend, references);
         AheadScan s;
-        while (ahead.next(s)) {
-          if (s.stamp > end) break;
+        for (;;) {
+          bench::Stopwatch waited;
+          const bool more = ahead.next(s);
+          wait_odometry_s += waited.elapsedMs() * 1e-3;
+          if (!more || s.stamp > end) break;
           if (keep) computed.push_back(s);
+          bench::Stopwatch worked;
           run.addPrepared(s.robot, s.stamp, s.odometry, std::move(s.keyframe_scan));
+          team_work_s += worked.elapsedMs() * 1e-3;
           progress(s.stamp);
         }
         ahead.stop();  // the workers may have run past --max-seconds
@@ -224,7 +241,9 @@ int main(int argc, char** argv) {
         }
         dropped = stream.dropped();
       }
+      bench::Stopwatch finishing;
       run.finish(end);
+      const double finish_s = finishing.elapsedMs() * 1e-3;
       for (const auto& [r, n] : dropped)
         std::fprintf(stderr, "warning: robot %c: %zu scans dropped (stamps not increasing)\n", r, n);
       for (const auto& w : run.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -244,8 +263,15 @@ int main(int argc, char** argv) {
         std::printf("    %s\n", violations[i].str().c_str());
       const double cpu = cpuSeconds() - cpu_before, team_cpu = cpuSeconds(RUSAGE_THREAD) - team_cpu_before;
       std::printf("  wall %.1f s for %.1f s of sequence (%.2fx real time), CPU %.1f s (%.0f %% of one core; the team's "
-                  "thread %.1f s), peak memory %.0f MB\n", wall, duration, duration / std::max(wall, 1e-9), cpu,
-                  100.0 * cpu / std::max(wall, 1e-9), team_cpu, peakRssMb());
+                  "thread %.1f s", wall, duration, duration / std::max(wall, 1e-9), cpu,
+                  100.0 * cpu / std::max(wall, 1e-9), team_cpu);
+      if (const RegistrationPool* pool = run.registrationPool())
+        std::printf(", %u registration threads %.1f s", pool->threads(), pool->cpuSeconds());
+      std::printf("), peak memory %.0f MB\n", peakRssMb());
+      if (wait_odometry_s + team_work_s > 0.0)
+        std::printf("  the team's thread: %.1f s waiting for the robots' odometry, %.1f s on the team's work (with "
+                    "waits for registrations), %.1f s finishing (the last transfers and registrations)\n",
+                    wait_odometry_s, team_work_s, finish_s);
     }
     std::printf("total wall %.1f s\n", total.elapsedMs() * 1e-3);
   } catch (const std::exception& e) {
