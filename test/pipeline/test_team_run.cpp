@@ -33,6 +33,13 @@ SequenceTiming timingOf(const std::vector<test::SyntheticTrial>& trials, std::ui
 
 std::map<char, std::unique_ptr<ScanSource>> sourcesOf(const std::vector<test::SyntheticTrial>& trials);
 
+/// The trials' reference trajectories (sensor frame), each on the sequence clock.
+std::map<char, Trajectory> referencesOf(const std::vector<test::SyntheticTrial>& trials, const SequenceTiming& timing) {
+  std::map<char, Trajectory> refs;
+  for (const auto& t : trials) refs[t.robot] = toSensorReference(t.body, t.extrinsic, timing.of(t.robot));
+  return refs;
+}
+
 MergedScanStream streamOf(const std::vector<test::SyntheticTrial>& trials, const SequenceTiming& timing) {
   return MergedScanStream(sourcesOf(trials), timing);
 }
@@ -49,8 +56,7 @@ std::string runOnce(std::uint64_t seed, TeamCounts* counts = nullptr, unsigned r
   const auto& trials = team();
   // sigma 0.5 s: the short trials overlap in time, so the robots meet at the shared start
   const SequenceTiming timing = timingOf(trials, seed, 0.5);
-  std::map<char, Trajectory> refs;
-  for (const auto& t : trials) refs[t.robot] = toSensorReference(t.body, t.extrinsic, timing.of(t.robot));
+  const std::map<char, Trajectory> refs = referencesOf(trials, timing);
   TeamRunParams params;
   params.frontend = FrontendParams::loadDir(defaultConfigDir());
   params.reference_odometry = true;
@@ -81,8 +87,7 @@ std::string runLoam(bool run_ahead, std::size_t max_scans, unsigned cores = 0, u
                     TeamCounts* counts = nullptr) {
   const auto& trials = team();
   const SequenceTiming timing = timingOf(trials, 3, 0.5);
-  std::map<char, Trajectory> refs;
-  for (const auto& t : trials) refs[t.robot] = toSensorReference(t.body, t.extrinsic, timing.of(t.robot));
+  const std::map<char, Trajectory> refs = referencesOf(trials, timing);
   TeamRunParams params;
   params.frontend = FrontendParams::loadDir(defaultConfigDir());
   params.registration_threads = registration_threads;
@@ -251,8 +256,7 @@ TEST(TeamRun, RegistrationThreadsStopCleanlyWithoutFinish) {
   // running must neither hang nor crash.
   const auto& trials = team();
   const SequenceTiming timing = timingOf(trials, 5, 0.5);
-  std::map<char, Trajectory> refs;
-  for (const auto& t : trials) refs[t.robot] = toSensorReference(t.body, t.extrinsic, timing.of(t.robot));
+  const std::map<char, Trajectory> refs = referencesOf(trials, timing);
   TeamRunParams params;
   params.frontend = FrontendParams::loadDir(defaultConfigDir());
   params.reference_odometry = true;
