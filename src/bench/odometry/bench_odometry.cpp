@@ -152,14 +152,12 @@ void sectionReal(const LoamParams& params, std::vector<double>& kitti_times, int
   }
 }
 
-/// A synthetic trial: the sensor drives / walks along the street (gentle S-curve, small pitch / roll sway),
-/// sweeps with motion distortion. Returns scans and the sensor pose at each stamp.
 /// Moves every point of `scan` to the frame at its stamp along constant-velocity motion `delta` over `period`
 /// (the sweep's start-to-end motion).
-void deskewConstantVelocity(Scan& scan, const Pose3& delta, double period) {
+void deskewScanConstantVelocity(Scan& scan, const Pose3& delta, double period) {
   std::vector<Eigen::Vector3d> pts(scan.points.size()), out;
   for (std::size_t i = 0; i < pts.size(); ++i) pts[i] = scan.points[i].cast<double>();
-  cosmo::deskewConstantVelocity(pts, scan.time, delta, period, out);
+  deskewConstantVelocity(pts, scan.time, delta, period, out);
   for (std::size_t i = 0; i < out.size(); ++i) scan.points[i] = out[i].cast<float>();
 }
 
@@ -168,6 +166,8 @@ void deskewConstantVelocity(Scan& scan, const Pose3& delta, double period) {
 /// odometry's own deskew model, fed the true start and end poses instead of its estimates).
 enum class TruthDewarp { kNone, kTrueMotion, kTrueConstantVelocity };
 
+/// A synthetic trial: the sensor drives / walks along the street (gentle S-curve, small pitch / roll sway),
+/// sweeps with motion distortion. Returns scans and the sensor pose at each stamp.
 void syntheticTrial(const SyntheticLidar& lidar, double speed, double yaw_rate_amp, int n_scans, std::uint64_t seed,
                     std::vector<Scan>& scans, std::vector<Pose3>& gt, bool walking,
                     TruthDewarp truth_dewarp = TruthDewarp::kNone) {
@@ -190,7 +190,8 @@ void syntheticTrial(const SyntheticLidar& lidar, double speed, double yaw_rate_a
     if (truth_dewarp == TruthDewarp::kTrueMotion)
       scans.back() = dewarp(scans.back(), [&](StampNs st) { return pose_at_abs(toSeconds(st) - 1.0); });
     if (truth_dewarp == TruthDewarp::kTrueConstantVelocity)
-      deskewConstantVelocity(scans.back(), pose_at_abs(t_end - lidar.period).inverse() * pose_at_abs(t_end), lidar.period);
+      deskewScanConstantVelocity(scans.back(), pose_at_abs(t_end - lidar.period).inverse() * pose_at_abs(t_end),
+                                 lidar.period);
     if (truth_dewarp != TruthDewarp::kNone) scans.back().time.clear();
     gt.push_back(pose_at_abs(t_end));
   }
@@ -281,10 +282,12 @@ void sectionDrift(const LoamParams& params) {
     }
   }
 }
-/// Where the walk's rotation drift comes from: the same street walk with its sway, with the sweeps dewarped by
-/// the true motion (a perfect deskew), and without the sway; per variant the 25 m drift and the mean and spread
-/// of the per-scan rotation error about the sensor's roll / pitch / yaw axes (the mean, times the scans per
-/// metre, is the part of the drift that is a bias).
+
+/// Where the walk's rotation drift comes from: the same street walk with its sway; with the sweeps dewarped by the
+/// true motion (a perfect deskew); dewarped at constant velocity with the true start and end poses (the odometry's
+/// deskew model without its estimation error); and without the sway. Per variant the 25 m drift and the mean and
+/// spread of the per-scan rotation error about the sensor's roll / pitch / yaw axes (the mean, times the scans
+/// per metre, is the part of the drift that is a bias).
 void sectionDriftSources(const LoamParams& params) {
   std::cout << "\n== (d) sources of the walk's rotation drift (street, 1.4 m/s, 800 scans, 1 cm range noise) ==\n";
   struct Variant {
