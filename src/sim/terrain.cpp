@@ -112,29 +112,34 @@ namespace {
 struct TrianglePlane { double c0, cu, cv; };
 inline TrianglePlane lowerPlane(double h00, double h10, double h01) { return {h00, h10 - h00, h01 - h00}; }
 inline TrianglePlane upperPlane(double h10, double h01, double h11) { return {h01 + h10 - h11, h11 - h01, h11 - h10}; }
+/// The triangle of a cell with vertex heights h00, h10, h01, h11 that holds the cell position (u, v).
+inline TrianglePlane planeAt(double h00, double h10, double h01, double h11, double u, double v) {
+  return u + v <= 1.0 ? lowerPlane(h00, h10, h01) : upperPlane(h10, h01, h11);
+}
 }  // namespace
 
-double Terrain::height(double x, double y) const {
-  double u = (x - origin_.x()) / cell_, v = (y - origin_.y()) / cell_;
-  u = std::clamp(u, 0.0, static_cast<double>(nx_) - 1e-9);
-  v = std::clamp(v, 0.0, static_cast<double>(ny_) - 1e-9);
-  const int i = static_cast<int>(u), j = static_cast<int>(v);
+void Terrain::locate(double x, double y, int& i, int& j, double& u, double& v) const {
+  u = std::clamp((x - origin_.x()) / cell_, 0.0, static_cast<double>(nx_) - 1e-9);
+  v = std::clamp((y - origin_.y()) / cell_, 0.0, static_cast<double>(ny_) - 1e-9);
+  i = static_cast<int>(u);
+  j = static_cast<int>(v);
   u -= i;
   v -= j;
-  const TrianglePlane p = (u + v <= 1.0) ? lowerPlane(vertex(i, j), vertex(i + 1, j), vertex(i, j + 1))
-                                         : upperPlane(vertex(i + 1, j), vertex(i, j + 1), vertex(i + 1, j + 1));
+}
+
+double Terrain::height(double x, double y) const {
+  int i = 0, j = 0;
+  double u = 0.0, v = 0.0;
+  locate(x, y, i, j, u, v);
+  const TrianglePlane p = planeAt(vertex(i, j), vertex(i + 1, j), vertex(i, j + 1), vertex(i + 1, j + 1), u, v);
   return p.c0 + p.cu * u + p.cv * v;
 }
 
 Eigen::Vector3d Terrain::normal(double x, double y) const {
-  double u = (x - origin_.x()) / cell_, v = (y - origin_.y()) / cell_;
-  u = std::clamp(u, 0.0, static_cast<double>(nx_) - 1e-9);
-  v = std::clamp(v, 0.0, static_cast<double>(ny_) - 1e-9);
-  const int i = static_cast<int>(u), j = static_cast<int>(v);
-  u -= i;
-  v -= j;
-  const TrianglePlane p = (u + v <= 1.0) ? lowerPlane(vertex(i, j), vertex(i + 1, j), vertex(i, j + 1))
-                                         : upperPlane(vertex(i + 1, j), vertex(i, j + 1), vertex(i + 1, j + 1));
+  int i = 0, j = 0;
+  double u = 0.0, v = 0.0;
+  locate(x, y, i, j, u, v);
+  const TrianglePlane p = planeAt(vertex(i, j), vertex(i + 1, j), vertex(i, j + 1), vertex(i + 1, j + 1), u, v);
   return Eigen::Vector3d(-p.cu / cell_, -p.cv / cell_, 1.0).normalized();
 }
 

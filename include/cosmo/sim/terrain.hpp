@@ -49,6 +49,8 @@ class Terrain {
 
  private:
   double vertex(int i, int j) const { return h_[static_cast<std::size_t>(j) * (nx_ + 1) + i]; }
+  /// The cell (i, j) under (x, y), clamped to the grid, and the point's position (u, v) in it (in [0, 1]).
+  void locate(double x, double y, int& i, int& j, double& u, double& v) const;
   void finalize();  ///< per-cell height ranges
   bool intersectCell(int i, int j, const Ray& ray, double ta, double tb, double& t, Eigen::Vector3d& n) const;
 
