@@ -63,6 +63,8 @@ std::optional<LinearConstraint> fitPlaneConstraint(const std::vector<Eigen::Vect
   const Eigen::Vector3d ev = symmetricEigenvalues3(scatter);  // ascending
   // Collinear neighbours (e.g. all on one scan line) do not define a plane.
   if (!(ev[1] > params.min_plane_spread_ratio * ev[2]) || !(ev[1] > 1e-12)) return std::nullopt;
+  // Neighbours on two surfaces (see LoamParams::max_plane_planarity).
+  if (params.max_plane_planarity > 0.0 && ev[0] > params.max_plane_planarity * ev[1]) return std::nullopt;
   const Eigen::Vector3d n = symmetricEigenvector3(scatter, ev[0]);
   const double offset = n.dot(mean);
   double sum = 0.0;

@@ -29,6 +29,7 @@ LoamParams LoamParams::fromConfig(const ConfigNode& root) {
   c.read("max_avg_point_plane_dist", p.max_avg_point_plane_dist);
   c.read("min_plane_fit_points", p.min_plane_fit_points);
   c.read("min_plane_spread_ratio", p.min_plane_spread_ratio);
+  c.read("max_plane_planarity", p.max_plane_planarity);
   c.read("huber_delta", p.huber_delta);
   c.read("min_guess_inlier_fraction", p.min_guess_inlier_fraction);
   c.read("inlier_dist", p.inlier_dist);

@@ -285,7 +285,8 @@ void sectionDrift(const LoamParams& params) {
 
 /// Where the walk's rotation drift comes from: the same street walk with its sway; with the sweeps dewarped by the
 /// true motion (a perfect deskew); dewarped at constant velocity with the true start and end poses (the odometry's
-/// deskew model without its estimation error); and without the sway. Per variant the 25 m drift and the mean and
+/// deskew model without its estimation error); and without the sway (a sensor at a constant height, as on a ground
+/// robot), with its point times and dewarped with the true motion. Per variant the 25 m drift and the mean and
 /// spread of the per-scan rotation error about the sensor's roll / pitch / yaw axes (the mean, times the scans
 /// per metre, is the part of the drift that is a bias).
 void sectionDriftSources(const LoamParams& params) {
@@ -298,7 +299,8 @@ void sectionDriftSources(const LoamParams& params) {
   for (const Variant& v : {Variant{"walking with sway (as in c)", true, TruthDewarp::kNone},
                            Variant{"same, dewarped with the true motion", true, TruthDewarp::kTrueMotion},
                            Variant{"same, true sweep motion at constant velocity", true, TruthDewarp::kTrueConstantVelocity},
-                           Variant{"walking without sway", false, TruthDewarp::kNone}}) {
+                           Variant{"walking without sway", false, TruthDewarp::kNone},
+                           Variant{"without sway, dewarped with the true motion", false, TruthDewarp::kTrueMotion}}) {
     SyntheticLidar lidar;
     lidar.range_noise = 0.01;
     std::vector<Scan> scans;
