@@ -21,6 +21,31 @@ void meanAndScatter(const std::vector<Eigen::Vector3d>& pts, Eigen::Vector3d& me
   scatter << xx, xy, xz, xy, yy, yz, xz, yz, zz;
   scatter *= inv_n;
 }
+
+/// Flatness (smallest / middle eigenvalue) above which the off-surface test looks for a single cause, and the
+/// factor by which dropping that neighbour must lower the smallest eigenvalue.
+constexpr double kOffSurfaceFlatness = 0.01;
+constexpr double kOffSurfaceDrop = 0.1;
+
+/// Whether one neighbour alone keeps `nb` (smallest-first eigenvalues `ev`) from being flat (see
+/// LoamParams::plane_off_surface_min_dist).
+bool oneNeighbourOffSurface(const std::vector<Eigen::Vector3d>& nb, const Eigen::Vector3d& ev, const LoamParams& params) {
+  const double d = params.plane_off_surface_min_dist;
+  if (nb.size() < 5 || !(ev[0] > kOffSurfaceFlatness * ev[1]) || !(ev[0] > d * d)) return false;
+  std::vector<Eigen::Vector3d> others;
+  others.reserve(nb.size() - 1);
+  Eigen::Vector3d mean;
+  Eigen::Matrix3d scatter;
+  for (std::size_t drop = 0; drop < nb.size(); ++drop) {
+    others.clear();
+    for (std::size_t j = 0; j < nb.size(); ++j)
+      if (j != drop) others.push_back(nb[j]);
+    meanAndScatter(others, mean, scatter);
+    const Eigen::Vector3d e = symmetricEigenvalues3(scatter);
+    if (e[1] > params.min_plane_spread_ratio * e[2] && e[0] < kOffSurfaceDrop * ev[0]) return true;
+  }
+  return false;
+}
 }  // namespace
 
 std::optional<MapLine> fitMapLine(const std::vector<Eigen::Vector3d>& nb, const LoamParams& params) {
@@ -65,6 +90,8 @@ std::optional<LinearConstraint> fitPlaneConstraint(const std::vector<Eigen::Vect
   if (!(ev[1] > params.min_plane_spread_ratio * ev[2]) || !(ev[1] > 1e-12)) return std::nullopt;
   // Neighbours on two surfaces (see LoamParams::max_plane_planarity).
   if (params.max_plane_planarity > 0.0 && ev[0] > params.max_plane_planarity * ev[1]) return std::nullopt;
+  // One neighbour off the others' surface (see LoamParams::plane_off_surface_min_dist).
+  if (params.plane_off_surface_min_dist > 0.0 && oneNeighbourOffSurface(nb, ev, params)) return std::nullopt;
   const Eigen::Vector3d n = symmetricEigenvector3(scatter, ev[0]);
   const double offset = n.dot(mean);
   double sum = 0.0;

@@ -30,6 +30,7 @@ LoamParams LoamParams::fromConfig(const ConfigNode& root) {
   c.read("min_plane_fit_points", p.min_plane_fit_points);
   c.read("min_plane_spread_ratio", p.min_plane_spread_ratio);
   c.read("max_plane_planarity", p.max_plane_planarity);
+  c.read("plane_off_surface_min_dist", p.plane_off_surface_min_dist);
   c.read("huber_delta", p.huber_delta);
   c.read("min_guess_inlier_fraction", p.min_guess_inlier_fraction);
   c.read("inlier_dist", p.inlier_dist);

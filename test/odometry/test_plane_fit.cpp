@@ -1,5 +1,6 @@
 // Plane fits of LOAM's map neighbours: the flatness test (max_plane_planarity) rejects neighbours that straddle
-// two surfaces and keeps flat ones, noisy ones included; off (0) it leaves the fit rules unchanged.
+// two surfaces and keeps flat ones, noisy ones included; off (0) it leaves the fit rules unchanged. The off-surface
+// test (plane_off_surface_min_dist) rejects a set made uneven by one neighbour and keeps more of the sets uneven as a whole.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,6 +24,7 @@ std::vector<Eigen::Vector3d> flatPatch(double noise, std::uint64_t seed) {
   return {{10.0, 0.0, -1.5 + n(rng)}, {10.2, 0.15, -1.5 + n(rng)}, {9.9, 0.3, -1.5 + n(rng)},
           {10.1, 0.45, -1.5 + n(rng)}, {10.3, 0.2, -1.5 + n(rng)}};
 }
+
 }  // namespace
 
 TEST(PlaneFit, TwoSurfacesPassTheDefaultRulesButFailTheFlatnessTest) {
@@ -59,5 +61,44 @@ TEST(PlaneFit, FlatnessTestOffKeepsTheFitsUnchanged) {
       EXPECT_EQ(a->normal, b->normal);
       EXPECT_EQ(a->offset, b->offset);
     }
+  }
+}
+
+TEST(PlaneFit, OffSurfaceTestRejectsOneWallPointAmongGroundPoints) {
+  LoamParams p;
+  ASSERT_EQ(p.plane_off_surface_min_dist, 0.0);  // off by default
+  ASSERT_TRUE(fitPlaneConstraint(groundAndWallFoot(), p).has_value());
+  p.plane_off_surface_min_dist = 0.01;  // the set spreads 1.9 cm along its fitted normal
+  EXPECT_FALSE(fitPlaneConstraint(groundAndWallFoot(), p).has_value());
+  p.plane_off_surface_min_dist = 0.05;  // more than it spreads: kept
+  EXPECT_TRUE(fitPlaneConstraint(groundAndWallFoot(), p).has_value());
+}
+
+TEST(PlaneFit, OffSurfaceTestKeepsSetsUnevenAsAWhole) {
+  // Patches uneven by +-4 cm everywhere (no single neighbour to blame): the flatness test rejects half of them
+  // (25 of 50), the off-surface test a third (16: with five random points, one is sometimes the odd one out).
+  LoamParams flatness, off_surface;
+  flatness.max_plane_planarity = 0.01;
+  off_surface.plane_off_surface_min_dist = 0.01;
+  int kept_flatness = 0, kept_off_surface = 0;
+  constexpr int kPatches = 50;
+  for (std::uint64_t seed = 1; seed <= kPatches; ++seed) {
+    const auto nb = flatPatch(0.04, seed);
+    kept_flatness += fitPlaneConstraint(nb, flatness).has_value() ? 1 : 0;
+    kept_off_surface += fitPlaneConstraint(nb, off_surface).has_value() ? 1 : 0;
+  }
+  EXPECT_GT(kept_off_surface, kPatches / 2 + kPatches / 10);
+  EXPECT_GT(kept_off_surface, kept_flatness + kPatches / 10);
+}
+
+TEST(PlaneFit, OffSurfaceTestKeepsFlatNeighboursUnchanged) {
+  LoamParams off, on;
+  on.plane_off_surface_min_dist = 0.02;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const auto nb = flatPatch(0.005, seed);
+    const auto a = fitPlaneConstraint(nb, off), b = fitPlaneConstraint(nb, on);
+    ASSERT_TRUE(a.has_value() && b.has_value()) << "seed " << seed;
+    EXPECT_EQ(a->normal, b->normal);
+    EXPECT_EQ(a->offset, b->offset);
   }
 }
