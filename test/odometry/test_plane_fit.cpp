@@ -1,6 +1,7 @@
 // Plane fits of LOAM's map neighbours: the flatness test (max_plane_planarity) rejects neighbours that straddle
-// two surfaces and keeps flat ones, noisy ones included; off (0) it leaves the fit rules unchanged. The off-surface
-// test (plane_off_surface_min_dist) rejects a set made uneven by one neighbour and keeps more of the sets uneven as a whole.
+// two surfaces and keeps flat ones, noisy ones included; off (0) it leaves the fit rules unchanged. The
+// off-surface test (plane_off_surface_min_dist) rejects a set made uneven by one neighbour and keeps more of the
+// sets uneven as a whole.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,7 +25,6 @@ std::vector<Eigen::Vector3d> flatPatch(double noise, std::uint64_t seed) {
   return {{10.0, 0.0, -1.5 + n(rng)}, {10.2, 0.15, -1.5 + n(rng)}, {9.9, 0.3, -1.5 + n(rng)},
           {10.1, 0.45, -1.5 + n(rng)}, {10.3, 0.2, -1.5 + n(rng)}};
 }
-
 }  // namespace
 
 TEST(PlaneFit, TwoSurfacesPassTheDefaultRulesButFailTheFlatnessTest) {
