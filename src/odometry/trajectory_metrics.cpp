@@ -89,4 +89,33 @@ std::vector<SegmentError> segmentErrors(const std::vector<Pose3>& estimate, cons
   return out;
 }
 
+std::vector<ConstantMotionRun> findConstantMotionRuns(const std::vector<Pose3>& poses, double tol_m, double tol_deg,
+                                                      std::size_t min_steps, double min_step_m) {
+  std::vector<ConstantMotionRun> runs;
+  const double tol_rad = tol_deg * M_PI / 180.0;
+  std::size_t start = 0;  // first pose of the current run of equal steps
+  auto close = [&](std::size_t end) {  // the run's last pose
+    if (end > start && end - start >= min_steps) {
+      const Pose3 d = poses[start].inverse() * poses[start + 1];
+      runs.push_back({start, end, d.translation().norm(), rotationAngle(d) * 180.0 / M_PI});
+    }
+  };
+  for (std::size_t i = 1; i + 1 < poses.size(); ++i) {
+    // A fill interpolates the position along a straight line and the orientation at a constant rate, each on
+    // its own: the position steps are equal in the world frame, the rotation steps in the body frame.
+    const Eigen::Vector3d move_before = poses[i].translation() - poses[i - 1].translation();
+    const Eigen::Vector3d move_after = poses[i + 1].translation() - poses[i].translation();
+    const Eigen::Matrix3d turn_before = poses[i - 1].linear().transpose() * poses[i].linear();
+    const Eigen::Matrix3d turn_after = poses[i].linear().transpose() * poses[i + 1].linear();
+    const bool moving = move_before.norm() >= min_step_m && move_after.norm() >= min_step_m;
+    if (moving && (move_after - move_before).norm() <= tol_m &&
+        Eigen::AngleAxisd(turn_before.transpose() * turn_after).angle() <= tol_rad)
+      continue;
+    close(i);
+    start = i;
+  }
+  if (poses.size() >= 2) close(poses.size() - 1);
+  return runs;
+}
+
 }  // namespace cosmo

@@ -135,6 +135,48 @@ TEST(TrajectoryMetrics, UmeyamaAteAndSegments) {
   EXPECT_NEAR(seg[0].translation_percent, 1.0, 0.05);
 }
 
+TEST(TrajectoryMetrics, ConstantVelocityFillsAreFound) {
+  // A measured-looking trajectory (speed and turn rate varying every step, 0.5 mm of position noise), a stand of
+  // 15 scans, and a gap (poses 30-41) filled by interpolating between poses 29 and 42: the position along the
+  // line between them, the orientation at a constant rate.
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.0005);
+  std::vector<Pose3> poses{Pose3::Identity()};
+  for (int i = 1; i < 120; ++i) {
+    Pose3 step = makePose(0.8 + 0.05 * std::sin(0.7 * i), 0.01 * std::cos(1.3 * i), 0.0, 0.0, 0.0,
+                          0.002 + 0.003 * std::sin(0.9 * i));
+    if (i > 80 && i <= 95) step = Pose3::Identity();  // standing
+    poses.push_back(poses.back() * step);
+    poses.back().translation() += Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+  }
+  const Pose3 a = poses[29], b = poses[42];
+  const Eigen::AngleAxisd turn(a.linear().transpose() * b.linear());
+  for (int i = 30; i < 42; ++i) {
+    const double s = (i - 29) / 13.0;
+    poses[i].translation() = a.translation() + s * (b.translation() - a.translation());
+    poses[i].linear() = a.linear() * Eigen::AngleAxisd(s * turn.angle(), turn.axis()).toRotationMatrix();
+  }
+  const auto runs = findConstantMotionRuns(poses);
+  ASSERT_EQ(runs.size(), 1u);
+  EXPECT_EQ(runs[0].first, 29u);
+  EXPECT_EQ(runs[0].last, 42u);
+  EXPECT_NEAR(runs[0].step_m, (b.translation() - a.translation()).norm() / 13.0, 1e-6);
+  // Shorter than the minimum: not reported.
+  EXPECT_TRUE(findConstantMotionRuns(poses, 0.002, 0.005, 14).empty());
+  // A simulated straight drive at a constant speed is one run end to end; an arc at a constant speed and turn
+  // rate is not a fill (its steps turn with the vehicle).
+  std::vector<Pose3> straight{Pose3::Identity()}, arc{Pose3::Identity()};
+  for (int i = 1; i < 50; ++i) {
+    straight.push_back(straight.back() * makePose(1.0, 0, 0, 0, 0, 0));
+    arc.push_back(arc.back() * makePose(1.0, 0, 0, 0, 0, 0.01));
+  }
+  const auto all = findConstantMotionRuns(straight);
+  ASSERT_EQ(all.size(), 1u);
+  EXPECT_EQ(all[0].first, 0u);
+  EXPECT_EQ(all[0].last, 49u);
+  EXPECT_TRUE(findConstantMotionRuns(arc).empty());
+}
+
 TEST(LoamParams, DefaultsAreThePaperValuesAndConfigOverrides) {
   const LoamParams d;
   EXPECT_EQ(d.neighbor_points, 3);

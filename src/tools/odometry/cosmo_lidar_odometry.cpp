@@ -209,6 +209,14 @@ int main(int argc, char** argv) {
         }
         std::cout << "worst per-step error: " << worst_t * 100.0 << " cm, " << worst_r << " deg\n";
       }
+      const auto fills = findConstantMotionRuns(ref);
+      if (!fills.empty()) {
+        std::cout << "reference moves at a perfectly constant velocity (steps equal within 2 mm / 0.005 deg for >= 10 "
+                     "steps) over scans";
+        for (const auto& f : fills) std::cout << " " << f.first << "-" << f.last;
+        std::cout << ": expected of a simulated reference; in a measured one (GPS/INS) these are gaps filled by "
+                     "interpolation, and per-step errors there measure the fill\n";
+      }
     } else if (!ref.empty()) {
       std::cout << "reference covers " << ref.size() << " of " << est.size() << " scans: no evaluation\n";
     }
