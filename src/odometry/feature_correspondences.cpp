@@ -155,7 +155,7 @@ void associateFeaturesRemembering(const std::vector<Eigen::Vector3d>& edges,
         ++memory.reused;
         if (e.fitted) {
           const LinearConstraint c = lineConstraint(MapLine{e.a, e.b, e.c}, q);
-          out.push_back({edges[i], c.normal, c.offset, true, i, 1.0});
+          out.push_back({edges[i], c.normal, c.offset, true, i});
         }
         continue;
       }
@@ -174,7 +174,7 @@ void associateFeaturesRemembering(const std::vector<Eigen::Vector3d>& edges,
       }
       if (line) {
         const LinearConstraint c = lineConstraint(*line, q);
-        out.push_back({edges[i], c.normal, c.offset, true, i, 1.0});
+        out.push_back({edges[i], c.normal, c.offset, true, i});
       }
     }
   }
@@ -184,7 +184,7 @@ void associateFeaturesRemembering(const std::vector<Eigen::Vector3d>& edges,
       AssociationMemory::Entry& e = memory.planes[i * memory_stride];
       if (e.reuse_radius >= 0.0 && (q - e.query).squaredNorm() < e.reuse_radius * e.reuse_radius) {
         ++memory.reused;
-        if (e.fitted) out.push_back({planes[i], e.a, e.offset, false, i, 1.0});
+        if (e.fitted) out.push_back({planes[i], e.a, e.offset, false, i});
         continue;
       }
       ++memory.searched;
@@ -200,7 +200,7 @@ void associateFeaturesRemembering(const std::vector<Eigen::Vector3d>& edges,
         map.nearestPlanes(q, params.num_plane_neighbors, params.max_plane_neighbor_dist, nb);
         c = fitPlaneConstraint(nb, params);
       }
-      if (c) out.push_back({planes[i], c->normal, c->offset, false, i, 1.0});
+      if (c) out.push_back({planes[i], c->normal, c->offset, false, i});
     }
   }
 }
@@ -215,14 +215,14 @@ void associateFeatures(const std::vector<Eigen::Vector3d>& edges, const std::vec
     for (std::size_t i = 0; i < edges.size(); i += stride) {
       const Eigen::Vector3d q = T * edges[i];
       map.nearestEdges(q, params.num_edge_neighbors, params.max_edge_neighbor_dist, nb);
-      if (auto c = fitLineConstraint(nb, q, params)) out.push_back({edges[i], c->normal, c->offset, true, i, 1.0});
+      if (auto c = fitLineConstraint(nb, q, params)) out.push_back({edges[i], c->normal, c->offset, true, i});
     }
   }
   if (map.numPlanePoints() > 0) {
     for (std::size_t i = 0; i < planes.size(); i += stride) {
       const Eigen::Vector3d q = T * planes[i];
       map.nearestPlanes(q, params.num_plane_neighbors, params.max_plane_neighbor_dist, nb);
-      if (auto c = fitPlaneConstraint(nb, params)) out.push_back({planes[i], c->normal, c->offset, false, i, 1.0});
+      if (auto c = fitPlaneConstraint(nb, params)) out.push_back({planes[i], c->normal, c->offset, false, i});
     }
   }
 }

@@ -28,7 +28,6 @@ Vector6 robustGaussNewtonStep(const std::vector<FeatureConstraint>& constraints,
     Vector6 J;
     J.head<3>() = (q - centre).cross(c.normal);  // d r / d omega for a rotation about the sensor position
     J.tail<3>() = c.normal;
-    J *= c.jacobian_scale;
     const double a = std::abs(r);
     const double w = a <= huber_delta ? 1.0 : huber_delta / a;
     H.noalias() += w * J * J.transpose();

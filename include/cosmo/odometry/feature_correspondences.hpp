@@ -20,7 +20,6 @@ struct FeatureConstraint {
   double offset = 0.0;     ///< r = normal . (T * point) - offset
   bool edge = false;
   std::size_t feature = 0;      ///< index in the edge (edge) or planar feature list
-  double jacobian_scale = 1.0;  ///< d(point in map)/d(pose): 1 + t/period for points deskewed with the estimate
 };
 
 struct LinearConstraint {
