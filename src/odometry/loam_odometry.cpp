@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "cosmo/odometry/continuous_rotation_refine.hpp"
 #include "cosmo/odometry/dewarp.hpp"
 #include "cosmo/odometry/feature_registration.hpp"
 #include "cosmo/odometry/motion_model.hpp"
@@ -15,6 +16,13 @@ constexpr double kPi = 3.14159265358979323846;
 // unpredicted turn the first one is already suspect, so less is asked).
 constexpr double kYawSearchMargin = 0.1;
 constexpr double kYawSearchMarginAfterTurn = 0.02;
+// The continuous-time rotation (deskew_rotation_tie) follows a sway the prediction missed: corrections below 2
+// degrees per sweep on the walking trial, on sweeps that turn by about 1 degree. A larger correction, or a sweep
+// predicted to turn by more, is a fast turn, where the rotation is not linear within the sweep: there it made
+// LoamLargeMotion's 40-degree turns worse (end pose 0.68 m off at 10 Hz, a 10.6-degree step at 2 Hz), so the
+// re-deskew with the estimate handles those.
+constexpr double kMaxContinuousRotationCorrectionDeg = 2.0;
+constexpr double kMaxContinuousRotationSweepDeg = 5.0;
 
 std::vector<Eigen::Vector3d> transformed(const Pose3& T, const std::vector<Eigen::Vector3d>& pts) {
   std::vector<Eigen::Vector3d> out;
@@ -149,6 +157,15 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
         // Only the rotation was not predicted (a walker's sway): re-deskew with the estimated rotation (the
         // translation stays the prediction's: deskewing with the own translation fed back into it and grew a
         // period-2 oscillation on demo trial a), then a few Gauss-Newton steps on the same map lines / planes.
+        if (params_.deskew_rotation_tie > 0.0 && !params_.deskew_planar_only &&
+            change.head<3>().norm() < kMaxContinuousRotationCorrectionDeg * kPi / 180.0 &&
+            Eigen::AngleAxisd(deskew->delta.linear()).angle() < kMaxContinuousRotationSweepDeg * kPi / 180.0) {
+          // The rotation over the sweep estimated with the pose, its start tied to the previous scan's pose:
+          // the features' deskew then agrees with the estimate, nothing left to re-check.
+          reg = refineContinuousRotation(last_features_, std::move(reg), params_, pose_, deskew->delta, period,
+                                         params_.deskew_rotation_tie, params_.deskew_refine_steps);
+          break;
+        }
         Pose3 mixed = estimate;
         mixed.translation() = deskew->delta.translation();
         deskew = DeskewReference{mixed, period};
@@ -221,8 +238,10 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
 
   // Insert this scan's (deskewed) features into the local map.
   std::vector<Eigen::Vector3d> edges, planes;
-  if (has_times) {  // deskewed with the final motion
-    deskewFeatures(last_features_, deskewMotion(r.delta), period, edges, planes);
+  if (has_times) {  // deskewed with the final motion (its rotation over the sweep, when that was estimated)
+    Pose3 sweep = deskewMotion(r.delta);
+    if (reg.sweep_rotation) sweep.linear() = *reg.sweep_rotation;
+    deskewFeatures(last_features_, sweep, period, edges, planes);
   } else {
     edges = last_features_.edge_points;
     planes = last_features_.planar_points;

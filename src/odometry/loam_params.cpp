@@ -49,6 +49,7 @@ LoamParams LoamParams::fromConfig(const ConfigNode& root) {
   c.read("deskew_reestimate_translation", p.deskew_reestimate_translation);
   c.read("deskew_reestimate_rotation_deg", p.deskew_reestimate_rotation_deg);
   c.read("deskew_refine_steps", p.deskew_refine_steps);
+  c.read("deskew_rotation_tie", p.deskew_rotation_tie);
   return p;
 }
 

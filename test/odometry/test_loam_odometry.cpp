@@ -1,6 +1,8 @@
 // LOAM odometry: real scan pairs against ground truth, a synthetic trial with motion distortion, degenerate input.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <cmath>
 #include <limits>
 #include <random>
@@ -38,8 +40,9 @@ std::string kittiScan(const std::string& dir, int frame) {
 /// scan must be accepted. est / gt are the estimated and true poses relative to the first scan.
 template <class PoseAt>
 void runDistortedSweeps(const SyntheticScene& scene, const SyntheticLidar& lidar, std::mt19937_64& rng,
-                        const PoseAt& pose_at, int n, std::vector<Pose3>& est, std::vector<Pose3>& gt) {
-  LoamOdometry odom;
+                        const PoseAt& pose_at, int n, std::vector<Pose3>& est, std::vector<Pose3>& gt,
+                        const LoamParams& params = LoamParams{}) {
+  LoamOdometry odom(params);
   for (int k = 0; k < n; ++k) {
     const double t_end = 0.1 * k;
     const Scan s = simulateSweep(scene, lidar, toStampNs(1.0 + t_end), [&](double dt) { return pose_at(t_end + dt); }, &rng);
@@ -207,7 +210,8 @@ TEST(LoamSynthetic, AcceleratingTrialDoesNotOscillate) {
 TEST(LoamSynthetic, WalkingSwayIsDeskewed) {
   // A walker at 1.4 m/s with a 3 cm bob and +-1.1 deg roll / pitch sway (0.9 / 1.8 Hz): about 1 deg of tilt
   // change within one sweep, reversing every few scans. Deskewing only x / y / yaw, or with the previous
-  // scan's motion only, left ~0.07 deg/m over 10 m here (0.025 with the 6-DoF re-deskew).
+  // scan's motion only, left ~0.07 deg/m over 10 m here (0.023 with the 6-DoF re-deskew, 0.015 with the
+  // continuous-time rotation).
   const SyntheticScene scene = SyntheticScene::street(80.0, 9.0);
   SyntheticLidar lidar;
   lidar.range_noise = 0.01;
@@ -222,6 +226,17 @@ TEST(LoamSynthetic, WalkingSwayIsDeskewed) {
   ASSERT_GT(seg[0].count, 50u);
   EXPECT_LT(seg[0].translation_percent, 1.0);
   EXPECT_LT(seg[0].rotation_deg_per_m, 0.04);
+  // The rotation over each sweep estimated with the pose (deskew_rotation_tie, the default) against the
+  // re-deskew with the estimate it replaced.
+  LoamParams redeskew;
+  redeskew.deskew_rotation_tie = 0.0;
+  std::mt19937_64 rng2(5);
+  std::vector<Pose3> est2, gt2;
+  runDistortedSweeps(scene, lidar, rng2, pose_at, 150, est2, gt2, redeskew);
+  const auto seg2 = segmentErrors(est2, gt2, {10.0}, 1);
+  std::printf("walking sway, 10 m: %.4f deg/m (continuous-time rotation), %.4f deg/m (re-deskew)\n",
+              seg[0].rotation_deg_per_m, seg2[0].rotation_deg_per_m);
+  EXPECT_LT(seg[0].rotation_deg_per_m, 0.8 * seg2[0].rotation_deg_per_m);
 }
 
 TEST(LoamSynthetic, MapInsertGateKeepsAStandingStartRegistered) {

@@ -1,7 +1,7 @@
 // Plane fits of LOAM's map neighbours: the flatness test (max_plane_planarity) rejects neighbours that straddle
 // two surfaces and keeps flat ones, noisy ones included; off (0) it leaves the fit rules unchanged. The
-// off-surface test (plane_off_surface_min_dist) rejects a set made uneven by one neighbour and keeps more of the
-// sets uneven as a whole.
+// off-surface test (plane_off_surface_min_dist, on by default) rejects a set made uneven by one neighbour and keeps
+// more of the sets uneven as a whole.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,11 +25,19 @@ std::vector<Eigen::Vector3d> flatPatch(double noise, std::uint64_t seed) {
   return {{10.0, 0.0, -1.5 + n(rng)}, {10.2, 0.15, -1.5 + n(rng)}, {9.9, 0.3, -1.5 + n(rng)},
           {10.1, 0.45, -1.5 + n(rng)}, {10.3, 0.2, -1.5 + n(rng)}};
 }
+
+/// The paper's fit rules only: both of our neighbour tests off.
+LoamParams paperRules() {
+  LoamParams p;
+  p.max_plane_planarity = 0.0;
+  p.plane_off_surface_min_dist = 0.0;
+  return p;
+}
 }  // namespace
 
-TEST(PlaneFit, TwoSurfacesPassTheDefaultRulesButFailTheFlatnessTest) {
-  LoamParams p;  // default: flatness test off
-  ASSERT_EQ(p.max_plane_planarity, 0.0);
+TEST(PlaneFit, TwoSurfacesPassThePaperRulesButFailTheFlatnessTest) {
+  ASSERT_EQ(LoamParams{}.max_plane_planarity, 0.0);  // off by default
+  LoamParams p = paperRules();
   const auto tilted = fitPlaneConstraint(groundAndWallFoot(), p);
   ASSERT_TRUE(tilted.has_value());
   // The wall point tilts the fitted normal away from the vertical by a clearly measurable angle.
@@ -39,7 +47,7 @@ TEST(PlaneFit, TwoSurfacesPassTheDefaultRulesButFailTheFlatnessTest) {
 }
 
 TEST(PlaneFit, FlatNeighboursPassTheFlatnessTest) {
-  LoamParams p;
+  LoamParams p = paperRules();
   p.max_plane_planarity = 0.01;
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
     const auto c = fitPlaneConstraint(flatPatch(0.005, seed), p);
@@ -51,7 +59,7 @@ TEST(PlaneFit, FlatNeighboursPassTheFlatnessTest) {
 }
 
 TEST(PlaneFit, FlatnessTestOffKeepsTheFitsUnchanged) {
-  LoamParams off, huge;
+  LoamParams off = paperRules(), huge = paperRules();
   huge.max_plane_planarity = 1e9;  // accepts any neighbour set: same fits as off
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
     const auto nb = flatPatch(0.05, seed);
@@ -65,8 +73,8 @@ TEST(PlaneFit, FlatnessTestOffKeepsTheFitsUnchanged) {
 }
 
 TEST(PlaneFit, OffSurfaceTestRejectsOneWallPointAmongGroundPoints) {
-  LoamParams p;
-  ASSERT_EQ(p.plane_off_surface_min_dist, 0.0);  // off by default
+  ASSERT_EQ(LoamParams{}.plane_off_surface_min_dist, 0.02);  // on by default
+  LoamParams p = paperRules();
   ASSERT_TRUE(fitPlaneConstraint(groundAndWallFoot(), p).has_value());
   p.plane_off_surface_min_dist = 0.01;  // the set spreads 1.9 cm along its fitted normal
   EXPECT_FALSE(fitPlaneConstraint(groundAndWallFoot(), p).has_value());
@@ -77,7 +85,7 @@ TEST(PlaneFit, OffSurfaceTestRejectsOneWallPointAmongGroundPoints) {
 TEST(PlaneFit, OffSurfaceTestKeepsSetsUnevenAsAWhole) {
   // Patches uneven by +-4 cm everywhere (no single neighbour to blame): the flatness test rejects half of them
   // (25 of 50), the off-surface test a third (16: with five random points, one is sometimes the odd one out).
-  LoamParams flatness, off_surface;
+  LoamParams flatness = paperRules(), off_surface = paperRules();
   flatness.max_plane_planarity = 0.01;
   off_surface.plane_off_surface_min_dist = 0.01;
   int kept_flatness = 0, kept_off_surface = 0;
@@ -92,7 +100,7 @@ TEST(PlaneFit, OffSurfaceTestKeepsSetsUnevenAsAWhole) {
 }
 
 TEST(PlaneFit, OffSurfaceTestKeepsFlatNeighboursUnchanged) {
-  LoamParams off, on;
+  LoamParams off = paperRules(), on = paperRules();
   on.plane_off_surface_min_dist = 0.02;
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
     const auto nb = flatPatch(0.005, seed);

@@ -25,6 +25,9 @@ struct RegistrationResult {
   /// The last association (all features, sensor-frame points as deskewed for it): reused by
   /// refineRedeskewed when only the deskew of the features changes.
   std::vector<FeatureConstraint> constraints;
+  /// Rotation from the sweep's start to the stamp when it was estimated with the pose
+  /// (refineContinuousRotation): the features were deskewed with it, and so should the map's copy be.
+  std::optional<Eigen::Matrix3d> sweep_rotation;
 };
 
 /// Motion used for deskewing the features before registration: the sensor motion over `period` seconds

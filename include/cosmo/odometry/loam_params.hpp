@@ -76,15 +76,16 @@ struct LoamParams {
   /// 0.01 the walker's sway gives 0.029 instead of 0.013 deg/m, and on the simulator trials (2 cm range noise) the
   /// rotation drift improves but the translation drift of ci_a / ci_c grows (0.35 -> 0.56 %, 0.40 -> 0.86 %).
   double max_plane_planarity = 0.0;
-  /// (m) Off-surface neighbour test (0 = off, the default). A plane neighbour set (of at least 5) that is not flat
+  /// (m) Off-surface neighbour test (0 = off). A plane neighbour set (of at least 5) that is not flat
   /// (smallest / middle scatter eigenvalue above 0.01) and spreads more than this along its normal (square root of
   /// the smallest eigenvalue) is rejected when one neighbour alone makes it so: without that neighbour the
   /// smallest eigenvalue drops at least tenfold (a wall-foot or kerb point among ground points). Unlike
   /// max_plane_planarity it keeps sets that are uneven as a whole (a swaying sensor's scans registered slightly
-  /// apart). With 0.02: the street at 1.4 m/s without sway 0.0158 -> 0.0086 deg/m at 25 m, the six simulator
-  /// trials' rotation drift 5-35 % lower at 25 m, but the walker with sway 0.0129 / 0.0090 -> 0.0139 / 0.0105
-  /// deg/m at 25 / 50 m (bench_odometry --only cd; README), hence off.
-  double plane_off_surface_min_dist = 0.0;
+  /// apart). With 0.02 (the default since the continuous-time rotation, deskew_rotation_tie): the street at 1.4 m/s
+  /// without sway 0.0158 -> 0.0086 deg/m at 25 m, the six simulator trials' rotation drift lower; alone (with the
+  /// earlier re-deskew) it cost the walker with sway 0.0129 / 0.0090 -> 0.0139 / 0.0105 deg/m at 25 / 50 m, with the
+  /// continuous-time rotation the walk gains from it too (0.0087 -> 0.0082). bench_odometry --only cd; README.
+  double plane_off_surface_min_dist = 0.02;
   double huber_delta = 0.1;  ///< (m) Huber kernel width on the point-line / point-plane distances
   /// An initial guess whose inlier fraction (features with a correspondence closer than `inlier_dist`) is
   /// below this triggers a coarse yaw search around the best guess.
@@ -114,6 +115,15 @@ struct LoamParams {
   /// registration's correspondences (the map did not change, the features moved by centimetres): no k-NN
   /// search, no line / plane fits. 0: a full registration (re-association from the first estimate).
   int deskew_refine_steps = 4;
+  /// > 0: the refinement above estimates the rotation over the sweep with the pose (refineContinuousRotation: the
+  /// sweep's start rotation is a third unknown, tied to the previous scan's rotation with this weight relative to
+  /// the scan's rotational information) instead of re-deskewing once with the estimate; 0: the re-deskew. The
+  /// swaying walk: 0.0129 -> 0.0087 deg/m over 25 m (0.03 / 0.3 / 1: 0.0089 / 0.0086 / 0.0085; measured without
+  /// the off-surface test); the simulator trials stay within target, mostly better. A stiffer tie oscillates: 1 on
+  /// synthetic_ci b's standing start, a rigid tie on four of the six vehicle trials (README). Not used with
+  /// deskew_planar_only, nor in fast turns (a correction above 2 degrees, or a sweep predicted to turn by more
+  /// than 5: loam_odometry.cpp).
+  double deskew_rotation_tie = 0.1;
   /// Deskew with the x / y / yaw part of the motion only. Off by default: with the prediction-first deskew
   /// above, the full 6-DoF deskew no longer oscillates on the hilly ATV trials (synthetic_ci a/b/c: equal or
   /// better), and the walking sway (roll / pitch) needs it (planar only: 0.037 deg/m over 25 m).
