@@ -67,11 +67,7 @@ RegistrationResult refineContinuousRotation(const LoamFeatures& features, Regist
   }
   res.sweep_rotation = start.transpose() * res.pose.linear();
   res.iterations += 1;
-  std::size_t good = 0;
-  for (const auto& c : res.constraints)
-    if (std::abs(c.normal.dot(res.pose * c.point) - c.offset) < params.inlier_dist) ++good;
-  const std::size_t n = features.size();
-  res.inlier_fraction = n ? static_cast<double>(good) / static_cast<double>(n) : 0.0;
+  res.inlier_fraction = inlierFraction(res.constraints, res.pose, params.inlier_dist, features.size());
   return res;
 }
 

@@ -188,12 +188,16 @@ RegistrationResult refineRedeskewed(const LoamFeatures& features, RegistrationRe
       break;
   }
   res.iterations += 1;
-  std::size_t good = 0;
-  for (const auto& c : res.constraints)
-    if (std::abs(c.normal.dot(res.pose * c.point) - c.offset) < params.inlier_dist) ++good;
-  const std::size_t n = features.size();
-  res.inlier_fraction = n ? static_cast<double>(good) / static_cast<double>(n) : 0.0;
+  res.inlier_fraction = inlierFraction(res.constraints, res.pose, params.inlier_dist, features.size());
   return res;
+}
+
+double inlierFraction(const std::vector<FeatureConstraint>& constraints, const Pose3& T, double inlier_dist,
+                      std::size_t num_features) {
+  std::size_t good = 0;
+  for (const auto& c : constraints)
+    if (std::abs(c.normal.dot(T * c.point) - c.offset) < inlier_dist) ++good;
+  return num_features ? static_cast<double>(good) / static_cast<double>(num_features) : 0.0;
 }
 
 }  // namespace cosmo

@@ -50,6 +50,10 @@ void deskewFeatures(const LoamFeatures& features, const Pose3& delta, double per
 Vector6 robustGaussNewtonStep(const std::vector<FeatureConstraint>& constraints, const Pose3& T,
                               double huber_delta, double min_eigenvalue_per_constraint, int& degenerate);
 
+/// Constraints with |residual| < inlier_dist at pose T, over num_features (0 when there are no features).
+double inlierFraction(const std::vector<FeatureConstraint>& constraints, const Pose3& T, double inlier_dist,
+                      std::size_t num_features);
+
 /// T <- C exp(dx) C^-1 T with C the translation to T's position.
 Pose3 applyCentredUpdate(const Vector6& dx, const Pose3& T);
 
