@@ -1,8 +1,9 @@
 #include "cosmo/odometry/continuous_rotation_refine.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+
+#include "cosmo/odometry/solution_remapping.hpp"
 
 namespace cosmo {
 
@@ -45,18 +46,8 @@ RegistrationResult refineContinuousRotation(const LoamFeatures& features, Regist
     const double weight = tie * rigid_rotation_info.trace() / 3.0;
     H.block<3, 3>(6, 6) += weight * Eigen::Matrix3d::Identity();
     g.tail<3>() += weight * logSO3(start * tied_to.transpose());
-    Eigen::SelfAdjointEigenSolver<Matrix9> es(H);
-    Vector9 coeff = es.eigenvectors().transpose() * g;
     int degenerate = 0;
-    for (int i = 0; i < 9; ++i) {
-      if (es.eigenvalues()[i] < min_ev) {
-        coeff[i] = 0.0;
-        ++degenerate;
-      } else {
-        coeff[i] /= es.eigenvalues()[i];
-      }
-    }
-    const Vector9 dx = -(es.eigenvectors() * coeff);
+    const Vector9 dx = remappedGaussNewtonStep<9>(H, g, min_ev, degenerate);
     res.degenerate_directions = std::min(degenerate, 6);
     res.pose = applyCentredUpdate(dx.head<6>(), res.pose);
     start = expSO3(dx.tail<3>()) * start;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "cosmo/odometry/dewarp.hpp"
+#include "cosmo/odometry/solution_remapping.hpp"
 
 namespace cosmo {
 
@@ -38,19 +39,8 @@ Vector6 robustGaussNewtonStep(const std::vector<FeatureConstraint>& constraints,
     degenerate = 6;
     return Vector6::Zero();
   }
-  // Solution remapping: solve in H's eigenbasis, leaving directions with too little information untouched.
-  Eigen::SelfAdjointEigenSolver<Matrix6> es(H);
-  const double min_ev = min_eigenvalue_per_constraint * static_cast<double>(constraints.size());
-  Vector6 coeff = es.eigenvectors().transpose() * g;
-  for (int i = 0; i < 6; ++i) {
-    if (es.eigenvalues()[i] < min_ev) {
-      coeff[i] = 0.0;
-      ++degenerate;
-    } else {
-      coeff[i] /= es.eigenvalues()[i];
-    }
-  }
-  return -(es.eigenvectors() * coeff);
+  return remappedGaussNewtonStep<6>(H, g, min_eigenvalue_per_constraint * static_cast<double>(constraints.size()),
+                                    degenerate);
 }
 
 double scorePose(const LoamFeatures& features, const LocalFeatureMap& map, const Pose3& T, const LoamParams& params,
