@@ -154,9 +154,8 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
           change.tail<3>().norm() < params_.deskew_reestimate_translation)
         break;
       if (params_.deskew_refine_steps > 0 && change.tail<3>().norm() < params_.deskew_reestimate_translation) {
-        // Only the rotation was not predicted (a walker's sway): re-deskew with the estimated rotation (the
-        // translation stays the prediction's: deskewing with the own translation fed back into it and grew a
-        // period-2 oscillation on demo trial a), then a few Gauss-Newton steps on the same map lines / planes.
+        // Only the rotation was not predicted (a walker's sway). The translation stays the prediction's:
+        // deskewing with the own translation fed back into it and grew a period-2 oscillation on demo trial a.
         if (params_.deskew_rotation_tie > 0.0 && !params_.deskew_planar_only &&
             change.head<3>().norm() < kMaxContinuousRotationCorrectionDeg * kPi / 180.0 &&
             Eigen::AngleAxisd(deskew->delta.linear()).angle() < kMaxContinuousRotationSweepDeg * kPi / 180.0) {
@@ -166,6 +165,8 @@ OdometryResult LoamOdometry::update(const Scan& scan) {
                                          params_.deskew_rotation_tie, params_.deskew_refine_steps);
           break;
         }
+        // Otherwise (or in a fast turn): re-deskew once with the estimated rotation, then a few Gauss-Newton
+        // steps on the same map lines / planes.
         Pose3 mixed = estimate;
         mixed.translation() = deskew->delta.translation();
         deskew = DeskewReference{mixed, period};

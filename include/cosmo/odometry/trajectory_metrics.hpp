@@ -44,7 +44,7 @@ struct ConstantMotionRun {
 /// interpolating (or extrapolating) the position along a line and the orientation at a constant rate. A
 /// measured trajectory (GPS/INS, motion capture) does not repeat its steps to a millimetre for a second or more,
 /// so per-step errors inside such a run measure the fill, not the odometry (KITTI 00's poses.txt holds several,
-/// frames 0-14 among them). A simulated reference may of course move at a constant velocity.
+/// frames 0-13 among them). A simulated reference may of course move at a constant velocity.
 std::vector<ConstantMotionRun> findConstantMotionRuns(const std::vector<Pose3>& poses, double tol_m = 0.002,
                                                       double tol_deg = 0.005, std::size_t min_steps = 10,
                                                       double min_step_m = 0.05);
