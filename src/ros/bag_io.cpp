@@ -3,8 +3,10 @@
 #include <ros/time.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
+#include <ros/serialization.h>
 
 #include <stdexcept>
+#include <vector>
 
 #include "cosmo/ros/point_cloud.hpp"
 
@@ -22,6 +24,8 @@ struct ScanBagReader::Impl {
   rosbag::View::iterator it;
   std::string where;
   bool stamp_at_end = true;
+  std::vector<uint8_t> buffer;  ///< the serialized message, reused (it only grows)
+  sensor_msgs::PointCloud2 meta;  ///< everything but `data`, which is decoded from `buffer` in place
 };
 
 ScanBagReader::ScanBagReader(const std::string& bag_path, const std::string& topic, bool stamp_at_end)
@@ -47,9 +51,32 @@ bool ScanBagReader::next(Scan& scan) {
   while (impl_->it != impl_->view->end()) {
     const rosbag::MessageInstance m = *impl_->it;  // a copy: the iterator's instance is reset by ++
     ++impl_->it;
-    auto msg = m.instantiate<sensor_msgs::PointCloud2>();
-    if (!msg) throw std::runtime_error(impl_->where + ": message type " + m.getDataType() + " is not sensor_msgs/PointCloud2");
-    scan = fromPointCloud2(*msg, impl_->stamp_at_end, impl_->where);
+    if (!m.isType<sensor_msgs::PointCloud2>())
+      throw std::runtime_error(impl_->where + ": message type " + m.getDataType() + " is not sensor_msgs/PointCloud2");
+    // The serialized message is copied once into a reused buffer and its point bytes decoded where they lie:
+    // instantiate() would zero-fill a fresh ~1 MB vector and copy into it for every scan.
+    const uint32_t size = m.size();
+    if (impl_->buffer.size() < size) impl_->buffer.resize(size);
+    try {
+      ros::serialization::OStream out(impl_->buffer.data(), size);
+      m.write(out);
+      ros::serialization::IStream in(impl_->buffer.data(), size);
+      sensor_msgs::PointCloud2& meta = impl_->meta;
+      ros::serialization::deserialize(in, meta.header);
+      ros::serialization::deserialize(in, meta.height);
+      ros::serialization::deserialize(in, meta.width);
+      ros::serialization::deserialize(in, meta.fields);
+      ros::serialization::deserialize(in, meta.is_bigendian);
+      ros::serialization::deserialize(in, meta.point_step);
+      ros::serialization::deserialize(in, meta.row_step);
+      uint32_t bytes = 0;
+      ros::serialization::deserialize(in, bytes);
+      const uint8_t* data = in.advance(bytes);
+      ros::serialization::deserialize(in, meta.is_dense);
+      decodePointCloud2(meta, data, bytes, impl_->stamp_at_end, impl_->where, scan);
+    } catch (const ros::serialization::StreamOverrunException& e) {
+      throw std::runtime_error(impl_->where + ": truncated PointCloud2 message: " + e.what());
+    }
     return true;
   }
   return false;

@@ -18,27 +18,6 @@ const sensor_msgs::PointField* findField(const sensor_msgs::PointCloud2& msg, co
   return nullptr;
 }
 
-/// The value at `p` stored as `datatype` (int8 ... float64); NaN for an unknown datatype. Every stored type is
-/// exactly representable in double, so converting the result to float rounds as converting the stored value would.
-inline double readValue(const uint8_t* p, uint8_t datatype) {
-  auto as = [p](auto zero) {
-    decltype(zero) v;
-    std::memcpy(&v, p, sizeof v);
-    return static_cast<double>(v);
-  };
-  switch (datatype) {
-    case sensor_msgs::PointField::INT8: return as(int8_t{});
-    case sensor_msgs::PointField::UINT8: return as(uint8_t{});
-    case sensor_msgs::PointField::INT16: return as(int16_t{});
-    case sensor_msgs::PointField::UINT16: return as(uint16_t{});
-    case sensor_msgs::PointField::INT32: return as(int32_t{});
-    case sensor_msgs::PointField::UINT32: return as(uint32_t{});
-    case sensor_msgs::PointField::FLOAT32: return as(float{});
-    case sensor_msgs::PointField::FLOAT64: return as(double{});
-    default: return std::numeric_limits<double>::quiet_NaN();
-  }
-}
-
 std::size_t sizeOf(uint8_t datatype) {
   switch (datatype) {
     case sensor_msgs::PointField::INT8: case sensor_msgs::PointField::UINT8: return 1;
@@ -47,17 +26,50 @@ std::size_t sizeOf(uint8_t datatype) {
     default: return 4;
   }
 }
+
+/// Reads one field of every point as T, its datatype dispatched once per cloud, not once per point.
+template <typename T, typename Store>
+void readColumn(const uint8_t* data, std::size_t n, std::size_t step, const sensor_msgs::PointField& f, Store store) {
+  auto loop = [&](auto zero) {
+    using Stored = decltype(zero);
+    const uint8_t* p = data + f.offset;
+    for (std::size_t i = 0; i < n; ++i, p += step) {
+      Stored v;
+      std::memcpy(&v, p, sizeof v);
+      store(i, static_cast<T>(v));
+    }
+  };
+  switch (f.datatype) {
+    case sensor_msgs::PointField::INT8: return loop(int8_t{});
+    case sensor_msgs::PointField::UINT8: return loop(uint8_t{});
+    case sensor_msgs::PointField::INT16: return loop(int16_t{});
+    case sensor_msgs::PointField::UINT16: return loop(uint16_t{});
+    case sensor_msgs::PointField::INT32: return loop(int32_t{});
+    case sensor_msgs::PointField::UINT32: return loop(uint32_t{});
+    case sensor_msgs::PointField::FLOAT32: return loop(float{});
+    case sensor_msgs::PointField::FLOAT64: return loop(double{});
+    default:
+      for (std::size_t i = 0; i < n; ++i) store(i, static_cast<T>(std::numeric_limits<double>::quiet_NaN()));
+  }
+}
 }  // namespace
 
 Scan fromPointCloud2(const sensor_msgs::PointCloud2& msg, bool stamp_at_end, const std::string& source) {
+  Scan scan;
+  decodePointCloud2(msg, msg.data.data(), msg.data.size(), stamp_at_end, source, scan);
+  return scan;
+}
+
+void decodePointCloud2(const sensor_msgs::PointCloud2& msg, const uint8_t* data, std::size_t bytes, bool stamp_at_end,
+                       const std::string& source, Scan& scan) {
   const auto* fx = findField(msg, "x");
   const auto* fy = findField(msg, "y");
   const auto* fz = findField(msg, "z");
   if (!fx || !fy || !fz) throw std::runtime_error(source + ": PointCloud2 has no x/y/z fields");
   const std::size_t n = static_cast<std::size_t>(msg.width) * msg.height;
-  if (msg.point_step == 0 || msg.data.size() < n * msg.point_step)
-    throw std::runtime_error(source + ": PointCloud2 data holds " + std::to_string(msg.data.size()) +
-                             " bytes, expected " + std::to_string(n * msg.point_step) + " (width*height*point_step)");
+  if (msg.point_step == 0 || bytes < n * msg.point_step)
+    throw std::runtime_error(source + ": PointCloud2 data holds " + std::to_string(bytes) + " bytes, expected " +
+                             std::to_string(n * msg.point_step) + " (width*height*point_step)");
   for (const auto* f : {fx, fy, fz})
     if (f->offset + sizeOf(f->datatype) > msg.point_step)
       throw std::runtime_error(source + ": field '" + f->name + "' lies outside point_step");
@@ -73,37 +85,40 @@ Scan fromPointCloud2(const sensor_msgs::PointCloud2& msg, bool stamp_at_end, con
   for (const auto* f : {fi, fr, ft})
     if (f && f->offset + sizeOf(f->datatype) > msg.point_step)
       throw std::runtime_error(source + ": field '" + f->name + "' lies outside point_step");
-  Scan scan;
   scan.stamp = static_cast<StampNs>(msg.header.stamp.sec) * 1000000000ULL + msg.header.stamp.nsec;
-  // One pass over the points (a cloud is megabytes: a pass per field streamed it from memory six times).
+  const std::size_t step = msg.point_step;
+  // A column per field, its datatype resolved once (a cloud of ~1 MB stays in the cache between the columns).
   scan.points.resize(n);
-  if (fi) scan.intensity.resize(n);
-  if (fr) scan.ring.resize(n);
-  std::vector<double> t(ft ? n : 0);  // in double until made relative (see below)
   const bool xyz_float = fx->datatype == sensor_msgs::PointField::FLOAT32 &&
                          fy->datatype == sensor_msgs::PointField::FLOAT32 &&
                          fz->datatype == sensor_msgs::PointField::FLOAT32;
-  const uint8_t* base = msg.data.data();
-  for (std::size_t i = 0; i < n; ++i, base += msg.point_step) {
-    Eigen::Vector3f& p = scan.points[i];
-    if (xyz_float) {
+  if (xyz_float) {
+    const uint8_t* base = data;
+    for (std::size_t i = 0; i < n; ++i, base += step) {
+      Eigen::Vector3f& p = scan.points[i];
       std::memcpy(&p.x(), base + fx->offset, 4);
       std::memcpy(&p.y(), base + fy->offset, 4);
       std::memcpy(&p.z(), base + fz->offset, 4);
-    } else {
-      p = Eigen::Vector3f(static_cast<float>(readValue(base + fx->offset, fx->datatype)),
-                          static_cast<float>(readValue(base + fy->offset, fy->datatype)),
-                          static_cast<float>(readValue(base + fz->offset, fz->datatype)));
     }
-    if (fi) scan.intensity[i] = static_cast<float>(readValue(base + fi->offset, fi->datatype));
-    if (fr) {
-      const double d = readValue(base + fr->offset, fr->datatype);  // a float ring field may hold NaN: line 0, never UB
-      scan.ring[i] = static_cast<uint16_t>(std::isfinite(d) ? std::clamp(d, 0.0, 65535.0) : 0.0);
-    }
-    if (ft) t[i] = readValue(base + ft->offset, ft->datatype) * t_scale;
+  } else {  // through double: every stored type converts exactly, so the float rounds as from the stored value
+    readColumn<double>(data, n, step, *fx, [&](std::size_t i, double v) { scan.points[i].x() = static_cast<float>(v); });
+    readColumn<double>(data, n, step, *fy, [&](std::size_t i, double v) { scan.points[i].y() = static_cast<float>(v); });
+    readColumn<double>(data, n, step, *fz, [&](std::size_t i, double v) { scan.points[i].z() = static_cast<float>(v); });
   }
+  scan.intensity.resize(fi ? n : 0);
+  if (fi)
+    readColumn<double>(data, n, step, *fi, [&](std::size_t i, double v) { scan.intensity[i] = static_cast<float>(v); });
+  scan.ring.resize(fr ? n : 0);
+  if (fr)
+    readColumn<double>(data, n, step, *fr, [&](std::size_t i, double d) {
+      // A float ring field may hold NaN: line 0, never UB.
+      scan.ring[i] = static_cast<uint16_t>(std::isfinite(d) ? std::clamp(d, 0.0, 65535.0) : 0.0);
+    });
+  scan.time.resize(ft ? n : 0);
   if (ft && n > 0) {
     // In double until made relative: absolute epoch seconds (Velodyne `time`) would lose minutes in float.
+    std::vector<double> t(n);
+    readColumn<double>(data, n, step, *ft, [&](std::size_t i, double v) { t[i] = v * t_scale; });
     double t_max = -std::numeric_limits<double>::infinity(), t_min = -t_max;
     for (double ti : t) {
       if (std::isfinite(ti)) { t_max = std::max(t_max, ti); t_min = std::min(t_min, ti); }
@@ -112,10 +127,8 @@ Scan fromPointCloud2(const sensor_msgs::PointCloud2& msg, bool stamp_at_end, con
     // are made relative to the message stamp.
     const bool absolute = t_min > 1e6;
     const double ref = absolute ? toSeconds(scan.stamp) : (stamp_at_end ? t_max : 0.0);
-    scan.time.resize(n);
     for (std::size_t i = 0; i < n; ++i) scan.time[i] = static_cast<float>(t[i] - ref);
   }
-  return scan;
 }
 
 sensor_msgs::PointCloud2 toPointCloud2(const Scan& scan, const std::string& frame_id, PointTimeEncoding time_encoding) {

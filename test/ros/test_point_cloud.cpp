@@ -116,6 +116,30 @@ TEST(PointCloud, IntegerAndNarrowFieldsConvert) {
   EXPECT_FALSE(r.hasTime());
 }
 
+TEST(PointCloud, DecodingIntoAUsedScanReplacesEveryField) {
+  // ScanBagReader decodes each message into the caller's Scan: a cloud without intensity, ring and time must
+  // not leave the previous scan's fields behind.
+  Scan s = fromPointCloud2(toPointCloud2(sweep(50), "lidar"));
+  ASSERT_TRUE(s.hasTime() && s.hasRing() && s.hasIntensity());
+  auto m = packed(3, {{"x", sensor_msgs::PointField::FLOAT32, 4}, {"y", sensor_msgs::PointField::FLOAT32, 4},
+                      {"z", sensor_msgs::PointField::FLOAT32, 4}},
+                  [](uint8_t* p, std::size_t i, std::size_t k) { const float v = 1.0f * i + k; std::memcpy(p, &v, 4); });
+  cosmo::ros_glue::decodePointCloud2(m, m.data.data(), m.data.size(), true, "test", s);
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_EQ(s.points[2], Eigen::Vector3f(2.0f, 3.0f, 4.0f));
+  EXPECT_EQ(s.stamp, 1700000000500000000ULL);
+  EXPECT_TRUE(s.time.empty());
+  EXPECT_TRUE(s.ring.empty());
+  EXPECT_TRUE(s.intensity.empty());
+  // The point bytes are read from `data`, not from the message's own (empty) vector.
+  sensor_msgs::PointCloud2 meta = m;
+  meta.data.clear();
+  cosmo::ros_glue::decodePointCloud2(meta, m.data.data(), m.data.size(), true, "test", s);
+  EXPECT_EQ(s.points[1], Eigen::Vector3f(1.0f, 2.0f, 3.0f));
+  EXPECT_THROW(cosmo::ros_glue::decodePointCloud2(meta, m.data.data(), m.data.size() - 1, true, "test", s),
+               std::runtime_error);
+}
+
 TEST(PointCloud, BadCloudsNameTheSourceAndField) {
   auto no_z = packed(2, {{"x", sensor_msgs::PointField::FLOAT32, 4}, {"y", sensor_msgs::PointField::FLOAT32, 4}},
                      [](uint8_t*, std::size_t, std::size_t) {});

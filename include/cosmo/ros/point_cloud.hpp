@@ -17,6 +17,11 @@ namespace cosmo::ros_glue {
 Scan fromPointCloud2(const sensor_msgs::PointCloud2& msg, bool stamp_at_end = true,
                      const std::string& source = "PointCloud2");
 
+/// The same for a cloud whose point bytes lie elsewhere (`data`, `bytes`; msg.data is not read): a message
+/// parsed in place from its serialized form (ScanBagReader). Fills `scan`, reusing its vectors' capacity.
+void decodePointCloud2(const sensor_msgs::PointCloud2& msg, const uint8_t* data, std::size_t bytes, bool stamp_at_end,
+                       const std::string& source, Scan& scan);
+
 /// How toPointCloud2 writes the per-point time.
 enum class PointTimeEncoding {
   OusterNs,         ///< `t`, uint32 ns since the sweep start (what an Ouster driver publishes)
