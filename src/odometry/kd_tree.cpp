@@ -1,5 +1,9 @@
 #include "cosmo/odometry/kd_tree.hpp"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <algorithm>
 #include <cmath>
 
@@ -65,24 +69,36 @@ std::uint32_t KdTree3::buildNode(std::uint32_t begin, std::uint32_t end, int dep
     nodes_[id].end = end;
     return id;
   }
-  // The widest extent of this node's points.
-  float lo0 = sorted_[begin].c[0], lo1 = sorted_[begin].c[1], lo2 = sorted_[begin].c[2];
-  float hi0 = lo0, hi1 = lo1, hi2 = lo2;  // scalars: kept in registers (an array was reloaded every point)
+  // The widest extent of this node's points. With SSE2 a SortedPoint is one 16-byte register (x y z and the
+  // index, whose lane is ignored): two instructions per point. min / max are exact, and the operand order is
+  // std::min / std::max's, so the box is bit for bit the per-coordinate one.
+  float lo_c[4], hi_c[4];
+#if defined(__SSE2__)
+  static_assert(sizeof(SortedPoint) == 4 * sizeof(float), "a SortedPoint is loaded as one SSE register");
+  __m128 lo = _mm_loadu_ps(sorted_[begin].c), hi = lo;
   for (std::uint32_t i = begin + 1; i < end; ++i) {
-    const float* c = sorted_[i].c;
-    lo0 = std::min(lo0, c[0]), hi0 = std::max(hi0, c[0]);
-    lo1 = std::min(lo1, c[1]), hi1 = std::max(hi1, c[1]);
-    lo2 = std::min(lo2, c[2]), hi2 = std::max(hi2, c[2]);
+    const __m128 c = _mm_loadu_ps(sorted_[i].c);
+    lo = _mm_min_ps(c, lo);  // (c < lo) ? c : lo, as std::min(lo, c)
+    hi = _mm_max_ps(c, hi);  // (c > hi) ? c : hi, as std::max(hi, c)
   }
-  const float extent[3] = {hi0 - lo0, hi1 - lo1, hi2 - lo2};
+  _mm_storeu_ps(lo_c, lo);
+  _mm_storeu_ps(hi_c, hi);
+#else
+  for (int a = 0; a < 3; ++a) lo_c[a] = hi_c[a] = sorted_[begin].c[a];
+  for (std::uint32_t i = begin + 1; i < end; ++i)
+    for (int a = 0; a < 3; ++a) {
+      lo_c[a] = std::min(lo_c[a], sorted_[i].c[a]);
+      hi_c[a] = std::max(hi_c[a], sorted_[i].c[a]);
+    }
+#endif
+  const float extent[3] = {hi_c[0] - lo_c[0], hi_c[1] - lo_c[1], hi_c[2] - lo_c[2]};
   int axis = 0;
   for (int a = 1; a < 3; ++a)
     if (extent[a] > extent[axis]) axis = a;
   // Split at the middle of the extent (one partition pass; on points clustered on surfaces it also gave
   // better-pruning cells than the median), at the median when that leaves one side empty (rounding, equal
   // coordinates), so that every split makes progress.
-  const float lo[3] = {lo0, lo1, lo2};
-  float split = lo[axis] + 0.5f * extent[axis];
+  float split = lo_c[axis] + 0.5f * extent[axis];
   auto first = sorted_.begin() + begin, last = sorted_.begin() + end;
   auto mid_it = std::partition(first, last, [axis, split](const SortedPoint& p) { return p.c[axis] < split; });
   if (mid_it == first || mid_it == last) {
@@ -100,16 +116,24 @@ std::uint32_t KdTree3::buildNode(std::uint32_t begin, std::uint32_t end, int dep
   return id;
 }
 
-void KdTree3::scanLeaf(const Node& node, const float q[3], KnnResult& result) const {
-  for (std::uint32_t i = node.begin; i < node.end; ++i) {
-    const SortedPoint& p = sorted_[i];
-    const float dx = q[0] - p.c[0], dy = q[1] - p.c[1], dz = q[2] - p.c[2];
+namespace {
+/// The leaf scan, a function local to this file so that search() inlines it (a member function of a shared
+/// library is called through the PLT: it may be interposed).
+template <typename SortedPoint>
+inline void scanPoints(const SortedPoint* begin, const SortedPoint* end, const float q[3], KnnResult& result) {
+  for (const SortedPoint* p = begin; p != end; ++p) {
+    const float dx = q[0] - p->c[0], dy = q[1] - p->c[1], dz = q[2] - p->c[2];
     float d2 = 0.0f;
     d2 += dx * dx;
     d2 += dy * dy;
     d2 += dz * dz;
-    if (d2 <= result.bound()) result.offer(d2, p.index);
+    if (d2 <= result.bound()) result.offer(d2, p->index);
   }
+}
+}  // namespace
+
+void KdTree3::scanLeaf(const Node& node, const float q[3], KnnResult& result) const {
+  scanPoints(sorted_.data() + node.begin, sorted_.data() + node.end, q, result);
 }
 
 void KdTree3::searchNode(std::uint32_t n, const float q[3], float offset[3], float min_d2, KnnResult& result) const {
@@ -171,7 +195,7 @@ void KdTree3::search(const Eigen::Vector3d& query, KnnResult& result) const {
       }
       continue;
     }
-    scanLeaf(node, q, result);
+    scanPoints(sorted_.data() + node.begin, sorted_.data() + node.end, q, result);
     for (;;) {
       if (top == 0) return;
       const Pending& p = stack[--top];
