@@ -12,6 +12,15 @@ StampNs offsetStamp(StampNs stamp, double seconds) {
   const long double t = static_cast<long double>(stamp) + static_cast<long double>(seconds) * 1e9L;
   return t <= 0 ? 0 : static_cast<StampNs>(std::llround(static_cast<double>(t)));
 }
+
+/// std::lround(x) for a bin position x in [0, 2^31) (half away from zero), inline instead of a libm call per
+/// point: x - trunc(x) is exact, so the result is lround's bit for bit. Branch-free (the fraction is random
+/// per point); NaN gives bin 0.
+int roundBin(double x) {
+  x = x >= 0.0 ? x : 0.0;
+  const int b = static_cast<int>(x);
+  return b + static_cast<int>(x - static_cast<double>(b) >= 0.5);
+}
 }  // namespace
 
 Scan dewarp(const Scan& scan, const std::function<Pose3(StampNs)>& sensor_pose_at) {
@@ -34,7 +43,7 @@ Scan dewarp(const Scan& scan, const std::function<Pose3(StampNs)>& sensor_pose_a
   for (std::size_t i = 0; i < scan.size(); ++i) {
     const float t = scan.time[i];
     if (!std::isfinite(t)) continue;
-    const int b = span > 0.0 ? static_cast<int>(std::lround((t - tmin) / span * kBins)) : 0;
+    const int b = span > 0.0 ? roundBin((t - tmin) / span * kBins) : 0;
     if (!have[b]) {
       const double tb = span > 0.0 ? tmin + span * static_cast<double>(b) / kBins : tmin;
       cache[b] = ref_inv * sensor_pose_at(offsetStamp(scan.stamp, tb));
@@ -62,7 +71,7 @@ void deskewConstantVelocity(const std::vector<Eigen::Vector3d>& points, const st
   std::vector<std::uint8_t> have(nb, 0);
   for (std::size_t i = 0; i < points.size(); ++i) {
     const double s = std::clamp(static_cast<double>(times[i]) / period, kLo, kHi);
-    const int b = static_cast<int>(std::lround((s - kLo) * kSteps));
+    const int b = roundBin((s - kLo) * kSteps);
     if (!have[b]) {
       cache[b] = expSE3((kLo + static_cast<double>(b) / kSteps) * xi);
       have[b] = 1;
