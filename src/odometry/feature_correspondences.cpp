@@ -41,6 +41,13 @@ bool oneNeighbourOffSurface(const std::vector<Eigen::Vector3d>& nb, const Eigen:
     for (std::size_t j = 0; j < nb.size(); ++j)
       if (j != drop) others.push_back(nb[j]);
     meanAndScatter(others, mean, scatter);
+    // Most drops leave the off-surface point in: their smallest eigenvalue stays large, which a lower bound
+    // shows without the eigenvalues. lambda0 = det / (lambda1 lambda2) >= det / (trace / 2)^2; the margin
+    // (1e-6 of the trace) is far above the rounding of the bound and of symmetricEigenvalues3, so a skipped
+    // drop is one whose computed eigenvalue would have failed the test too.
+    const double trace = scatter.trace();
+    if (trace > 0.0 && 4.0 * scatter.determinant() / (trace * trace) >= kOffSurfaceDrop * ev[0] + 1e-6 * trace)
+      continue;
     const Eigen::Vector3d e = symmetricEigenvalues3(scatter);
     if (e[1] > params.min_plane_spread_ratio * e[2] && e[0] < kOffSurfaceDrop * ev[0]) return true;
   }
