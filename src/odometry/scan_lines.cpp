@@ -211,7 +211,9 @@ ScanLines organizeScanLines(const Scan& scan, const LoamParams& params) {
     steps.clear();
     for (std::size_t j = 1; j < m.size(); ++j)
       steps.push_back(std::abs(wrapAngle(pts[m[j]].azimuth - pts[m[j - 1]].azimuth)));
-    if (!steps.empty()) {
+    // The gap is at least 1 degree: a line whose steps all stay below that (no missing returns) has no gap,
+    // whatever its median step, and needs no median.
+    if (!steps.empty() && *std::max_element(steps.begin(), steps.end()) > 1.0f * kDeg) {
       std::vector<float> tmp = steps;
       std::nth_element(tmp.begin(), tmp.begin() + tmp.size() / 2, tmp.end());
       const float gap = std::max(5.0f * tmp[tmp.size() / 2], 1.0f * kDeg);
