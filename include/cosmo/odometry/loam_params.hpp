@@ -37,6 +37,8 @@ struct LoamParams {
   /// featureless-corridor degeneracy (test LoamDegenerate.FeaturelessCorridor...); 0.4 m cost ~0.7 % of drift.
   double map_edge_voxel_size = 0.0;
   double map_planar_voxel_size = 0.0;
+  /// 0.3 m for the scans' planar features: 9 % fewer LOAM instructions, but the six simulator trials' ATE 2-43 %
+  /// higher and ci a's 25 m rotation drift 0.0040 -> 0.0067 deg/m.
   double planar_feature_voxel_size = 0.2;
   /// A registered scan enters the local map only when the sensor moved at least this far (m) or turned at
   /// least this much (deg) since the newest scan in the map (0 / 0: every scan, the default). A standing
