@@ -27,8 +27,9 @@ std::size_t sizeOf(uint8_t datatype) {
   }
 }
 
-/// Reads one field of every point as T, its datatype dispatched once per cloud, not once per point.
-template <typename T, typename Store>
+/// Passes one field of every point to store(i, value) as a double (every stored type converts exactly, so a
+/// float made from it rounds as from the stored value), the datatype dispatched once per cloud, not per point.
+template <typename Store>
 void readColumn(const uint8_t* data, std::size_t n, std::size_t step, const sensor_msgs::PointField& f, Store store) {
   auto loop = [&](auto zero) {
     using Stored = decltype(zero);
@@ -36,7 +37,7 @@ void readColumn(const uint8_t* data, std::size_t n, std::size_t step, const sens
     for (std::size_t i = 0; i < n; ++i, p += step) {
       Stored v;
       std::memcpy(&v, p, sizeof v);
-      store(i, static_cast<T>(v));
+      store(i, static_cast<double>(v));
     }
   };
   switch (f.datatype) {
@@ -49,7 +50,7 @@ void readColumn(const uint8_t* data, std::size_t n, std::size_t step, const sens
     case sensor_msgs::PointField::FLOAT32: return loop(float{});
     case sensor_msgs::PointField::FLOAT64: return loop(double{});
     default:
-      for (std::size_t i = 0; i < n; ++i) store(i, static_cast<T>(std::numeric_limits<double>::quiet_NaN()));
+      for (std::size_t i = 0; i < n; ++i) store(i, std::numeric_limits<double>::quiet_NaN());
   }
 }
 }  // namespace
@@ -100,17 +101,17 @@ void decodePointCloud2(const sensor_msgs::PointCloud2& msg, const uint8_t* data,
       std::memcpy(&p.y(), base + fy->offset, 4);
       std::memcpy(&p.z(), base + fz->offset, 4);
     }
-  } else {  // through double: every stored type converts exactly, so the float rounds as from the stored value
-    readColumn<double>(data, n, step, *fx, [&](std::size_t i, double v) { scan.points[i].x() = static_cast<float>(v); });
-    readColumn<double>(data, n, step, *fy, [&](std::size_t i, double v) { scan.points[i].y() = static_cast<float>(v); });
-    readColumn<double>(data, n, step, *fz, [&](std::size_t i, double v) { scan.points[i].z() = static_cast<float>(v); });
+  } else {
+    readColumn(data, n, step, *fx, [&](std::size_t i, double v) { scan.points[i].x() = static_cast<float>(v); });
+    readColumn(data, n, step, *fy, [&](std::size_t i, double v) { scan.points[i].y() = static_cast<float>(v); });
+    readColumn(data, n, step, *fz, [&](std::size_t i, double v) { scan.points[i].z() = static_cast<float>(v); });
   }
   scan.intensity.resize(fi ? n : 0);
   if (fi)
-    readColumn<double>(data, n, step, *fi, [&](std::size_t i, double v) { scan.intensity[i] = static_cast<float>(v); });
+    readColumn(data, n, step, *fi, [&](std::size_t i, double v) { scan.intensity[i] = static_cast<float>(v); });
   scan.ring.resize(fr ? n : 0);
   if (fr)
-    readColumn<double>(data, n, step, *fr, [&](std::size_t i, double d) {
+    readColumn(data, n, step, *fr, [&](std::size_t i, double d) {
       // A float ring field may hold NaN: line 0, never UB.
       scan.ring[i] = static_cast<uint16_t>(std::isfinite(d) ? std::clamp(d, 0.0, 65535.0) : 0.0);
     });
@@ -118,7 +119,7 @@ void decodePointCloud2(const sensor_msgs::PointCloud2& msg, const uint8_t* data,
   if (ft && n > 0) {
     // In double until made relative: absolute epoch seconds (Velodyne `time`) would lose minutes in float.
     std::vector<double> t(n);
-    readColumn<double>(data, n, step, *ft, [&](std::size_t i, double v) { t[i] = v * t_scale; });
+    readColumn(data, n, step, *ft, [&](std::size_t i, double v) { t[i] = v * t_scale; });
     double t_max = -std::numeric_limits<double>::infinity(), t_min = -t_max;
     for (double ti : t) {
       if (std::isfinite(ti)) { t_max = std::max(t_max, ti); t_min = std::min(t_min, ti); }
