@@ -91,6 +91,25 @@ TEST(KdTree3, EmptyAndTinyInputs) {
   EXPECT_EQ(idx.size(), 5u);
 }
 
+TEST(KdTree3, UnboundedSearchFindsEveryPointOnce) {
+  // Leaves are stored in blocks of four padded with dummy points: an infinite distance bound must not let a
+  // padding point in (7, 13 and 61 points leave partial blocks).
+  for (const int n : {7, 13, 61}) {
+    std::vector<Eigen::Vector3d> pts;
+    for (int i = 0; i < n; ++i) pts.push_back({0.5 * i, 0.25 * (i % 3), -0.1 * (i % 5)});
+    KdTree3 tree;
+    tree.build(pts);
+    std::vector<std::size_t> idx;
+    tree.knn({0.0, 0.0, 0.0}, KnnResult::kMaxK, std::numeric_limits<double>::infinity(), idx);
+    ASSERT_EQ(idx.size(), static_cast<std::size_t>(std::min(n, KnnResult::kMaxK))) << n << " points";
+    const auto expected = bruteForce(pts, {0.0, 0.0, 0.0}, KnnResult::kMaxK, std::numeric_limits<double>::infinity());
+    EXPECT_EQ(distances(pts, {0.0, 0.0, 0.0}, idx), distances(pts, {0.0, 0.0, 0.0}, expected)) << n << " points";
+    std::vector<std::size_t> sorted = idx;
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(std::unique(sorted.begin(), sorted.end()), sorted.end()) << n << " points: a point found twice";
+  }
+}
+
 TEST(LocalFeatureMap, NeighboursComeFromTheLastKScans) {
   LocalFeatureMap map(2);
   for (int s = 0; s < 3; ++s) map.add({Eigen::Vector3d(s, 0, 0)}, {Eigen::Vector3d(0, s, 0)});
