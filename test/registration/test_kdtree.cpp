@@ -100,7 +100,7 @@ TEST(KdTree, FeatureRowsMatchNanoflann) {
     const std::vector<float> queries = featureRows(600, rng);
     const KdTree<33> tree(data.data(), n);
     const Reference<33> ref(data.data(), n);
-    for (const float eps : {0.f, 2.f, 5.f}) {
+    for (const float eps : {0.f, 2.f, 5.f, 10.f}) {
       std::size_t same = 0, total = 0;
       auto check = [&](const float* q) {
         const auto a = tree.nearest(q, eps), b = ref.nearest(q, eps);
