@@ -119,9 +119,11 @@ RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFea
     }
     // The pose two association rounds ago: a subsample whose association flips one feature in and out (a
     // constraint count alternating 370 / 371) alternates between two poses for good. On demo trial b 30 of 402
-    // coarse stages did so until the round cap (20), 30 % of the coarse rounds; the stage stops once a round
-    // returns to within the thresholds of the pose two rounds back.
+    // coarse stages did so until the round cap (20), 30 % of the coarse rounds; the stage stops once two rounds
+    // in a row return to within the thresholds of the pose two rounds back (one return alone also happens while
+    // a large motion converges: stopping there failed LoamLargeMotion's 1 Hz drive, 0.37 m off).
     Pose3 two_back = res.pose, one_back = res.pose;
+    bool returned = false;  // the previous round came back to the pose two rounds before it
     for (int it = 0; it < params.max_icf_iterations; ++it) {
       // The last stage of two (all features) only reads the memory: its features mostly associate once, and
       // the (k+1)-th neighbour that remembering needs cost more than the reuse saved (measured).
@@ -144,10 +146,10 @@ RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFea
         if (last_stage) res.converged = true;
         break;
       }
-      if (it >= 1) {
-        const Vector6 cycle = logSE3(two_back.inverse() * res.pose);
-        if (cycle.head<3>().norm() < st.rot_thresh && cycle.tail<3>().norm() < st.pos_thresh) break;
-      }
+      const Vector6 cycle = logSE3(two_back.inverse() * res.pose);
+      const bool returns = it >= 1 && cycle.head<3>().norm() < st.rot_thresh && cycle.tail<3>().norm() < st.pos_thresh;
+      if (returns && returned) break;  // two returns in a row: a settled two-pose cycle
+      returned = returns;
       two_back = one_back;
       one_back = res.pose;
     }
