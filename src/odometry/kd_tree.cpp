@@ -15,6 +15,9 @@ namespace {
 /// ~2 % faster in search + build, but the leaf size decides the offer order, and so which of two points at the
 /// same distance is kept (the earlier offer): 12 keeps the neighbours, and LOAM's results, bit for bit.
 constexpr std::uint32_t kLeafSize = 12;
+
+/// Blocks of four that hold the points [begin, end) of a leaf.
+std::uint32_t blockCount(std::uint32_t begin, std::uint32_t end) { return (end - begin + 3) / 4; }
 }  // namespace
 
 void KnnResult::reset(int k, double max_dist) {
@@ -68,7 +71,7 @@ void KdTree3::build(std::vector<Eigen::Vector3d> points, const std::vector<std::
 void KdTree3::makeBlocks() {
   std::size_t count = 0;
   for (const Node& node : nodes_)
-    if (node.axis < 0) count += (node.end - node.begin + 3) / 4;
+    if (node.axis < 0) count += blockCount(node.begin, node.end);
   blocks_.resize(count);
   // NaN padding: its distance is NaN, which no bound test passes (an infinite point would pass an infinite bound).
   const float pad = std::numeric_limits<float>::quiet_NaN();
@@ -179,8 +182,6 @@ inline void scanBlocks(const Block* block, std::uint32_t count, const float q[3]
     }
 #endif
 }
-
-std::uint32_t blockCount(std::uint32_t begin, std::uint32_t end) { return (end - begin + 3) / 4; }
 }  // namespace
 
 void KdTree3::scanLeaf(const Node& node, const float q[3], KnnResult& result) const {
