@@ -122,7 +122,7 @@ RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFea
     // coarse stages did so until the round cap (20), 30 % of the coarse rounds; the stage stops once two rounds
     // in a row return to within the thresholds of the pose two rounds back (one return alone also happens while
     // a large motion converges: stopping there failed LoamLargeMotion's 1 Hz drive, 0.37 m off).
-    Pose3 two_back = res.pose, one_back = res.pose;
+    Pose3 two_back = res.pose;
     bool returned = false;  // the previous round came back to the pose two rounds before it
     for (int it = 0; it < params.max_icf_iterations; ++it) {
       // The last stage of two (all features) only reads the memory: its features mostly associate once, and
@@ -141,17 +141,18 @@ RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFea
             dx.tail<3>().norm() < params.position_convergence_thresh)
           break;
       }
-      const Vector6 moved = logSE3(before.inverse() * res.pose);
-      if (moved.head<3>().norm() < st.rot_thresh && moved.tail<3>().norm() < st.pos_thresh) {
+      auto within = [&](const Pose3& from) {  // res.pose is within the stage's thresholds of `from`
+        const Vector6 moved = logSE3(from.inverse() * res.pose);
+        return moved.head<3>().norm() < st.rot_thresh && moved.tail<3>().norm() < st.pos_thresh;
+      };
+      if (within(before)) {
         if (last_stage) res.converged = true;
         break;
       }
-      const Vector6 cycle = logSE3(two_back.inverse() * res.pose);
-      const bool returns = it >= 1 && cycle.head<3>().norm() < st.rot_thresh && cycle.tail<3>().norm() < st.pos_thresh;
+      const bool returns = it >= 1 && within(two_back);
       if (returns && returned) break;  // two returns in a row: a settled two-pose cycle
       returned = returns;
-      two_back = one_back;
-      one_back = res.pose;
+      two_back = before;  // the next round's pose two rounds back
     }
   }
   res.iterations = rounds;
