@@ -52,7 +52,7 @@
 #include "cosmo/ros/resolved_sequence.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/sim/simulation_params.hpp"
-#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/trials/trial_reference.hpp"
 #include "cosmo/ros/bag_scan_source.hpp"
 #include "cosmo/ros/point_cloud.hpp"
 
@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
     config = pipeline::SequenceConfig::load(sequence_path);
     if (seed >= 0) config.seed = static_cast<unsigned long long>(seed);
     timing = ros_glue::synchronizeSequence(config);
-    for (const auto& t : config.trials) refs[t.robot] = pipeline::loadSensorReference(t, timing.of(t.robot));
+    for (const auto& t : config.trials) refs[t.robot] = trials::loadSensorReference(t, timing.of(t.robot));
     ros_glue::publishResolvedSequence(std::filesystem::absolute(sequence_path).string(), config.seed);
   } catch (const std::exception& e) {
     ROS_FATAL("player: %s", e.what());

@@ -8,15 +8,28 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "cosmo/trials/bag_format.hpp"
+
 namespace cosmo::ros_glue {
 
-pipeline::TrialSpan readTrialSpan(const std::string& bag_path, const std::string& topic, char robot) {
+namespace {
+
+/// ROS 1: the first message and the messages received in the bag's last 5 s.
+pipeline::TrialSpan readRos1TrialSpan(const std::string& bag_path, const std::string& requested_topic, char robot) {
   if (!ros::Time::isValid()) ros::Time::init();
   rosbag::Bag bag;
   try {
     bag.open(bag_path, rosbag::bagmode::Read);
   } catch (const std::exception& e) {
     throw std::runtime_error(bag_path + ": cannot open bag: " + e.what());
+  }
+  std::string topic = requested_topic;
+  {
+    rosbag::View any(bag);
+    for (const auto* c : any.getConnections())
+      if (c->topic == requested_topic || c->topic == "/" + requested_topic ||
+          "/" + c->topic == requested_topic)
+        topic = c->topic;
   }
   rosbag::View all(bag, rosbag::TopicQuery(topic));
   if (all.size() == 0) throw std::runtime_error(bag_path + " " + topic + ": no messages on this topic");
@@ -39,16 +52,30 @@ pipeline::TrialSpan readTrialSpan(const std::string& bag_path, const std::string
   return span;
 }
 
+}  // namespace
+
+std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const pipeline::TrialConfig& trial) {
+  if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1)
+    return std::make_unique<BagScanSource>(trial.bag, trial.topic, trial.stamp_at_end);
+  return std::make_unique<trials::Ros2ScanSource>(trial.bag, trial.topic, trial.stamp_at_end);
+}
+
+pipeline::TrialSpan readTrialSpan(const pipeline::TrialConfig& trial) {
+  if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1)
+    return readRos1TrialSpan(trial.bag, trial.topic, trial.robot);
+  return trials::readRos2TrialSpan(trial.bag, trial.topic, trial.robot);
+}
+
 pipeline::SequenceTiming synchronizeSequence(const pipeline::SequenceConfig& config) {
   std::vector<pipeline::TrialSpan> spans;
-  for (const auto& t : config.trials) spans.push_back(readTrialSpan(t.bag, t.topic, t.robot));
+  for (const auto& t : config.trials) spans.push_back(readTrialSpan(t));
   return pipeline::SequenceTiming::synchronize(spans, config.anchor, config.time_offset_sigma, config.seed);
 }
 
 std::map<char, std::unique_ptr<pipeline::ScanSource>> openTrialSources(const pipeline::SequenceConfig& config) {
   std::map<char, std::unique_ptr<pipeline::ScanSource>> sources;
   for (const auto& t : config.trials)
-    sources[t.robot] = std::make_unique<BagScanSource>(t.bag, t.topic, t.stamp_at_end);
+    sources[t.robot] = openTrialScanSource(t);
   return sources;
 }
 

@@ -7,11 +7,8 @@
 
 namespace cosmo::pipeline {
 
-/// Reads the trial's reference CSV (MCD pose_inW.csv: num, sec, x, y, z, qx, qy, qz, qw); an empty
-/// `reference` path gives an empty trajectory. Throws naming the file on bad input.
-Trajectory loadSensorReference(const TrialConfig& trial, const TrialTiming& timing);
-
-/// The same for trajectories already read (body poses in recorded time).
+/// Body poses in recorded time as LiDAR poses in sequence time (trials::loadSensorReference reads a trial's
+/// reference file and calls this).
 Trajectory toSensorReference(const Trajectory& body_in_world, const Pose3& extrinsic, const TrialTiming& timing);
 
 }  // namespace cosmo::pipeline

@@ -30,7 +30,7 @@
 #include "cosmo/pipeline/odometry_run_ahead.hpp"
 #include "cosmo/pipeline/seed_streams.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
-#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/trials/trial_reference.hpp"
 #include "cosmo/pipeline/team_radio.hpp"
 #include "cosmo/pipeline/team_run.hpp"
 #include "cosmo/ros/bag_scan_source.hpp"
@@ -173,7 +173,7 @@ int main(int argc, char** argv) {
                   config.trial(t.robot).name.c_str(), toSeconds(t.start() - timing.start()),
                   toSeconds(t.end() - t.start()), static_cast<double>(t.offset_ns) * 1e-9);
     std::map<char, Trajectory> references;
-    for (const auto& t : config.trials) references[t.robot] = loadSensorReference(t, timing.of(t.robot));
+    for (const auto& t : config.trials) references[t.robot] = trials::loadSensorReference(t, timing.of(t.robot));
 
     // Radio steps on the absolute grid k * delta (as the comm_broker node does on ROS time).
     const StampNs end = max_seconds > 0 ? std::min(timing.end(), timing.start() + toStampNs(max_seconds)) : timing.end();
