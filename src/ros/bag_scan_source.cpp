@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "cosmo/trials/bag_format.hpp"
+#include "cosmo/trials/scan_cache.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -55,8 +56,17 @@ pipeline::TrialSpan readRos1TrialSpan(const std::string& bag_path, const std::st
 }  // namespace
 
 std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const pipeline::TrialConfig& trial) {
-  if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1)
-    return std::make_unique<BagScanSource>(trial.bag, trial.topic, trial.stamp_at_end);
+  if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1) {
+    auto decode = [&]() -> std::unique_ptr<trials::TrialScanSource> {
+      return std::make_unique<BagScanSource>(trial.bag, trial.topic, trial.stamp_at_end);
+    };
+    // Compressed chunks (MCD: bz2) are decompressed once: later runs read the decoded scans.
+    const std::string cache_dir = trials::scanCacheDir();
+    if (!cache_dir.empty() && trials::ros1ChunksCompressed(trial.bag))
+      return trials::openCachedScans(trials::scanCachePath(cache_dir, trial.bag, trial.topic, trial.stamp_at_end),
+                                     decode);
+    return decode();
+  }
   return std::make_unique<trials::Ros2ScanSource>(trial.bag, trial.topic, trial.stamp_at_end);
 }
 

@@ -38,6 +38,14 @@ BagFormat detectBagFormat(const std::string& path) {
                            "folder); it starts with '" + printable(head, got) + "'");
 }
 
+bool ros1ChunksCompressed(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(65536, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return head.find("compression=bz2") != std::string::npos || head.find("compression=lz4") != std::string::npos;
+}
+
 std::string bagFormatName(BagFormat format) {
   return format == BagFormat::Ros1 ? "ROS 1 bag" : "ROS 2 sqlite3 bag";
 }

@@ -7,6 +7,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
@@ -19,6 +21,7 @@
 #include "cosmo/trials/cu_multi_layout.hpp"
 #include "cosmo/trials/mcd_layout.hpp"
 #include "cosmo/trials/reference_file.hpp"
+#include "cosmo/trials/scan_cache.hpp"
 
 using namespace cosmo;
 namespace fs = std::filesystem;
@@ -30,8 +33,18 @@ constexpr int kBeams = 16, kColumns = 256, kScans = 22;
 struct TempDir {
   fs::path path = fs::temp_directory_path() / ("cosmo_layouts_" + std::to_string(::getpid()) + "_" +
                                                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  TempDir() { fs::create_directories(path); }
+  /// The scan cache of compressed bags goes below the folder too.
+  TempDir() {
+    fs::create_directories(path);
+    ::setenv("COSMO_SCAN_CACHE", (path / "scan_cache").c_str(), 1);
+  }
   ~TempDir() { fs::remove_all(path); }
+  std::vector<fs::path> cacheFiles() const {
+    std::vector<fs::path> files;
+    if (fs::exists(path / "scan_cache"))
+      for (const auto& e : fs::directory_iterator(path / "scan_cache")) files.push_back(e.path());
+    return files;
+  }
 };
 
 sim::LidarModel smallLidar(double rate_hz) {
@@ -153,7 +166,9 @@ TEST(TrialLayouts, McdLayoutReadsBackAsSimulated) {
   EXPECT_EQ(trials::detectBagFormat(bag.string()), trials::BagFormat::Ros1);
   EXPECT_NE(fileText(bag).find("compression=bz2"), std::string::npos);  // chunk headers
   const auto sweep = trials::mcdSweep(kBeams, kColumns, 10.0);
+  // The first read decodes the bz2 bag and fills the scan cache; the second (other topic spelling) reads it.
   expectScansAsWritten(f, trialOf(f.written, d.path, "/os_cloud_node/points"), sweep, "uint8");
+  EXPECT_EQ(d.cacheFiles().size(), 1u);
   expectScansAsWritten(f, trialOf(f.written, d.path, "os_cloud_node/points"), sweep, "uint8");
 
   // pose_inW.csv: body poses at the cloud stamps, row `num` 11 = cloud 10, ending 0.5 s before the last cloud.
@@ -248,4 +263,45 @@ TEST(TrialLayouts, ContainerIsChosenByContentNotByName) {
   }
   t.bag = (d.path / "absent.bag").string();
   EXPECT_THROW(ros_glue::readTrialSpan(t), std::runtime_error);
+}
+
+TEST(TrialLayouts, ScanCacheGivesBitIdenticalScansAndOnlyWhenComplete) {
+  TempDir d;
+  const Fixture f(ros_glue::TrialLayout::Mcd, 10.0, d.path);
+  const pipeline::TrialConfig trial = trialOf(f.written, d.path, "/os_cloud_node/points");
+  auto readAll = [&](std::size_t limit) {
+    std::vector<std::pair<Scan, trials::DecodeCounts>> out;
+    auto src = ros_glue::openTrialScanSource(trial);
+    Scan s;
+    while (out.size() < limit && src->next(s)) out.push_back({s, src->lastCounts()});
+    return out;
+  };
+  // A run that stops early leaves no cache (nor a temporary file).
+  EXPECT_EQ(readAll(3).size(), 3u);
+  EXPECT_TRUE(d.cacheFiles().empty());
+  const auto decoded = readAll(1000);
+  ASSERT_EQ(d.cacheFiles().size(), 1u);
+  EXPECT_EQ(d.cacheFiles()[0].extension(), ".scans");
+  const auto cached = readAll(1000);
+  ASSERT_EQ(cached.size(), decoded.size());
+  for (std::size_t k = 0; k < decoded.size(); ++k) {
+    const Scan &a = decoded[k].first, &b = cached[k].first;
+    ASSERT_EQ(a.stamp, b.stamp);
+    ASSERT_EQ(a.size(), b.size());
+    ASSERT_EQ(a.time.size(), b.time.size());
+    ASSERT_EQ(a.ring.size(), b.ring.size());
+    ASSERT_EQ(a.intensity.size(), b.intensity.size());
+    EXPECT_EQ(std::memcmp(a.points.data(), b.points.data(), a.size() * sizeof(a.points[0])), 0);
+    EXPECT_EQ(std::memcmp(a.time.data(), b.time.data(), a.time.size() * sizeof(float)), 0);
+    EXPECT_EQ(std::memcmp(a.intensity.data(), b.intensity.data(), a.intensity.size() * sizeof(float)), 0);
+    EXPECT_EQ(a.ring, b.ring);
+    EXPECT_EQ(decoded[k].second.points, cached[k].second.points);
+    EXPECT_EQ(decoded[k].second.invalid, cached[k].second.invalid);
+  }
+  // Disabled: nothing written; uncompressed and ROS 2 bags are never cached.
+  fs::remove_all(d.path / "scan_cache");
+  ::setenv("COSMO_SCAN_CACHE", "off", 1);
+  EXPECT_EQ(readAll(1000).size(), decoded.size());
+  EXPECT_TRUE(d.cacheFiles().empty());
+  EXPECT_EQ(trials::scanCacheDir(), "");
 }

@@ -29,7 +29,9 @@ class BagScanSource : public trials::TrialScanSource {
   ScanBagReader reader_;
 };
 
-/// The scans of one trial (its bag, topic and stamp convention), from a ROS 1 or ROS 2 bag.
+/// The scans of one trial (its bag, topic and stamp convention), from a ROS 1 or ROS 2 bag. A ROS 1 bag with
+/// compressed chunks is read through the scan cache (trials/scan_cache.hpp; COSMO_SCAN_CACHE=off disables it):
+/// the first complete read decodes it and fills the cache, later ones read bit-identical scans from it.
 std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const pipeline::TrialConfig& trial);
 
 /// Header stamps of the trial's first and last PointCloud2 (reads only the first message and the messages of

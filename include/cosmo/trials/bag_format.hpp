@@ -11,4 +11,8 @@ enum class BagFormat { Ros1, Ros2Sqlite };
 BagFormat detectBagFormat(const std::string& path);
 std::string bagFormatName(BagFormat format);  ///< "ROS 1 bag", "ROS 2 sqlite3 bag"
 
+/// Whether a ROS 1 bag's chunks are compressed (bz2 or lz4): its first chunk header, read from the file's
+/// first 64 kB, says `compression=bz2|lz4`.
+bool ros1ChunksCompressed(const std::string& path);
+
 }  // namespace cosmo::trials
