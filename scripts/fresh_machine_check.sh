@@ -49,6 +49,7 @@ if [ ! -f "$base_tar" ]; then
   debootstrap --variant=minbase --include=git,sudo,ca-certificates bookworm "$tmp_root" "$mirror" \
     > /var/tmp/cosmo-fresh-debootstrap.log 2>&1 || {
       tail -20 /var/tmp/cosmo-fresh-debootstrap.log; echo "[fresh] debootstrap failed"; exit 1; }
+  chmod 755 "$tmp_root"     # mktemp's 0700 would become the root's "/"
   tar -C "$tmp_root" -cf "$base_tar" .
   rm -rf "$tmp_root"
 fi
@@ -67,6 +68,7 @@ unmount_all
 rm -rf "$root"
 mkdir -p "$root"
 tar -C "$root" -xf "$base_tar"
+chmod 755 "$root"
 mount -t proc proc "$root/proc"
 mount --rbind /sys "$root/sys"
 mount --bind /dev "$root/dev"
