@@ -74,6 +74,7 @@ mount --rbind /sys "$root/sys"
 mount --bind /dev "$root/dev"
 mount --bind /dev/pts "$root/dev/pts"
 cp /etc/resolv.conf "$root/etc/resolv.conf"
+cp /etc/hosts "$root/etc/hosts"; cp /etc/hostname "$root/etc/hostname" 2>/dev/null || true
 
 # An ordinary user with sudo, as on a new machine.
 chroot "$root" useradd -m -s /bin/bash cosmo
