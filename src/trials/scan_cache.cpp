@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -32,6 +33,12 @@ void put(std::ofstream& out, const T& v) {
 template <typename T>
 void putArray(std::ofstream& out, const std::vector<T>& v) {
   out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
+}
+
+/// Unique per process and per writer (two trials of one run may share a bag).
+std::string temporaryName(const std::string& path) {
+  static std::atomic<unsigned> writers{0};
+  return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(writers++);
 }
 
 }  // namespace
@@ -111,7 +118,7 @@ bool CachedScanSource::next(Scan& scan) {
 }
 
 CachingScanSource::CachingScanSource(std::unique_ptr<TrialScanSource> source, const std::string& path)
-    : source_(std::move(source)), path_(path), tmp_(path + ".tmp-" + std::to_string(::getpid())) {
+    : source_(std::move(source)), path_(path), tmp_(temporaryName(path)) {
   fs::create_directories(fs::path(path).parent_path());
   out_.open(tmp_, std::ios::binary | std::ios::trunc);
   if (!out_) throw std::runtime_error(tmp_ + ": cannot write the scan cache");
