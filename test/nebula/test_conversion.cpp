@@ -3,11 +3,16 @@
 // g2o_pcd/, for 2-4 robots with known truth and a known set of wrong loop closures.
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <random>
 
 #include "cosmo/jrl/io.hpp"
@@ -268,4 +273,67 @@ TEST(NebulaConversion, MissingReferenceAndFoldersAreClearErrors) {
       },
       std::runtime_error);
   EXPECT_THROW(convert(f->dir / "nope"), std::runtime_error);
+}
+
+namespace {
+
+std::string nebulaTool() {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  const fs::path tool = self.parent_path() / "cosmo_nebula";
+  return !ec && fs::exists(tool) ? tool.string() : "";
+}
+
+/// Runs cosmo_nebula with `args`; returns {exit code, stdout + stderr}.
+std::pair<int, std::string> runTool(const std::string& args) {
+  FILE* p = ::popen(("'" + nebulaTool() + "' " + args + " 2>&1").c_str(), "r");
+  if (!p) return {-1, ""};
+  std::string out;
+  std::array<char, 4096> buf;
+  for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), p)) > 0;) out.append(buf.data(), n);
+  const int status = ::pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST(NebulaTool, WritesAValidJrlWithStatsMetadataAndModels) {
+  if (nebulaTool().empty()) GTEST_SKIP() << "cosmo_nebula is not built beside this test";
+  const auto f = writeFixture("tool", teamOf(3), 31);
+  const fs::path out = f->dir / "out";
+  const auto [code, text] = runTool("'" + f->dir.string() + "' --out '" + out.string() + "' --name tunnel --estimate-noise-models");
+  ASSERT_EQ(code, 0) << text;
+  EXPECT_NE(text.find("robots: a=husky1 (80 poses) c=husky3 (80 poses) d=husky4 (80 poses)"), std::string::npos) << text;
+  EXPECT_NE(text.find("ignored edges: ARTIFACT"), std::string::npos) << text;
+  const jrl::Dataset ds = jrl::readJrl((out / "tunnel.jrl").string());
+  EXPECT_TRUE(jrl::validate(ds).empty());
+  expectLabelsMatchTruth(f->team, ds);
+  EXPECT_NE(readText(out / "tunnel.nebula.yaml").find("robots:\n  a: husky1\n  c: husky3\n  d: husky4\n"),
+            std::string::npos) << readText(out / "tunnel.nebula.yaml");
+  EXPECT_NE(readText(out / "tunnel.stats.txt").find("IRLC"), std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "tunnel.stats.json"));
+  // The estimated models, given back, reproduce the same file.
+  const auto again = runTool("'" + f->dir.string() + "' --out '" + (f->dir / "out2").string() +
+                             "' --name tunnel --noise-models '" + (out / "tunnel.noise_models.yaml").string() + "'");
+  ASSERT_EQ(again.first, 0) << again.second;
+  EXPECT_EQ(readText(f->dir / "out2" / "tunnel.jrl"), readText(out / "tunnel.jrl"));
+}
+
+TEST(NebulaTool, BrokenInputExitsOneAndWritesNothing) {
+  if (nebulaTool().empty()) GTEST_SKIP() << "cosmo_nebula is not built beside this test";
+  const auto f = writeFixture("toolbad", teamOf(2), 32);
+  fs::remove(f->dir / "ground_truth" / "result.g2o");
+  const fs::path out = f->dir / "out";
+  const auto [code, text] = runTool("'" + f->dir.string() + "' --out '" + out.string() + "'");
+  EXPECT_EQ(code, 1);
+  EXPECT_NE(text.find("result.g2o: reference solution missing"), std::string::npos) << text;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(runTool("--bogus").first, 2);
 }

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <random>
 
 #include "cosmo/jrl/dataset.hpp"
 #include "cosmo/nebula/ros1_serialization.hpp"
@@ -134,4 +135,26 @@ TEST(Ros1Serialization, EmptyGraph) {
   EXPECT_TRUE(d.nodes.empty());
   EXPECT_TRUE(d.edges.empty());
   EXPECT_TRUE(d.incremental);
+}
+
+TEST(Ros1Serialization, MutatedBytesDecodeOrThrowNeverCrash) {
+  const auto bytes = encodePoseGraph(sampleGraph());
+  std::mt19937_64 rng(2026);
+  std::uniform_int_distribution<std::size_t> at(0, bytes.size() - 1);
+  std::uniform_int_distribution<int> value(0, 255), count(1, 8);
+  std::size_t decoded = 0, refused = 0;
+  for (int run = 0; run < 3000; ++run) {
+    auto mutated = bytes;
+    for (int k = count(rng); k > 0; --k) mutated[at(rng)] = static_cast<std::uint8_t>(value(rng));
+    if (run % 3 == 0) mutated.resize(at(rng));
+    try {
+      decodePoseGraph(mutated);
+      ++decoded;
+    } catch (const DecodeError&) {
+      ++refused;
+    }
+  }
+  EXPECT_EQ(decoded + refused, 3000u);
+  EXPECT_GT(refused, 0u);
+  EXPECT_GT(decoded, 0u);  // flipped numbers are still a valid layout
 }
