@@ -187,7 +187,7 @@ TEST(PoseGraphSolver, ReferenceFileInliersSolveToTheIndependentSolversAte) {
   const DatasetCheck c = checkDataset(d, {FactorSelection::All, FactorSelection::Inliers});
   EXPECT_EQ(c.poses, 1025u);
   EXPECT_EQ(c.factors, 1661u);
-  // An independent solver (GTSAM) gets 1.205 m with the inliers and 53 m with all factors.
+  // An independent solver gets 1.205 m with the inliers and 53 m with all factors.
   EXPECT_NEAR(c.solves[1].error.overall.trans_m, 1.2, 0.1);
   EXPECT_GT(c.solves[0].error.overall.trans_m, 10.0 * c.solves[1].error.overall.trans_m);
   EXPECT_EQ(inliersSolveLine(d).find("SUSPICIOUS"), std::string::npos);
