@@ -26,6 +26,7 @@
 #include "cosmo/RecorderProgress.h"
 #include "cosmo/dataset/dataset_recorder.hpp"
 #include "cosmo/jrl/stats.hpp"
+#include "cosmo/report/figures.hpp"
 
 namespace {
 
@@ -153,7 +154,9 @@ class RecorderNode {
         out << "; pending (not written yet): " << report.keyframes_pending << " keyframes, "
             << report.loop_closures_pending << " loop closures";
       ROS_INFO("recorder: %s", out.str().c_str());
-      if (print_stats) std::cout << cosmo::jrl::formatStats(cosmo::jrl::computeStats(ds)) << std::endl;
+      if (print_stats)
+        std::cout << cosmo::jrl::formatStats(cosmo::jrl::computeStats(ds)) << "\n"
+                  << cosmo::report::writeFiguresBesideJrl(ds, path_) << std::endl;
       if (message) *message = out.str();
       return true;
     } catch (const std::exception& e) {

@@ -80,3 +80,31 @@ TEST(CosmoJrlTool, ReferenceStats) {
   for (const char* want : {"duration  12:06", "length    2.13 km", "LC        356 (13.5 %)", "IRLC      280 (9.6 %)"})
     EXPECT_NE(out.find(want), std::string::npos) << want << "\n" << out;
 }
+
+TEST(CosmoJrlTool, SolvePlotAndExport) {
+  if (toolPath().empty()) GTEST_SKIP() << "cosmo_jrl is not built beside this test";
+  auto [rc, out] = run("solve --json " + kTiny);
+  EXPECT_EQ(rc, 0) << out;
+  for (const char* key : {"\"init_ate_m\":", "\"all_ate_m\":", "\"robust_ate_m\":", "\"inliers_ate_m\":", "\"robots\":{\"a\":{"})
+    EXPECT_NE(out.find(key), std::string::npos) << key << "\n" << out;
+  std::tie(rc, out) = run("solve " + kTiny);
+  EXPECT_EQ(rc, 0);
+  EXPECT_NE(out.find("inliers   ATE "), std::string::npos) << out;
+
+  const fs::path dir = fs::temp_directory_path() / ("cosmo_tool_out_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  std::tie(rc, out) = run("plot --no-png -o " + dir.string() + " " + kTiny);
+  EXPECT_EQ(rc, 0) << out;
+  EXPECT_TRUE(fs::exists(dir / "tiny_example.trajectories.svg"));
+  EXPECT_TRUE(fs::exists(dir / "tiny_example.frontend.svg"));
+  std::tie(rc, out) = run("export " + kTiny + " --g2o " + (dir / "g.g2o").string() + " --tum " + (dir / "tum").string() +
+                          " --labels " + (dir / "labels.csv").string());
+  EXPECT_EQ(rc, 0) << out;
+  EXPECT_TRUE(fs::exists(dir / "g.g2o"));
+  EXPECT_TRUE(fs::exists(dir / "tum" / "tiny_example_b_groundtruth.tum"));
+  EXPECT_TRUE(fs::exists(dir / "labels.csv"));
+  EXPECT_EQ(run("export " + kTiny).first, 2);
+  EXPECT_EQ(run("plot -o").first, 2);
+  EXPECT_EQ(run("solve /nonexistent/x.jrl").first, 1);
+  fs::remove_all(dir);
+}

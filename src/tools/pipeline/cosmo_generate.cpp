@@ -26,6 +26,8 @@
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/comm/transfer_log.hpp"
 #include "cosmo/jrl/stats.hpp"
+#include "cosmo/backend/dataset_check.hpp"
+#include "cosmo/report/figures.hpp"
 #include "cosmo/jrl/validate.hpp"
 #include "cosmo/pipeline/odometry_run_ahead.hpp"
 #include "cosmo/pipeline/seed_streams.hpp"
@@ -261,6 +263,8 @@ int main(int argc, char** argv) {
       std::printf("  validate: %zu violations\n", violations.size());
       for (std::size_t i = 0; i < violations.size() && i < 10; ++i)
         std::printf("    %s\n", violations[i].str().c_str());
+      std::printf("  %s\n  %s\n", backend::inliersSolveLine(dataset).c_str(),
+                  report::writeFiguresBesideJrl(dataset, jrl.string()).c_str());
       const double cpu = cpuSeconds() - cpu_before, team_cpu = cpuSeconds(RUSAGE_THREAD) - team_cpu_before;
       std::printf("  wall %.1f s for %.1f s of sequence (%.2fx real time), CPU %.1f s (%.0f %% of one core; the team's "
                   "thread %.1f s", wall, duration, duration / std::max(wall, 1e-9), cpu,

@@ -1,0 +1,30 @@
+#pragma once
+// Exports of a dataset to the formats back-end users load (`cosmo_jrl export`). Each throws std::runtime_error
+// naming the file it cannot write, or the dataset's problem (a non-Pose3 factor, missing values).
+//
+// g2o: one global graph. Vertices `VERTEX_SE3:QUAT id x y z qx qy qz qw` at the initialization (the owner's
+//   value of each key), numbered 0..n-1 in JRL key order (robot, then pose index); a first comment line names
+//   each robot's first id (`# ... first ids a 0 b 351 c 886`). Edges `EDGE_SE3:QUAT id1 id2 x y z qx qy qz qw`
+//   followed by the 21 upper-triangular entries (row by row) of the information matrix Σ^-1 in g2o's order,
+//   translation first: every BetweenFactorPose3 (odometry and every loop closure, outliers included). Priors
+//   are not written (g2o has no prior edge its readers share); they equal the ground truth of each robot's first
+//   pose, which the vertices hold.
+// TUM: per robot <dir>/<name>_<r>_groundtruth.tum and <name>_<r>_initialization.tum, own poses in index order,
+//   `t x y z qx qy qz qw`, t = the stamp (s) of the entry that creates the pose.
+// labels CSV: one row per loop closure (intra and inter robot), header line
+//   robot,entry,measurement,kind,key1,key2,pose1,pose2,stamp_ns,trans_err_m,rot_err_deg,d2,label
+//   errors of the measurement against the ground truth (jrl/closure_error.hpp), label inlier / outlier
+//   (outlier_factors) or unlabelled (no outlier lists in the file).
+#include <string>
+#include <vector>
+
+#include "cosmo/jrl/dataset.hpp"
+
+namespace cosmo::jrl {
+
+void exportG2o(const Dataset& dataset, const std::string& path);
+/// Returns the paths written.
+std::vector<std::string> exportTum(const Dataset& dataset, const std::string& dir);
+void exportLabelsCsv(const Dataset& dataset, const std::string& path);
+
+}  // namespace cosmo::jrl
