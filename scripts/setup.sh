@@ -46,20 +46,17 @@ B=${COSMO_BUILD_DIR:-_build}
 J=${JOBS:-$(nproc)}
 BUILD_TYPE=RelWithDebInfo
 mkdir -p "$B"
-# A cache is reused only when it comes from a configure that succeeded with the build type's flags: a failed
-# configure (e.g. before a compiler was installed) leaves the flags of the build type empty, and cmake would
-# keep them, building without optimisation.
-if [ -f "$B/CMakeCache.txt" ] && { [ ! -f "$B/.cosmo-configured" ] ||
-     ! grep -Eq "^CMAKE_CXX_FLAGS_$(echo $BUILD_TYPE | tr a-z A-Z):STRING=.+" "$B/CMakeCache.txt"; }; then
-  echo "[setup] $B/CMakeCache.txt is from an incomplete configure: configuring afresh"
+# A cache is reused only when it holds the build type's flags: a configure that failed (e.g. before a compiler
+# was installed) leaves them empty, and cmake would keep them, building without optimisation.
+flags_key="CMAKE_CXX_FLAGS_$(echo $BUILD_TYPE | tr a-z A-Z)"
+if [ -f "$B/CMakeCache.txt" ] && ! grep -Eq "^$flags_key:STRING=.+" "$B/CMakeCache.txt"; then
+  echo "[setup] $B/CMakeCache.txt has no $flags_key (an incomplete configure): configuring afresh"
   rm -rf "$B/CMakeCache.txt" "$B/CMakeFiles"
 fi
-rm -f "$B/.cosmo-configured"
 cmake -S . -B "$B" -DCMAKE_BUILD_TYPE=$BUILD_TYPE -DCATKIN_ENABLE_TESTING=ON \
   -DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 \
   -DCMAKE_CXX_COMPILER_LAUNCHER=ccache > "$B/cmake.log" 2>&1 || {
     cat "$B/cmake.log"; rm -rf "$B/CMakeCache.txt" "$B/CMakeFiles"; echo "[setup] cmake failed"; exit 1; }
-touch "$B/.cosmo-configured"
 targets="all"
 [ -n "$COSMO_BUILD_TESTS" ] && targets="all tests"
 # gcc 12 sporadically crashes (ICE) on ROS headers: retry once.
