@@ -69,7 +69,6 @@ void generate(const sim::SimulationParams& params, const fs::path& dir, bool pla
               world.objects().primitives().size(), world.network().nodes.size(), world.network().totalLength(),
               world.terrain().hi().x() - world.terrain().lo().x(), world.terrain().hi().y() - world.terrain().lo().y(),
               total.elapsedMs() * 1e-3);
-  sim::ScanSimulator simulator(world, params.lidar);
   sim::writeSequenceConfig((dir / (params.name + ".yaml")).string(), params);
   if (plan_only) writeNetworkCsv((dir / "network.csv").string(), world.network());
   for (const auto& t : seq.trials) {
@@ -83,6 +82,7 @@ void generate(const sim::SimulationParams& params, const fs::path& dir, bool pla
     std::fflush(stdout);
     writeMcdPoseCsv((dir / (tp.name + "_pose_inW.csv")).string(), t.body);
     if (plan_only) continue;
+    const sim::ScanSimulator simulator(*t.world, params.lidar);  // the world with this trial's clutter
     ros_glue::ScanBagWriter bag((dir / (tp.name + ".bag")).string());
     const Pose3 extrinsic = tp.extrinsicPose();
     bench::Stopwatch sw;
