@@ -271,7 +271,17 @@ std::string DatasetRecorder::metadataYaml(const BuildReport& report) const {
   if (!report.labelled) out << "outlier_labels_note: " << quoted(report.labels_note) << "\n";
   out << "outlier_rule: " << outlierRuleName(rule_) << "  # fidelity: sqrt(r^T Q^-1 r) > critical; squared: r^T Q^-1 r > critical\n";
   out << "critical_value: " << critical_value_ << "  # 95 % chi^2, 6 dof\n";
-  out << "noise_models: " << quoted(noise_.environment) << "\n";
+  out << "noise_models:  # the covariances of every odometry factor / loop closure and of the outlier labels\n";
+  out << "  environment: " << quoted(noise_.environment) << "\n";
+  out << "  file: " << quoted(noise_.source.empty() ? "(built in code)" : noise_.source) << "\n";
+  out << "  provenance: " << quoted(noise_.provenance) << "\n";
+  if (noise_.estimated_from) {
+    const NoiseModelRecord& r = *noise_.estimated_from;
+    out << "  estimated_from: {trial: " << quoted(r.trial) << ", odometry_factors: " << r.odometry_factors
+        << ", loop_closures: " << r.loop_closures << ", loop_closures_left_out: " << r.loop_closures_left_out
+        << ", max_translation_error: " << r.max_translation_error << ", max_rotation_error: " << r.max_rotation_error
+        << "}\n";
+  }
   out << "entries: " << report.entries << "\n";
   out << "odometry_factors: " << report.odometry << "\n";
   out << "intra_robot_loop_closures: " << report.intra << "\n";
@@ -288,7 +298,8 @@ BuildReport DatasetRecorder::write(const std::string& path, jrl::Dataset* built)
   jrl::Dataset ds = build(&report);
   jrl::writeJrl(path, ds);
   writeFileAtomically(metadataPath(path), metadataYaml(report));
-  writeFileAtomically(statsPath(path), jrl::formatStats(jrl::computeStats(ds)) + "\n");
+  writeFileAtomically(statsPath(path), jrl::formatStats(jrl::computeStats(ds)) + "\nnoise models: " +
+                                           noise_.describe() + "\n");
   if (built) *built = std::move(ds);
   return report;
 }

@@ -45,7 +45,9 @@ std::vector<double> readNumbers(const YAML::Node& n, const std::string& at) {
 
 // One section ("odometry" / "loop_closure"): covariance (36 numbers, flat or 6x6) or sigmas (6 numbers).
 void readModel(const ConfigNode& config, const std::string& section, Matrix6& cov) {
-  if (!config.has(section)) return;
+  if (!config.has(section))
+    throw std::runtime_error(config.where + section + ": missing (a noise-model file gives both 'odometry' and "
+                             "'loop_closure')");
   const ConfigNode s = config[section];
   const std::string at = s.where;
   if (s.has("covariance")) {
@@ -82,6 +84,16 @@ void writeModel(std::ostringstream& out, const std::string& name, const std::str
     for (int c = 0; c < 6; ++c) out << (c ? ", " : "") << shortest(cov(r, c));
     out << "]\n";
   }
+}
+
+/// `s` as a double-quoted YAML scalar (newlines dropped).
+std::string yamlQuoted(const std::string& s) {
+  std::string q = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') q += '\\';
+    if (c != '\n') q += c;
+  }
+  return q + "\"";
 }
 
 }  // namespace
@@ -127,28 +139,72 @@ void checkCovariance(const Matrix6& cov, const std::string& what) {
 
 NoiseModels NoiseModels::fromConfig(const ConfigNode& config) {
   NoiseModels m;
-  if (config.node && !config.node.IsMap() && !config.node.IsNull())
-    throw std::runtime_error(config.where + ": expected a map with 'odometry' and 'loop_closure'");
+  if (!config.node || !config.node.IsMap())
+    throw std::runtime_error(config.where + "expected a map with 'odometry' and 'loop_closure'");
   config.read("environment", m.environment);
+  if (config.has("unknown")) {
+    std::string why;
+    config.read("unknown", why);
+    throw NoiseModelsUnknown(config.where + "unknown: the noise models of environment '" + m.environment +
+                                 "' are not known (" + why + ")",
+                             why);
+  }
+  config.read("provenance", m.provenance);
   readModel(config, "odometry", m.odometry);
   readModel(config, "loop_closure", m.loop_closure);
+  if (config.has("estimated_from")) {
+    const ConfigNode e = config["estimated_from"];
+    NoiseModelRecord r;
+    e.read("trial", r.trial);
+    e.read("odometry_factors", r.odometry_factors);
+    e.read("loop_closures", r.loop_closures);
+    e.read("loop_closures_left_out", r.loop_closures_left_out);
+    e.read("max_translation_error", r.max_translation_error);
+    e.read("max_rotation_error", r.max_rotation_error);
+    m.estimated_from = r;
+  }
   return m;
 }
 
-NoiseModels NoiseModels::load(const std::string& yaml_path) { return fromConfig(ConfigNode::load(yaml_path)); }
+NoiseModels NoiseModels::load(const std::string& yaml_path) {
+  NoiseModels m = fromConfig(ConfigNode::load(yaml_path));
+  m.source = yaml_path;
+  return m;
+}
 
 std::string NoiseModels::toYaml(const std::string& header_comment) const {
   std::ostringstream out;
   std::istringstream lines(header_comment);
   for (std::string line; std::getline(lines, line);) out << "#" << (line.empty() ? "" : " ") << line << "\n";
-  std::string quoted = "\"";
-  for (const char c : environment) {
-    if (c == '"' || c == '\\') quoted += '\\';
-    if (c != '\n') quoted += c;
+  out << "environment: " << yamlQuoted(environment) << "  # informative label\n";
+  if (!provenance.empty()) out << "provenance: " << yamlQuoted(provenance) << "\n";
+  if (estimated_from) {
+    const NoiseModelRecord& r = *estimated_from;
+    out << "estimated_from:  # the single-trial run, the measurements used and the good-loop-closure thresholds\n"
+        << "  trial: " << yamlQuoted(r.trial) << "\n"
+        << "  odometry_factors: " << r.odometry_factors << "\n"
+        << "  loop_closures: " << r.loop_closures << "\n"
+        << "  loop_closures_left_out: " << r.loop_closures_left_out << "\n"
+        << "  max_translation_error: " << shortest(r.max_translation_error) << "  # m\n"
+        << "  max_rotation_error: " << shortest(r.max_rotation_error) << "  # rad\n";
   }
-  out << "environment: " << quoted << "\"  # informative label\n";
   writeModel(out, "odometry", "covariance of every odometry factor <r>(i-1) -> <r>i", odometry);
   writeModel(out, "loop_closure", "covariance of every loop closure, intra- and inter-robot", loop_closure);
+  return out.str();
+}
+
+std::string NoiseModels::describe() const {
+  const NoiseModels& m = *this;
+  std::ostringstream out;
+  out << (m.source.empty() ? std::string("(built in code)") : m.source) << " (" << m.environment;
+  if (!m.provenance.empty()) out << ": " << m.provenance;
+  if (m.estimated_from) {
+    const NoiseModelRecord& r = *m.estimated_from;
+    out << "; estimated from " << r.trial << ": " << r.odometry_factors << " odometry factors, " << r.loop_closures
+        << " loop closures (" << r.loop_closures_left_out << " left out over " << r.max_translation_error << " m / "
+        << r.max_rotation_error << " rad)";
+  }
+  out << ")";
   return out.str();
 }
 

@@ -27,6 +27,8 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
+
+#include <optional>
 #include <tf2_ros/transform_broadcaster.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -94,7 +96,7 @@ class FrontendNode {
     frontend_params_ = pipeline::FrontendParams::loadDir(config_dir);
     if (odometry_mode_ != "loam" && odometry_mode_ != "reference" && odometry_mode_ != "external")
       throw std::runtime_error("~odometry must be loam, reference or external, got '" + odometry_mode_ + "'");
-    if (!noise.empty()) noise_ = NoiseModels::load(noise);
+    if (!noise.empty()) noise_ = NoiseModels::load(noise);  // none: loop-closure markers without labels
     frontend_ = std::make_unique<pipeline::RobotFrontend>(robot_, frontend_params_);
     odom_frame_ = std::string(1, robot_) + "/odom";
     base_frame_ = std::string(1, robot_) + "/base_link";
@@ -293,7 +295,7 @@ class FrontendNode {
       ++loop_closures_published_;
       // inlier / outlier against the reference when both poses have one
       const auto r1 = referenceOf(a.robot1, a.index1), r2 = referenceOf(a.robot2, a.index2);
-      if (r1 && r2) mk.state = isOutlier(a.measurement, r1->inverse() * *r2, noise_.loop_closure) ? 2 : 1;
+      if (r1 && r2 && noise_) mk.state = isOutlier(a.measurement, r1->inverse() * *r2, noise_->loop_closure) ? 2 : 1;
       else mk.state = 3;
     }
     ROS_INFO("frontend %c: loop closure %c%zu-%c%zu %s (%zu inliers, descriptor %.3f)", robot_, a.robot1, a.index1,
@@ -389,7 +391,7 @@ class FrontendNode {
 
   char robot_ = 'a';
   std::string odometry_mode_, world_frame_, odom_frame_, base_frame_;
-  NoiseModels noise_;
+  std::optional<NoiseModels> noise_;  ///< for the markers' inlier / outlier colours only
   std::unique_ptr<pipeline::RobotFrontend> frontend_;
   Pose3 world_T_odom_ = Pose3::Identity();
   std::deque<std::pair<StampNs, Pose3>> odom_;

@@ -24,6 +24,8 @@
 //         ~end_linger (s wall after the last scan, radio still stepping; default 3 realtime, 0 lockstep), ~world_frame.
 //         With an empty ~sequence the built-in synthetic sequence is used: cosmo_simulate --config
 //         ~simulate_config --out ~simulate_out (cached by its parameters, so only the first run generates it).
+//         ~noise_models (file; empty: the sequence's environment / noise_models under ~config_dir): checked before
+//         anything is played; none: the player stops with a message that says how to make them.
 // When done it publishes /player/done (latched std_msgs/Empty) and exits (the launch marks it required).
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/TransformStamped.h>
@@ -50,6 +52,8 @@
 #include "cosmo/RecorderProgress.h"
 #include "cosmo/ros/pose_msg.hpp"
 #include "cosmo/ros/resolved_sequence.hpp"
+#include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/pipeline/sequence_noise_models.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/sim/simulation_params.hpp"
 #include "cosmo/trials/trial_reference.hpp"
@@ -96,6 +100,9 @@ int main(int argc, char** argv) {
   std::string simulate_config, simulate_out;
   pnh.param<std::string>("simulate_config", simulate_config, "");
   pnh.param<std::string>("simulate_out", simulate_out, "/tmp/cosmo_builtin_sequence");
+  std::string noise_models, config_dir;
+  pnh.param<std::string>("noise_models", noise_models, "");
+  pnh.param<std::string>("config_dir", config_dir, pipeline::defaultConfigDir());
   if (sequence_path.empty()) {
     try {
       if (simulate_config.empty()) simulate_config = std::string(COSMO_SOURCE_DIR) + "/config/sim/default.yaml";
@@ -125,6 +132,9 @@ int main(int argc, char** argv) {
   std::map<char, Trajectory> refs;
   try {
     config = pipeline::SequenceConfig::load(sequence_path);
+    // The run's noise models must exist before anything is played (the recorder labels with them).
+    ROS_INFO("player: noise models %s",
+             pipeline::loadSequenceNoiseModels(config, config_dir, noise_models).describe().c_str());
     if (seed >= 0) config.seed = static_cast<unsigned long long>(seed);
     timing = ros_glue::synchronizeSequence(config);
     for (const auto& t : config.trials) refs[t.robot] = trials::loadSensorReference(t, timing.of(t.robot));

@@ -6,7 +6,10 @@
 // Subscribes, per robot r of ~robots: /<r>/keyframes_meas (cosmo/RecorderKeyframe) and /<r>/loop_closures
 // (cosmo/RecorderLoopClosure). Publishes /recorder/progress (cosmo/RecorderProgress, latched): what it received
 // per robot, whenever that changes; the player's lockstep mode waits on it before it ends the run.
-// Parameters: ~robots ("a,b,c" or a list), ~name (dataset name), ~output_dir, ~noise_models (YAML path),
+// Parameters: ~robots ("a,b,c" or a list), ~name (dataset name), ~output_dir, the noise models: ~noise_models
+// (YAML path), else those of ~sequence (a sequence config: its environment / noise_models), else those of the
+// built-in sequence of ~simulate_config (sequence_noise_models.hpp; none of them, or a missing file: the node
+// stops with a message that says how to make them), ~config_dir (config/noise_models/ lives there),
 // ~outlier_rule (fidelity | squared), ~autosave_period (s, 0 = off), ~progress_period (s, 0 = off).
 #include <ros/ros.h>
 #include <std_msgs/Empty.h>
@@ -27,6 +30,8 @@
 #include "cosmo/dataset/dataset_recorder.hpp"
 #include "cosmo/jrl/stats.hpp"
 #include "cosmo/report/figures.hpp"
+#include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/pipeline/sequence_noise_models.hpp"
 
 namespace {
 
@@ -40,18 +45,18 @@ class RecorderNode {
     std::string name = "cosmo", output_dir = ".", noise_path, rule_name = "fidelity";
     pnh.param("name", name, name);
     pnh.param("output_dir", output_dir, output_dir);
-    pnh.param("noise_models", noise_path, std::string(COSMO_SOURCE_DIR "/config/noise_models/synthetic.yaml"));
+    std::string sequence_path, simulate_config, config_dir = cosmo::pipeline::defaultConfigDir();
+    pnh.param("noise_models", noise_path, noise_path);
+    pnh.param("sequence", sequence_path, sequence_path);
+    pnh.param("simulate_config", simulate_config, simulate_config);
+    pnh.param("config_dir", config_dir, config_dir);
     pnh.param("outlier_rule", rule_name, rule_name);
     pnh.param("autosave_period", autosave_period_, 30.0);
     pnh.param("progress_period", progress_period_, 5.0);
     const auto rule = cosmo::parseOutlierRule(rule_name);
     if (!rule) throw std::runtime_error("~outlier_rule: expected 'fidelity' or 'squared', got '" + rule_name + "'");
-    cosmo::NoiseModels noise;
-    if (std::filesystem::exists(noise_path)) {
-      noise = cosmo::NoiseModels::load(noise_path);  // throws naming file and key
-    } else {
-      ROS_WARN("recorder: ~noise_models '%s' not found: using the built-in defaults", noise_path.c_str());
-    }
+    const cosmo::NoiseModels noise =
+        cosmo::pipeline::loadRunNoiseModels(noise_path, sequence_path, simulate_config, config_dir);
     std::filesystem::create_directories(output_dir);
     path_ = (std::filesystem::path(output_dir) / (name + ".jrl")).string();
     recorder_.emplace(name, robots, noise, *rule);
@@ -69,8 +74,8 @@ class RecorderNode {
     write_request_ = pnh.subscribe<std_msgs::Empty>("write_request", 10, [this](const std_msgs::Empty::ConstPtr&) {
       write("request");
     });
-    ROS_INFO("recorder: %zu robots, noise models '%s', outlier rule %s, writing %s", robots.size(),
-             noise.environment.c_str(), cosmo::outlierRuleName(*rule), path_.c_str());
+    ROS_INFO("recorder: %zu robots, noise models %s, outlier rule %s, writing %s", robots.size(),
+             noise.describe().c_str(), cosmo::outlierRuleName(*rule), path_.c_str());
   }
 
   /// Main loop in the calling thread: until SIGINT/SIGTERM or ros::shutdown, then the final write.

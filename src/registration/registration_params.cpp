@@ -47,6 +47,12 @@ RegistrationParams RegistrationParams::fromConfig(const ConfigNode& root) {
   node.read("min_overlap", p.min_overlap);
   node.read("min_structure_overlap", p.min_structure_overlap);
   node.read("structure_max_normal_z", p.structure_max_normal_z);
+  node.read("gate", p.gate);
+  require(p.gate == "strict" || p.gate == "paper", node, "gate", "expected strict or paper, got '" + p.gate + "'");
+  if (p.gate == "paper") {
+    p.min_overlap = 0.0;
+    p.min_structure_overlap = 0.0;
+  }
   require(p.voxel_size > 0.0, node, "voxel_size", "must be > 0");
   require(p.normal_radius > 0.0, node, "normal_radius", "must be > 0");
   require(p.fpfh_radius > 0.0, node, "fpfh_radius", "must be > 0");

@@ -50,6 +50,10 @@ LidarModel LidarModel::fromConfig(const ConfigNode& node) {
 #define X(f) node.read(#f, m.f);
   COSMO_SIM_LIDAR_FIELDS(X)
 #undef X
+  node.read("range_sigma_per_m", m.range_sigma_per_m);
+  node.read("beam_angle_sigma_deg", m.beam_angle_sigma_deg);
+  if (m.range_sigma_per_m < 0.0 || m.beam_angle_sigma_deg < 0.0)
+    throw std::runtime_error(node.where + ": range_sigma_per_m and beam_angle_sigma_deg must be >= 0");
   if (m.beams < 1 || m.columns < 1 || !(m.rate_hz > 0) || !(m.max_range > m.min_range))
     throw std::runtime_error(node.where + ": LiDAR needs beams, columns >= 1, rate_hz > 0, max_range > min_range");
   return m;
@@ -61,6 +65,9 @@ std::string LidarModel::describe() const {
 #define X(f) os << #f << '=' << f << ';';
   COSMO_SIM_LIDAR_FIELDS(X)
 #undef X
+  // Only when used: the cache keys of sensors without them stay valid.
+  if (range_sigma_per_m > 0.0) os << "range_sigma_per_m=" << range_sigma_per_m << ';';
+  if (beam_angle_sigma_deg > 0.0) os << "beam_angle_sigma_deg=" << beam_angle_sigma_deg << ';';
   return os.str();
 }
 

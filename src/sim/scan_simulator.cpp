@@ -42,6 +42,25 @@ Scan ScanSimulator::simulate(const Trajectory& body, const Pose3& T_body_lidar, 
   return simulate(poses, stamp, seed);
 }
 
+std::vector<Eigen::Vector3d> ScanSimulator::castDirections(std::uint64_t seed) const {
+  if (!(lidar_.beam_angle_sigma_deg > 0.0)) return dirs_;
+  const auto el = lidar_.elevations();
+  const double sigma = lidar_.beam_angle_sigma_deg * M_PI / 180.0;
+  std::vector<Eigen::Vector3d> out(dirs_.size());
+  for (int b = 0; b < lidar_.beams; ++b) {
+    std::uint64_t s = seed ^ (0xA24BAED4963EE407ULL * static_cast<std::uint64_t>(b + 1));
+    splitmix64(s);
+    const double e = el[b] + sigma * gaussian(s), da = sigma * gaussian(s);
+    const double ce = std::cos(e), se = std::sin(e), cd = std::cos(da), sd = std::sin(da);
+    for (int c = 0; c < lidar_.columns; ++c) {
+      const double az = lidar_.azimuth(c), ca = std::cos(az) * cd - std::sin(az) * sd,
+                   sa = std::sin(az) * cd + std::cos(az) * sd;
+      out[static_cast<std::size_t>(b) * lidar_.columns + c] = Eigen::Vector3d(ce * ca, ce * sa, se);
+    }
+  }
+  return out;
+}
+
 Scan ScanSimulator::simulate(const std::vector<Pose3>& column_poses, StampNs stamp, std::uint64_t seed) const {
   const int B = lidar_.beams, C = lidar_.columns;
   if (static_cast<int>(column_poses.size()) != C)
@@ -53,6 +72,8 @@ Scan ScanSimulator::simulate(const std::vector<Pose3>& column_poses, StampNs sta
   const std::uint64_t scan_seed = splitmix64(scan_key);
   const auto& materials = materialTable();
   const LidarModel& L = lidar_;
+  const std::vector<Eigen::Vector3d> cast = L.beam_angle_sigma_deg > 0.0 ? castDirections(seed) : std::vector<Eigen::Vector3d>{};
+  const std::vector<Eigen::Vector3d>& cast_dirs = cast.empty() ? dirs_ : cast;
 
   tbb::parallel_for(tbb::blocked_range<int>(0, C, 16), [&](const tbb::blocked_range<int>& cols) {
     for (int c = cols.begin(); c != cols.end(); ++c) {
@@ -61,7 +82,7 @@ Scan ScanSimulator::simulate(const std::vector<Pose3>& column_poses, StampNs sta
       const Eigen::Vector3d origin = T.translation();
       for (int b = 0; b < B; ++b) {
         const std::size_t idx = static_cast<std::size_t>(b) * C + c;
-        const Eigen::Vector3d& ds = dirs_[idx];
+        const Eigen::Vector3d& ds = cast_dirs[idx];
         const Ray ray(origin, R * ds);
         Hit hit;
         if (!world_.intersect(ray, 1e-6, L.max_range, hit)) continue;
@@ -77,7 +98,7 @@ Scan ScanSimulator::simulate(const std::vector<Pose3>& column_poses, StampNs sta
         const double q = hit.t / r50;
         const double q2 = q * q, q4 = q2 * q2;
         if (uniform01(rs) > 1.0 / (1.0 + q4 * q4)) continue;
-        double r = hit.t + L.range_sigma * gaussian(rs);
+        double r = hit.t + (L.range_sigma + L.range_sigma_per_m * hit.t) * gaussian(rs);
         if (m.depth_spread > 0.0f && L.foliage_spread > 0.0) r += L.foliage_spread * m.depth_spread * uniform01(rs);
         if (r < L.min_range || r > L.max_range) continue;
         range[idx] = static_cast<float>(r);

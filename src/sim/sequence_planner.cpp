@@ -24,8 +24,10 @@ std::uint64_t deriveSeed(std::uint64_t seed, const std::string& label) {
 
 PlannedSequence planSequence(const SimulationParams& params) {
   PlannedSequence seq;
-  seq.world = std::make_shared<const World>(generateWorld(params.world, deriveSeed(params.seed, "world")));
+  const WorldLayout layout = generateLayout(params.world, deriveSeed(params.seed, "world"));
+  seq.world = std::make_shared<const World>(layoutWorld(layout));
   const World& world = *seq.world;
+  const bool per_trial = changesPerTrial(params.world);
   const double period = params.lidar.period();
   for (std::size_t i = 0; i < params.trials.size(); ++i) {
     PlannedTrial t;
@@ -44,6 +46,8 @@ PlannedSequence planSequence(const SimulationParams& params) {
     const auto period_ns = static_cast<StampNs>(std::llround(period * 1e9));
     for (StampNs s = t.body.startStamp() + period_ns; s <= t.body.endStamp(); s += period_ns) t.scan_stamps.push_back(s);
     t.noise_seed = deriveSeed(params.seed, "lidar/" + t.params.name);
+    t.world = per_trial ? std::make_shared<const World>(layoutWorld(layout, deriveSeed(params.seed, "day/" + t.params.name)))
+                        : seq.world;
     seq.trials.push_back(std::move(t));
   }
   return seq;
@@ -57,6 +61,8 @@ void writeSequenceConfig(const std::string& path, const SimulationParams& params
       << params.hash() << ")\n";
   out << "name: " << params.name << "\n";
   out << "source: " << params.source << "\n";
+  out << "environment: " << params.environment << "  # noise models: config/noise_models/" << params.environment
+      << ".yaml\n";
   out << "seed: " << params.seed << "\n";
   out << "anchor: " << params.anchor << "\n";
   out << "time_offset_sigma: " << params.time_offset_sigma << "\n";

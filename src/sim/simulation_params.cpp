@@ -34,6 +34,7 @@ SimulationParams SimulationParams::fromConfig(const ConfigNode& node) {
   SimulationParams p;
   node.read("name", p.name);
   node.read("source", p.source);
+  node.read("environment", p.environment);
   node.read("seed", p.seed);
   node.read("anchor", p.anchor);
   node.read("time_offset_sigma", p.time_offset_sigma);
@@ -77,7 +78,7 @@ SimulationParams SimulationParams::fromConfig(const ConfigNode& node) {
 std::string SimulationParams::describe() const {
   std::ostringstream os;
   os << std::setprecision(17) << "code=" << kSimCodeVersion << "\nname=" << name << ";source=" << source
-     << ";seed=" << seed << ";anchor=" << anchor << ";time_offset_sigma=" << time_offset_sigma
+     << ";environment=" << environment << ";seed=" << seed << ";anchor=" << anchor << ";time_offset_sigma=" << time_offset_sigma
      << ";start_epoch=" << start_epoch << ";trial_epoch_spacing=" << trial_epoch_spacing << ";topic=" << topic
      << ";frame_id=" << frame_id << "\nworld:" << world.describe() << "\nlidar:" << lidar.describe();
   for (const auto& t : trials) os << "\ntrial:" << t.describe();

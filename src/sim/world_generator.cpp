@@ -17,6 +17,7 @@ namespace cosmo::sim {
   X(footpath_half_width) X(footpath_fraction) X(diagonal_fraction) X(building_height_min) X(building_height_max) \
   X(p_buildings) X(p_row) X(p_park) X(p_parking) X(tree_row_fraction) X(tree_spacing) X(pole_spacing)           \
   X(parked_car_fraction) X(wall_fraction) X(outer_ring) X(terrain_margin)
+#define COSMO_SIM_CHANGE_FIELDS(X) X(car_change) X(people_per_100m) X(foliage_change)
 #define COSMO_SIM_TERRAIN_FIELDS(X) X(cell) X(amplitude) X(wavelength) X(waves) X(material_cell)
 
 WorldParams WorldParams::fromConfig(const ConfigNode& node) {
@@ -27,6 +28,9 @@ WorldParams WorldParams::fromConfig(const ConfigNode& node) {
   const ConfigNode t = node["terrain"];
 #define X(f) t.read(#f, p.terrain.f);
   COSMO_SIM_TERRAIN_FIELDS(X)
+#undef X
+#define X(f) node.read(#f, p.f);
+  COSMO_SIM_CHANGE_FIELDS(X)
 #undef X
   return p;
 }
@@ -40,6 +44,11 @@ std::string WorldParams::describe() const {
 #define X(f) os << "terrain." #f << '=' << terrain.f << ';';
   COSMO_SIM_TERRAIN_FIELDS(X)
 #undef X
+  if (changesPerTrial(*this)) {  // only when used: the cache keys of worlds without changes stay valid
+#define X(f) os << #f << '=' << f << ';';
+    COSMO_SIM_CHANGE_FIELDS(X)
+#undef X
+  }
   return os.str();
 }
 
@@ -62,10 +71,30 @@ struct RowTemplate {
   double width, depth, height, gap;
 };
 
+/// Box with its bottom buried below the local ground and z0..z1 measured from the ground at its centre
+/// (z0 <= 0: down into the ground).
+void addBox(const Terrain& terrain, std::vector<Primitive>& prims, const Vector2d& c, double lx, double ly, double z0,
+            double z1, double yaw, std::uint8_t mat) {
+  const double g = terrain.height(c.x(), c.y());
+  const double bottom = z0 <= 0.0 ? terrain.minHeightAround(c.x(), c.y(), 0.5 * std::hypot(lx, ly)) - 0.3 : g + z0;
+  const double top = g + z1;
+  if (top <= bottom) return;
+  prims.push_back(Primitive::box({c.x(), c.y(), 0.5 * (bottom + top)}, {0.5 * lx, 0.5 * ly, 0.5 * (top - bottom)},
+                                 yaw, mat));
+}
+
+void addCar(const Terrain& terrain, std::vector<Primitive>& prims, const ParkedCar& car) {
+  const Vector2d c(car.x, car.y);
+  addBox(terrain, prims, c, car.length, car.width, 0.25, car.body_top, car.yaw, kCarPaint);
+  const Vector2d cab = c - 0.1 * car.length * Vector2d(std::cos(car.yaw), std::sin(car.yaw));
+  addBox(terrain, prims, cab, 0.55 * car.length, car.width - 0.1, 0.9, car.cabin_top, car.yaw, kCarPaint);
+}
+
 class Builder {
  public:
-  Builder(const WorldParams& p, std::mt19937_64& rng, Terrain& terrain, std::vector<Primitive>& prims)
-      : p_(p), rng_(rng), terrain_(terrain), prims_(prims) {
+  Builder(const WorldParams& p, std::mt19937_64& rng, Terrain& terrain, std::vector<Primitive>& prims,
+          std::vector<ParkedCar>& cars, std::vector<Primitive>& canopies)
+      : p_(p), rng_(rng), terrain_(terrain), prims_(prims), cars_(cars), canopies_(canopies) {
     row_tree_ = {0.25, 3.0, 2.3, 1.9};
     row_ = {uni(11.0, 15.0), uni(28.0, 36.0), uni(9.0, 15.0), uni(8.0, 12.0)};
   }
@@ -73,22 +102,15 @@ class Builder {
   double uni(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
   bool chance(double prob) { return uni(0.0, 1.0) < prob; }
 
-  /// Box with its bottom buried below the local ground and z0..z1 measured from the ground at its centre
-  /// (z0 <= 0: down into the ground).
   void box(const Vector2d& c, double lx, double ly, double z0, double z1, double yaw, std::uint8_t mat) {
-    const double g = terrain_.height(c.x(), c.y());
-    const double bottom = z0 <= 0.0 ? terrain_.minHeightAround(c.x(), c.y(), 0.5 * std::hypot(lx, ly)) - 0.3 : g + z0;
-    const double top = g + z1;
-    if (top <= bottom) return;
-    prims_.push_back(Primitive::box({c.x(), c.y(), 0.5 * (bottom + top)}, {0.5 * lx, 0.5 * ly, 0.5 * (top - bottom)},
-                                    yaw, mat));
+    addBox(terrain_, prims_, c, lx, ly, z0, z1, yaw, mat);
   }
 
   void tree(const Vector2d& c, const TreeShape& s) {
     const double g = terrain_.minHeightAround(c.x(), c.y(), s.trunk_radius);
     prims_.push_back(Primitive::cylinder(c.x(), c.y(), g - 0.3, g + s.trunk_height + 0.5 * s.canopy_rz, s.trunk_radius, kBark));
-    prims_.push_back(Primitive::ellipsoid({c.x(), c.y(), g + s.trunk_height + s.canopy_rz * 0.8},
-                                          {s.canopy_rx, s.canopy_rx, s.canopy_rz}, kFoliage));
+    canopies_.push_back(Primitive::ellipsoid({c.x(), c.y(), g + s.trunk_height + s.canopy_rz * 0.8},
+                                             {s.canopy_rx, s.canopy_rx, s.canopy_rz}, kFoliage));
   }
 
   TreeShape randomTree() {
@@ -104,10 +126,15 @@ class Builder {
   }
 
   void car(const Vector2d& c, double yaw) {
-    const double len = uni(4.0, 4.8), wid = uni(1.7, 1.9);
-    box(c, len, wid, 0.25, uni(0.95, 1.1), yaw, kCarPaint);
-    const Vector2d cab = c - 0.1 * len * Vector2d(std::cos(yaw), std::sin(yaw));
-    box(cab, 0.55 * len, wid - 0.1, 0.9, uni(1.4, 1.6), yaw, kCarPaint);
+    ParkedCar car;
+    car.x = c.x();
+    car.y = c.y();
+    car.yaw = yaw;
+    car.length = uni(4.0, 4.8);
+    car.width = uni(1.7, 1.9);
+    car.body_top = uni(0.95, 1.1);
+    car.cabin_top = uni(1.4, 1.6);
+    cars_.push_back(car);
   }
 
   /// Building of a random kind inside `lot` (axis-aligned lot, building rotated by yaw about the lot centre).
@@ -285,11 +312,83 @@ class Builder {
   std::mt19937_64& rng_;
   Terrain& terrain_;
   std::vector<Primitive>& prims_;
+  std::vector<ParkedCar>& cars_;
+  std::vector<Primitive>& canopies_;
 };
+
+/// One trial's clutter: the cars that stay (some moved along their kerb), the canopies as they are that day.
+void addTrialClutter(const WorldLayout& L, std::mt19937_64& rng, std::vector<Primitive>& prims) {
+  auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  const WorldParams& p = L.params;
+  for (ParkedCar car : L.cars) {
+    const double u = uni(0.0, 1.0);
+    if (u < 0.5 * p.car_change) continue;  // gone that day
+    if (u < p.car_change) {                // parked a little further along the kerb
+      const double shift = (uni(0.0, 1.0) < 0.5 ? -1.0 : 1.0) * uni(1.0, 5.0);
+      car.x += shift * std::cos(car.yaw);
+      car.y += shift * std::sin(car.yaw);
+    }
+    addCar(L.terrain, prims, car);
+  }
+  for (Primitive canopy : L.canopies) {
+    if (p.foliage_change > 0.0) {
+      const double grow = 1.0 + uni(-p.foliage_change, p.foliage_change);
+      canopy.half *= grow;
+      canopy.center += Vector3d(uni(-1.0, 1.0), uni(-1.0, 1.0), 0.0) * (p.foliage_change * canopy.half.x());
+    }
+    prims.push_back(canopy);
+  }
+}
+
+/// Pedestrians on the pavements (streets) and beside the footpaths, away from the junctions and the lanes the
+/// platforms drive or walk in.
+void addPeople(const WorldLayout& L, std::mt19937_64& rng, std::vector<Primitive>& prims) {
+  auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  const WorldParams& p = L.params;
+  const auto& net = L.network;
+  for (std::size_t e = 0; e < net.edges.size(); ++e) {
+    const Vector2d a = net.nodes[net.edges[e].a], b = net.nodes[net.edges[e].b];
+    const double len = (b - a).norm();
+    const double clear = p.street_half_width + p.sidewalk_width + 2.0;
+    if (len < 2.0 * clear) continue;
+    const Vector2d u = (b - a) / len, n(-u.y(), u.x());
+    const double expected = p.people_per_100m * len / 100.0;
+    int count = static_cast<int>(expected);
+    if (uni(0.0, 1.0) < expected - count) ++count;
+    for (int k = 0; k < count; ++k) {
+      const double s = uni(clear, len - clear);
+      const double side = uni(0.0, 1.0) < 0.5 ? -1.0 : 1.0;
+      const double off = net.edges[e].street ? p.street_half_width + uni(0.5, 0.9) * p.sidewalk_width
+                                             : p.footpath_half_width + uni(1.0, 2.0);
+      const Vector2d c = a + s * u + side * off * n;
+      const double g = L.terrain.minHeightAround(c.x(), c.y(), 0.3);
+      prims.push_back(Primitive::cylinder(c.x(), c.y(), g - 0.1, g + uni(1.55, 1.9), uni(0.2, 0.3), kBark));
+    }
+  }
+}
 
 }  // namespace
 
-World generateWorld(const WorldParams& p, std::uint64_t seed) {
+bool changesPerTrial(const WorldParams& p) {
+  return p.car_change > 0.0 || p.people_per_100m > 0.0 || p.foliage_change > 0.0;
+}
+
+World layoutWorld(const WorldLayout& layout, std::optional<std::uint64_t> trial_seed) {
+  std::vector<Primitive> prims = layout.fixed;
+  if (!trial_seed) {
+    for (const ParkedCar& car : layout.cars) addCar(layout.terrain, prims, car);
+    prims.insert(prims.end(), layout.canopies.begin(), layout.canopies.end());
+  } else {
+    std::mt19937_64 rng(*trial_seed);
+    addTrialClutter(layout, rng, prims);
+    addPeople(layout, rng, prims);
+  }
+  return World(layout.terrain, std::move(prims), layout.network);
+}
+
+World generateWorld(const WorldParams& p, std::uint64_t seed) { return layoutWorld(generateLayout(p, seed)); }
+
+WorldLayout generateLayout(const WorldParams& p, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
   const int bx = std::max(1, p.blocks_x), by = std::max(1, p.blocks_y);
@@ -304,7 +403,9 @@ World generateWorld(const WorldParams& p, std::uint64_t seed) {
   const double pad = p.outer_ring + p.terrain_margin;
   Terrain terrain = Terrain::generate({xs.front() - pad, ys.front() - pad}, {xs.back() + pad, ys.back() + pad}, p.terrain, rng);
   std::vector<Primitive> prims;
-  Builder b(p, rng, terrain, prims);
+  std::vector<ParkedCar> cars;
+  std::vector<Primitive> canopies;
+  Builder b(p, rng, terrain, prims, cars, canopies);
 
   PathNetwork net;
   auto node = [&](int i, int j) { return j * (bx + 1) + i; };
@@ -368,7 +469,14 @@ World generateWorld(const WorldParams& p, std::uint64_t seed) {
   for (const auto& s : segs) b.street(net.nodes[s.a], net.nodes[s.b], s.street);
   for (std::size_t e = segs.size(); e < net.edges.size(); ++e)
     terrain.paintSegment(net.nodes[net.edges[e].a], net.nodes[net.edges[e].b], p.footpath_half_width, kPaving);
-  return World(std::move(terrain), std::move(prims), std::move(net));
+  WorldLayout layout;
+  layout.params = p;
+  layout.terrain = std::move(terrain);
+  layout.fixed = std::move(prims);
+  layout.cars = std::move(cars);
+  layout.canopies = std::move(canopies);
+  layout.network = std::move(net);
+  return layout;
 }
 
 }  // namespace cosmo::sim

@@ -229,7 +229,10 @@ TEST_F(RecorderTest, WritesAtomicallyAndParsesBack) {
   std::stringstream stats;
   stats << stats_in.rdbuf();
   EXPECT_EQ(DatasetRecorder::statsPath(path), (dir / "synthetic_team.stats.txt").string());
-  EXPECT_EQ(stats.str(), jrl::formatStats(jrl::computeStats(ds)) + "\n");
+  // The stats table, then the noise models the labels were made with (file and provenance).
+  EXPECT_EQ(stats.str(), jrl::formatStats(jrl::computeStats(ds)) + "\nnoise models: (built in code) (test)\n");
+  EXPECT_EQ(yaml["noise_models"]["environment"].as<std::string>(), "test");
+  EXPECT_EQ(yaml["noise_models"]["file"].as<std::string>(), "(built in code)");
   for (const auto& f : std::filesystem::directory_iterator(dir))  // no temporary files left behind
     EXPECT_EQ(f.path().string().find(".tmp."), std::string::npos) << f.path();
   // A failing write (missing folder) throws and leaves the previous file untouched.

@@ -6,6 +6,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
+#include "cosmo/common/shared_data.hpp"
 #include "cosmo/dataset/dataset_recorder.hpp"
 #include "cosmo/dataset/noise_model_estimation.hpp"
 #include "cosmo/dataset/noise_models.hpp"
@@ -82,8 +85,41 @@ TEST(NoiseModels, ReadsFlatListsAndSigmas) {
   EXPECT_DOUBLE_EQ(m.odometry(5, 5), 0.01);
   EXPECT_EQ(m.odometry(0, 1), 0.0);
   EXPECT_EQ(m.loop_closure(3, 3), 2.0);
-  // Missing sections keep the defaults.
-  EXPECT_EQ(NoiseModels::fromConfig(parse("environment: x\n")).loop_closure, NoiseModels::defaultLoopClosure());
+  // Both sections are required: nothing is filled in from elsewhere.
+  EXPECT_THROW(NoiseModels::fromConfig(parse("environment: x\n")), std::runtime_error);
+  EXPECT_THROW(NoiseModels::fromConfig(parse("odometry:\n  sigmas: [1, 1, 1, 1, 1, 1]\n")), std::runtime_error);
+}
+
+TEST(NoiseModels, ProvenanceAndEstimationRecordRoundTrip) {
+  NoiseModels m;
+  m.environment = "env";
+  m.provenance = "from \"somewhere\"";
+  NoiseModelRecord r;
+  r.trial = "night_04";
+  r.odometry_factors = 238;
+  r.loop_closures = 119;
+  r.loop_closures_left_out = 3;
+  r.max_translation_error = 0.4;
+  r.max_rotation_error = 0.03;
+  m.estimated_from = r;
+  const NoiseModels back = NoiseModels::fromConfig(parse(m.toYaml("header")));
+  EXPECT_EQ(back.provenance, m.provenance);
+  ASSERT_TRUE(back.estimated_from.has_value());
+  EXPECT_EQ(back.estimated_from->trial, "night_04");
+  EXPECT_EQ(back.estimated_from->odometry_factors, 238u);
+  EXPECT_EQ(back.estimated_from->loop_closures, 119u);
+  EXPECT_EQ(back.estimated_from->loop_closures_left_out, 3u);
+  EXPECT_EQ(back.estimated_from->max_translation_error, 0.4);
+  EXPECT_EQ(back.estimated_from->max_rotation_error, 0.03);
+  EXPECT_NE(back.describe().find("estimated from night_04: 238 odometry factors, 119 loop closures"),
+            std::string::npos) << back.describe();
+  // An environment whose models are unknown says so instead of handing out numbers.
+  try {
+    NoiseModels::fromConfig(parse("environment: far\nunknown: \"not measured\"\n"));
+    FAIL() << "no error";
+  } catch (const NoiseModelsUnknown& e) {
+    EXPECT_EQ(e.reason, "not measured");
+  }
 }
 
 TEST(NoiseModels, BadConfigsNameFileAndKey) {
@@ -98,15 +134,19 @@ TEST(NoiseModels, BadConfigsNameFileAndKey) {
   EXPECT_NE(message("odometry:\n  covariance: [1, 2, 3]\n").find("test.yaml: odometry.covariance: expected 36"),
             std::string::npos);
   EXPECT_NE(message("odometry:\n  sigmas: [1, 2, x, 4, 5, 6]\n").find("odometry.sigmas[2]"), std::string::npos);
-  EXPECT_NE(message("loop_closure:\n  sigmas: [1, 2, 0, 4, 5, 6]\n").find("positive definite"), std::string::npos);
-  EXPECT_NE(message("loop_closure:\n  nothing: 1\n").find("loop_closure: expected 'covariance'"), std::string::npos);
+  const std::string odometry = "odometry:\n  sigmas: [1, 1, 1, 1, 1, 1]\n";
+  EXPECT_NE(message(odometry + "loop_closure:\n  sigmas: [1, 2, 0, 4, 5, 6]\n").find("positive definite"),
+            std::string::npos);
+  EXPECT_NE(message(odometry + "loop_closure:\n  nothing: 1\n").find("loop_closure: expected 'covariance'"),
+            std::string::npos);
+  EXPECT_NE(message(odometry).find("test.yaml: loop_closure: missing"), std::string::npos) << message(odometry);
   std::string asym = "odometry:\n  covariance: [1,0.5,0,0,0,0, 0,1,0,0,0,0, 0,0,1,0,0,0, 0,0,0,1,0,0, 0,0,0,0,1,0, 0,0,0,0,0,1]\n";
   EXPECT_NE(message(asym).find("not symmetric"), std::string::npos);
   EXPECT_THROW(NoiseModels::load("/nonexistent/noise.yaml"), std::runtime_error);
 }
 
 TEST(NoiseModels, EnvironmentConfigsLoad) {
-  for (const char* env : {"synthetic", "ntu", "kth", "tuhh", "cu_boulder"}) {
+  for (const char* env : {"synthetic", "ntu", "kth", "tuhh"}) {
     const std::string path = std::string(COSMO_SOURCE_DIR) + "/config/noise_models/" + env + ".yaml";
     NoiseModels m;
     ASSERT_NO_THROW(m = NoiseModels::load(path)) << path;
@@ -116,6 +156,28 @@ TEST(NoiseModels, EnvironmentConfigsLoad) {
   const NoiseModels tuhh = NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/tuhh.yaml");
   EXPECT_EQ(tuhh.odometry, NoiseModels::defaultOdometry());
   EXPECT_EQ(tuhh.loop_closure, NoiseModels::defaultLoopClosure());
+  // CU Boulder's are not known: its file says so (no copy of another environment's).
+  EXPECT_THROW(NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/cu_boulder.yaml"),
+               NoiseModelsUnknown);
+}
+
+TEST(NoiseModels, ShippedModelsAreTheReleasedCosmoBenchCovariances) {
+  const auto json_path = sharedPath("ref/cosmo_noise_models.json");
+  if (!json_path) GTEST_SKIP() << "../shared/ref/cosmo_noise_models.json absent";
+  const nlohmann::json ref = nlohmann::json::parse(std::ifstream(*json_path));
+  for (const char* env : {"ntu", "kth", "tuhh"}) {
+    const NoiseModels m = NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/" + env + ".yaml");
+    EXPECT_FALSE(m.provenance.empty()) << env;
+    for (const auto& [key, cov] : {std::pair{"odometry_covariance", m.odometry},
+                                   std::pair{"loop_closure_covariance", m.loop_closure}}) {
+      const auto& v = ref.at(env).at(key);
+      ASSERT_EQ(v.size(), 36u);
+      for (int i = 0; i < 36; ++i) EXPECT_EQ(cov(i / 6, i % 6), v[i].get<double>()) << env << " " << key << " " << i;
+    }
+  }
+  // Different environments, different models.
+  EXPECT_NE(NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/ntu.yaml").loop_closure,
+            NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/kth.yaml").loop_closure);
 }
 
 TEST(NoiseModelEstimation, RecoversKnownCovarianceFromASyntheticRun) {

@@ -45,9 +45,9 @@ inline std::vector<SyntheticTrial> makeSyntheticTeam(int robots, std::size_t max
     params.trials.push_back(t);
   }
   const auto seq = sim::planSequence(params);
-  sim::ScanSimulator simulator(*seq.world, params.lidar);
   std::vector<SyntheticTrial> out;
   for (const auto& t : seq.trials) {
+    const sim::ScanSimulator simulator(*t.world, params.lidar);
     SyntheticTrial s;
     s.robot = t.params.robot[0];
     s.body = t.body;

@@ -3,11 +3,15 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
+#include "cosmo/sim/material.hpp"
 #include "cosmo/sim/scan_simulator.hpp"
 #include "cosmo/sim/sequence_planner.hpp"
+#include "cosmo/sim/world_generator.hpp"
 
 using namespace cosmo;
 using namespace cosmo::sim;
@@ -212,4 +216,69 @@ TEST(SequencePlanner, ConfigFilesParseAndCiSequenceIsSmall) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("x.yaml: trials"), std::string::npos) << e.what();
   }
+}
+
+TEST(WorldLayout, EveryTrialSeesTheSameBuildingsAndItsOwnClutter) {
+  WorldParams wp = smallParams().world;
+  EXPECT_FALSE(changesPerTrial(wp));
+  const std::string still = wp.describe();
+  wp.car_change = 0.5;
+  wp.people_per_100m = 2.0;
+  wp.foliage_change = 0.15;
+  EXPECT_TRUE(changesPerTrial(wp));
+  EXPECT_NE(wp.describe(), still);  // the cache key follows the changes
+  const WorldLayout layout = generateLayout(wp, 3);
+  ASSERT_GT(layout.cars.size(), 10u);
+  ASSERT_GT(layout.canopies.size(), 10u);
+  // As generated: every car (two boxes each) and every canopy, no people.
+  const World generated = layoutWorld(layout);
+  EXPECT_EQ(generated.objects().primitives().size(), layout.fixed.size() + 2 * layout.cars.size() + layout.canopies.size());
+  const World a = layoutWorld(layout, 1), a_again = layoutWorld(layout, 1), b = layoutWorld(layout, 2);
+  const auto& pa = a.objects().primitives();
+  const auto& pb = b.objects().primitives();
+  ASSERT_GE(pa.size(), layout.fixed.size());
+  ASSERT_GE(pb.size(), layout.fixed.size());
+  // The fixed world is shared: the same primitives in both trials.
+  std::size_t same_fixed = 0;
+  for (const Primitive& f : layout.fixed)
+    for (const Primitive& p : pa)
+      if (p.kind == f.kind && p.center == f.center && p.half == f.half) {
+        ++same_fixed;
+        break;
+      }
+  EXPECT_EQ(same_fixed, layout.fixed.size());
+  // The clutter differs between the two days, and is the same for the same day.
+  EXPECT_NE(pa.size(), pb.size());
+  EXPECT_EQ(pa.size(), a_again.objects().primitives().size());
+  std::size_t people = 0;
+  for (const Primitive& p : pa) people += p.kind == Primitive::Kind::Cylinder && p.material == kBark && p.half.x() >= 0.2 &&
+                                           2.0 * p.half.z() < 2.1 && 2.0 * p.half.z() > 1.6;
+  EXPECT_GT(people, 5u);
+}
+
+TEST(ScanSimulator, BeamCalibrationErrorIsFixedPerSensorAndOfTheConfiguredSize) {
+  const auto p = smallParams();
+  const auto seq = planSequence(p);
+  LidarModel lidar = LidarModel::os1_64();
+  lidar.beam_angle_sigma_deg = 0.05;
+  const ScanSimulator sim(*seq.world, lidar);
+  const auto one = sim.castDirections(1), again = sim.castDirections(1), other = sim.castDirections(2);
+  ASSERT_EQ(one.size(), lidar.raysPerScan());
+  EXPECT_EQ(one, again);
+  EXPECT_NE(one, other);
+  double sum2 = 0.0;
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    EXPECT_NEAR(one[i].norm(), 1.0, 1e-12);
+    const int beam = static_cast<int>(i / lidar.columns), column = static_cast<int>(i % lidar.columns);
+    const double angle = std::acos(std::clamp(one[i].dot(sim.direction(beam, column)), -1.0, 1.0));
+    sum2 += angle * angle;
+  }
+  // Elevation and azimuth offsets of sigma each: the angle between true and nominal beam has an rms of about
+  // sqrt(cos^2(el) + 1) sigma.
+  const double rms_deg = std::sqrt(sum2 / static_cast<double>(one.size())) * 180.0 / M_PI;
+  EXPECT_GT(rms_deg, 0.05);
+  EXPECT_LT(rms_deg, 0.1);
+  // Without the error, the nominal directions.
+  const ScanSimulator nominal(*seq.world, LidarModel::os1_64());
+  EXPECT_EQ(nominal.castDirections(1)[17], nominal.direction(0, 17));
 }

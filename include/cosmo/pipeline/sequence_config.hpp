@@ -27,7 +27,7 @@ struct SequenceConfig {
   unsigned long long seed = 0;         ///< seeds every random choice
   char anchor = 'a';                   ///< robot whose trial starts at t*
   double time_offset_sigma = 40.0;     ///< s, sigma of the N(0, sigma) start offsets of the other trials
-  std::string environment = "synthetic";  ///< noise-model environment (config/noise_models/<environment>.yaml)
+  std::string environment;             ///< noise-model environment (config/noise_models/<environment>.yaml); "": none
   std::string noise_models;            ///< absolute path of a noise-model YAML; empty: by environment
   std::vector<TrialConfig> trials;
 

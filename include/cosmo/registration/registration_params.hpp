@@ -51,6 +51,10 @@ struct RegistrationParams {
   double min_overlap = 0.5;       ///< fraction of source points within icp_max_distance after the solve (0 = off)
   double min_structure_overlap = 0.62;  ///< the same over the source's structure points only (0 = off)
   double structure_max_normal_z = 0.9;  ///< structure point: |normal z| below this (not ground / ceiling-like)
+  /// Gate preset (`gate:` key). "strict": every test above. "paper": what KISS-Matcher itself checks (enough
+  /// correspondences, enough consistent final inliers), without the two overlap tests (min_overlap and
+  /// min_structure_overlap set to 0), which lets through the spurious registrations the paper describes.
+  std::string gate = "strict";
 
   static RegistrationParams fromConfig(const ConfigNode& node);
 };

@@ -17,7 +17,12 @@ struct LidarModel {
   double fov_down_deg = -16.6;    ///< elevation of the bottom beam
   double min_range = 0.3;         ///< m, closer returns are dropped
   double max_range = 120.0;       ///< m
-  double range_sigma = 0.02;      ///< Gaussian range noise, m
+  double range_sigma = 0.02;      ///< Gaussian range noise at zero range, m
+  double range_sigma_per_m = 0.0; ///< growth of the range noise with range (sigma = range_sigma + this * range)
+  double beam_angle_sigma_deg = 0.0;  ///< intrinsic calibration error of each beam (elevation and azimuth
+                                  ///< offsets, N(0, this), fixed per sensor = per noise seed): rays leave along
+                                  ///< the true beam, points are reported along the nominal one, so the error
+                                  ///< of a point grows with its range, as on a real sensor
   double grazing_cos = 0.06;      ///< no return below this cosine of the incidence angle (~86.5 deg)
   double detection_range = 90.0;  ///< range at which a surface of reflectivity 0.1 at normal incidence is
                                   ///< detected with probability 0.5; scales with sqrt(reflectivity * cos)

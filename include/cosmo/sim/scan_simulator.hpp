@@ -3,7 +3,7 @@
 // own time (real motion distortion), points are expressed in the sensor frame at that time, the scan is
 // stamped at the end of the sweep and `time` holds each point's offset (<= 0 s). Rays run in parallel (TBB);
 // noise comes from a counter-based generator keyed by (seed, stamp, ray index), so the output does not
-// depend on thread scheduling.
+// depend on thread scheduling. The seed also fixes the sensor's beam calibration errors (one sensor per seed).
 #include <cstdint>
 #include <vector>
 
@@ -30,6 +30,9 @@ class ScanSimulator {
     return dirs_[static_cast<std::size_t>(beam) * lidar_.columns + column];
   }
   const LidarModel& lidar() const { return lidar_; }
+  /// Directions the rays of a sensor with noise seed `seed` really leave along (sensor frame): the nominal ones
+  /// turned by the beam's calibration error (LidarModel::beam_angle_sigma_deg; none: the nominal ones).
+  std::vector<Eigen::Vector3d> castDirections(std::uint64_t seed) const;
 
  private:
   const World& world_;

@@ -16,11 +16,12 @@ struct PlannedTrial {
   std::vector<int> route;            ///< network nodes
   Trajectory body;                   ///< reference trajectory (body in world), params.motion.rate_hz
   std::vector<StampNs> scan_stamps;  ///< sweep-end stamps; every sweep lies inside the trajectory
-  std::uint64_t noise_seed = 0;      ///< LiDAR noise seed of this trial
+  std::uint64_t noise_seed = 0;      ///< LiDAR noise seed of this trial (and its sensor's calibration)
+  std::shared_ptr<const World> world;  ///< what this trial's LiDAR sees: the world with that day's clutter
 };
 
 struct PlannedSequence {
-  std::shared_ptr<const World> world;
+  std::shared_ptr<const World> world;  ///< the world as generated (routes, terrain; every trial's fixed objects)
   std::vector<PlannedTrial> trials;
 };
 

@@ -35,6 +35,7 @@ struct TrialParams {
 struct SimulationParams {
   std::string name = "synthetic_r3_00";  ///< sequence name (sequence config <name>.yaml)
   std::string source = "synthetic";
+  std::string environment = "synthetic";  ///< noise-model environment written into the sequence config
   std::uint64_t seed = 7;                ///< seeds the world, routes, motion and LiDAR noise
   std::string anchor = "a";
   double time_offset_sigma = 40.0;       ///< s, written into the sequence config (spec section 3)

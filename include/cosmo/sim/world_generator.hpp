@@ -3,8 +3,13 @@
 // by diagonal footpaths), each block filled with buildings (boxes, L-shapes, courtyards), a row of identical
 // buildings (repeated in several blocks: look-alike places), a park (trees, paths) or a car park; streets
 // lined with kerbs, poles, tree rows, walls/fences and parked cars; gentle terrain under everything.
+// What changes between the days the trials are recorded (parked cars moved or gone, people on the pavements,
+// tree canopies grown or blown) is kept apart (WorldLayout) and drawn anew for every trial (trialWorld): a
+// place seen by two trials is the same place with different clutter, as on a real campus.
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "cosmo/common/config.hpp"
 #include "cosmo/sim/world.hpp"
@@ -34,6 +39,9 @@ struct WorldParams {
   double wall_fraction = 0.25;       ///< block sides with a wall or fence
   double outer_ring = 40.0;          ///< depth of the built-up / wooded ring outside the outer streets, m
   double terrain_margin = 90.0;      ///< terrain beyond the outer ring, m
+  double car_change = 0.0;           ///< per trial: share of parked cars moved along the kerb (1-5 m) or gone
+  double people_per_100m = 0.0;      ///< per trial: pedestrians per 100 m of path network, on the pavements
+  double foliage_change = 0.0;       ///< per trial: relative change of every tree canopy (size and centre)
   TerrainParams terrain;
 
   static WorldParams fromConfig(const ConfigNode& node);
@@ -41,7 +49,29 @@ struct WorldParams {
   std::string describe() const;
 };
 
-/// The world and its path network for `seed`.
+/// A parked car: where it was generated.
+struct ParkedCar {
+  double x = 0, y = 0, yaw = 0, length = 4.4, width = 1.8, body_top = 1.0, cabin_top = 1.5;
+};
+
+/// The world before the trials' clutter: fixed objects, and the objects that change from trial to trial.
+struct WorldLayout {
+  WorldParams params;
+  Terrain terrain;
+  std::vector<Primitive> fixed;     ///< buildings, walls, kerbs, poles, tree trunks, ...
+  std::vector<ParkedCar> cars;      ///< parked cars as generated
+  std::vector<Primitive> canopies;  ///< tree canopies as generated
+  PathNetwork network;
+};
+
+WorldLayout generateLayout(const WorldParams& params, std::uint64_t seed);
+/// The world as generated (every car, no people, canopies unchanged) when `trial_seed` is empty; otherwise
+/// the world of one trial: cars moved or gone (car_change), people placed (people_per_100m), canopies
+/// changed (foliage_change), all drawn from `trial_seed`.
+World layoutWorld(const WorldLayout& layout, std::optional<std::uint64_t> trial_seed = std::nullopt);
+/// The world and its path network for `seed` (= layoutWorld(generateLayout(params, seed))).
 World generateWorld(const WorldParams& params, std::uint64_t seed);
+/// True when the parameters make trials differ (any of the per-trial changes is on).
+bool changesPerTrial(const WorldParams& params);
 
 }  // namespace cosmo::sim

@@ -102,6 +102,15 @@ int main(int argc, char** argv) {
     const cosmo::MeasurementSets sets = cosmo::collectMeasurements(ds, robot);
     cosmo::NoiseModelEstimate est = cosmo::estimateNoiseModels(sets.odometry, sets.loop_closures, params);
     est.models.environment = environment.empty() ? ds.name : environment;
+    est.models.provenance = "estimated by cosmo_noise_models from " + input + " (spec section 6)";
+    cosmo::NoiseModelRecord record;
+    record.trial = ds.name + " (" + input + ", robots " + robots + ")";
+    record.odometry_factors = est.odometry.used;
+    record.loop_closures = est.loop_closure.used;
+    record.loop_closures_left_out = est.loop_closure.rejected;
+    record.max_translation_error = params.max_translation_error;
+    record.max_rotation_error = params.max_rotation_error;
+    est.models.estimated_from = record;
     printEstimate("odometry", est.odometry);
     printEstimate("loop closures", est.loop_closure);
     std::ostringstream header;

@@ -6,6 +6,10 @@
 //   cosmo_generate SEQUENCE.yaml [--comm wifi,proradio] [--seed N] [--out DIR] [--config-dir DIR]
 //                  [--noise-models FILE] [--outlier-rule fidelity|squared] [--reference-odometry]
 //                  [--registration-threads N] [--max-seconds S] [--quiet]
+//                  [--estimate-noise-models TRIAL [--noise-models-out FILE] [--good-translation M] [--good-rotation RAD]]
+//
+// Noise models: the ones the sequence names (sequence_noise_models.hpp); none: the run stops and says how to make
+// them, or --estimate-noise-models makes them first from that trial run alone (trial_noise_models.hpp).
 //
 // Determinism: the same sequence, seed and parameters give a byte-identical JRL (the team's events in one order,
 // randomness from the seed only), whatever the threads: the robots' LOAM and keyframes run ahead on one thread per
@@ -13,6 +17,7 @@
 // their results are consumed in the single-threaded order. Wall time and peak memory are printed at the end (tool only).
 #include <sys/resource.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <algorithm>
@@ -33,6 +38,9 @@
 #include "cosmo/pipeline/seed_streams.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/trials/trial_reference.hpp"
+#include "cosmo/pipeline/sequence_noise_models.hpp"
+#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/pipeline/trial_noise_models.hpp"
 #include "cosmo/pipeline/team_radio.hpp"
 #include "cosmo/pipeline/team_run.hpp"
 #include "cosmo/ros/bag_scan_source.hpp"
@@ -54,7 +62,15 @@ void usage() {
                "  --config-dir DIR     frontend/odometry/place_recognition/registration/comm/noise_models configs\n"
                "                       (default: the source tree's config/)\n"
                "  --noise-models FILE  noise-model YAML (default: the sequence's noise_models, else\n"
-               "                       <config-dir>/noise_models/<environment>.yaml)\n"
+               "                       <config-dir>/noise_models/<environment>.yaml; none: the run stops)\n"
+               "  --estimate-noise-models TRIAL  first make the noise models as the paper does: run TRIAL (robot id or\n"
+               "                       trial name) alone through the front-end, compare with its reference, keep the\n"
+               "                       good loop closures, write the sample covariances, then generate the sequence\n"
+               "                       with them\n"
+               "  --noise-models-out FILE  where the estimate goes (default: the sequence's noise-model file, when it\n"
+               "                       does not exist or says its models are unknown)\n"
+               "  --good-translation M, --good-rotation RAD  good loop closures for the estimate: errors under\n"
+               "                       these (default 0.5 m, 0.05 rad)\n"
                "  --reference-odometry take odometry from the reference trajectories instead of LOAM\n"
                "  --serial-odometry    everything in the main thread (default: one thread per robot reads its own bag and\n"
                "                       runs its LOAM and keyframes ahead of the team; the output is the same byte\n"
@@ -100,11 +116,70 @@ double peakRssMb() {
   return static_cast<double>(ru.ru_maxrss) / 1024.0;
 }
 
+void printSigmas(const char* what, const CovarianceEstimate& e) {
+  std::printf("  %s: %zu used, %zu over the thresholds; sigmas rx ry rz %.3g %.3g %.3g rad, tx ty tz %.3g %.3g %.3g m\n",
+              what, e.used, e.rejected, std::sqrt(e.covariance(0, 0)), std::sqrt(e.covariance(1, 1)),
+              std::sqrt(e.covariance(2, 2)), std::sqrt(e.covariance(3, 3)), std::sqrt(e.covariance(4, 4)),
+              std::sqrt(e.covariance(5, 5)));
+}
+
+/// --estimate-noise-models: the paper's step on one trial of the sequence, written to `out_path` (default: the
+/// sequence's own noise-model file, which must not hold known models), then read back.
+NoiseModels estimateFirst(const SequenceConfig& config, const std::string& which, const TeamRunParams& params,
+                          const NoiseModelEstimationParams& estimation, std::string out_path,
+                          const std::string& config_dir) {
+  const TrialConfig& trial = findTrial(config, which);
+  if (out_path.empty()) {
+    out_path = sequenceNoiseModelsPath(config, config_dir);
+    if (fs::exists(out_path)) {
+      bool unknown = false;
+      try {
+        NoiseModels::load(out_path);
+      } catch (const NoiseModelsUnknown&) {
+        unknown = true;
+      }
+      if (!unknown)
+        throw std::runtime_error(out_path + " already holds noise models: pass --noise-models-out FILE to write the "
+                                 "estimate elsewhere (or leave out --estimate-noise-models to use them)");
+    }
+  }
+  SequenceConfig alone = config;
+  alone.trials = {trial};
+  alone.anchor = trial.robot;
+  const SequenceTiming timing = ros_glue::synchronizeSequence(alone);
+  const Trajectory reference = loadSensorReference(trial, timing.of(trial.robot));
+  if (reference.empty())
+    throw std::runtime_error(config.path + ": trial " + trial.name + " has no reference: the noise models need one");
+  std::printf("noise models: running trial %s (robot %c) alone, %.1f s\n", trial.name.c_str(), trial.robot,
+              timing.durationSeconds());
+  std::fflush(stdout);
+  MergedScanStream stream = ros_glue::openSequenceStream(alone, timing);
+  const std::string environment = config.environment.empty() ? fs::path(out_path).stem().string() : config.environment;
+  const TrialNoiseModels result = estimateTrialNoiseModels(trial.robot, stream, reference, params,
+                                                           deriveSeed(config.seed, "radio"), estimation,
+                                                           trial.name, environment);
+  printSigmas("odometry", result.estimate.odometry);
+  printSigmas("loop closures", result.estimate.loop_closure);
+  std::ostringstream header;
+  header << "Noise models of the " << environment << " environment (spec section 6), written by\n"
+         << "  cosmo_generate " << config.path << " --estimate-noise-models " << which << "\n"
+         << "from trial " << trial.name << " (robot " << trial.robot << ") run alone through the front-end: "
+         << result.estimate.odometry.used << " odometry factors, " << result.estimate.loop_closure.used
+         << " good loop closures (" << result.estimate.loop_closure.rejected << " left out: error >= "
+         << estimation.max_translation_error << " m or >= " << estimation.max_rotation_error << " rad).\n"
+         << "Q = (1/N) sum r r^T, r = Log(m^-1 * m*), rotation first.";
+  result.estimate.models.save(out_path, header.str());
+  std::printf("wrote %s\n", out_path.c_str());
+  return NoiseModels::load(out_path);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   cosmo::keepScanBuffersInProcess();
   std::string sequence_path, out_dir = ".", config_dir = defaultConfigDir(), noise_path, rule_name = "fidelity";
+  std::string estimate_trial, noise_out;
+  NoiseModelEstimationParams estimation;
   std::vector<std::string> comms{"wifi"};
   bool seed_given = false, reference_odometry = false, quiet = false, serial_odometry = false;
   unsigned long long seed = 0;
@@ -127,6 +202,10 @@ int main(int argc, char** argv) {
       else if (a == "--config-dir") config_dir = value();
       else if (a == "--noise-models") noise_path = value();
       else if (a == "--outlier-rule") rule_name = value();
+      else if (a == "--estimate-noise-models") estimate_trial = value();
+      else if (a == "--noise-models-out") noise_out = value();
+      else if (a == "--good-translation") estimation.max_translation_error = std::stod(value());
+      else if (a == "--good-rotation") estimation.max_rotation_error = std::stod(value());
       else if (a == "--reference-odometry") reference_odometry = true;
       else if (a == "--serial-odometry") serial_odometry = true;
       else if (a == "--registration-threads") registration_threads = std::stoi(value());
@@ -151,25 +230,28 @@ int main(int argc, char** argv) {
     if (seed_given) config.seed = seed;
     const auto rule = parseOutlierRule(rule_name);
     if (!rule) throw std::runtime_error("--outlier-rule: expected fidelity or squared, got '" + rule_name + "'");
-    if (noise_path.empty()) noise_path = config.noise_models;
-    if (noise_path.empty()) {
-      const fs::path p = fs::path(config_dir) / "noise_models" / (config.environment + ".yaml");
-      if (fs::exists(p)) noise_path = p.string();
-    }
+    if (!(estimation.max_translation_error > 0) || !(estimation.max_rotation_error > 0))
+      throw std::runtime_error("--good-translation / --good-rotation: expected positive numbers");
+    if (!estimate_trial.empty() && !noise_path.empty())
+      throw std::runtime_error("--estimate-noise-models and --noise-models: give one of them");
     TeamRunParams params;
     params.frontend = FrontendParams::loadDir(config_dir);
-    params.noise = noise_path.empty() ? NoiseModels{} : NoiseModels::load(noise_path);
     params.outlier_rule = *rule;
     params.reference_odometry = reference_odometry;
     params.registration_threads = registration_threads >= 0 ? static_cast<unsigned>(registration_threads)
                                   : serial_odometry           ? 0u
                                                               : std::max(1u, std::thread::hardware_concurrency());
+    std::string first_label;  // the single-trial run of the estimate uses the first comm model (no transfers alone)
+    params.radio = radioFor(comms.front(), config_dir, first_label);
+    params.noise = estimate_trial.empty()
+                       ? loadSequenceNoiseModels(config, config_dir, noise_path)
+                       : estimateFirst(config, estimate_trial, params, estimation, noise_out, config_dir);
     fs::create_directories(out_dir);
 
     const SequenceTiming timing = ros_glue::synchronizeSequence(config);
     std::printf("sequence %s (%s, seed %llu): %zu trials, %.1f s, noise models %s\n", config.name.c_str(),
                 config.source.c_str(), config.seed, config.trials.size(), timing.durationSeconds(),
-                noise_path.empty() ? "(built-in defaults)" : noise_path.c_str());
+                params.noise.describe().c_str());
     for (const auto& t : timing.trials())
       std::printf("  robot %c  %-22s starts at +%7.2f s, %7.1f s long (offset %+.3f s)\n", t.robot,
                   config.trial(t.robot).name.c_str(), toSeconds(t.start() - timing.start()),

@@ -83,7 +83,8 @@ void writeLayoutSequenceConfig(const std::string& path, const sim::SimulationPar
     out << "# ground truth positions carry a UTM-like offset: x + " << ros_glue::kSimulatedUtmOffset.x() << ", y + "
         << ros_glue::kSimulatedUtmOffset.y() << "\n";
   out << "name: " << params.name << "\nsource: " << params.source << "\nseed: " << params.seed
-      << "\nanchor: " << params.anchor << "\ntime_offset_sigma: " << params.time_offset_sigma << "\ntrials:\n";
+      << "\nanchor: " << params.anchor << "\ntime_offset_sigma: " << params.time_offset_sigma
+      << "\nenvironment: " << params.environment << "\ntrials:\n";
   for (std::size_t i = 0; i < written.size(); ++i) {
     const auto& w = written[i];
     out << "  - robot: " << params.trials[i].robot << "\n    name: " << params.trials[i].name << "\n    bag: " << w.bag
@@ -106,7 +107,6 @@ void generate(const sim::SimulationParams& params, const fs::path& dir, bool pla
               world.objects().primitives().size(), world.network().nodes.size(), world.network().totalLength(),
               world.terrain().hi().x() - world.terrain().lo().x(), world.terrain().hi().y() - world.terrain().lo().y(),
               total.elapsedMs() * 1e-3);
-  sim::ScanSimulator simulator(world, params.lidar);
   if (own_layout) sim::writeSequenceConfig((dir / (params.name + ".yaml")).string(), params);
   std::vector<ros_glue::WrittenTrial> written;
   int robot_number = 0;
@@ -123,6 +123,7 @@ void generate(const sim::SimulationParams& params, const fs::path& dir, bool pla
     ++robot_number;
     if (own_layout) writeMcdPoseCsv((dir / (tp.name + "_pose_inW.csv")).string(), t.body);
     if (plan_only) continue;
+    const sim::ScanSimulator simulator(*t.world, params.lidar);  // the world with this trial's clutter
     std::unique_ptr<ros_glue::ScanBagWriter> own_bag;
     std::unique_ptr<ros_glue::TrialLayoutWriter> layout_writer;
     if (own_layout) {
