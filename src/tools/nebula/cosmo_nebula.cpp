@@ -9,12 +9,14 @@
 #include <sstream>
 #include <string>
 
+#include "cosmo/backend/dataset_check.hpp"
 #include "cosmo/dataset/atomic_file.hpp"
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/stats.hpp"
 #include "cosmo/jrl/validate.hpp"
 #include "cosmo/nebula/message_definition.hpp"
 #include "cosmo/nebula/metadata.hpp"
+#include "cosmo/report/figures.hpp"
 #include "cosmo/ros/nebula_dataset.hpp"
 
 namespace {
@@ -24,7 +26,8 @@ namespace fs = std::filesystem;
 void usage(std::ostream& out) {
   out << "usage: cosmo_nebula DATASET_DIR --out DIR [options]\n"
          "  Converts a Nebula dataset folder (rosbag/*.bag with /<robot>/lamp/pose_graph_incremental,\n"
-         "  ground_truth/result.g2o) to DIR/<name>.jrl, <name>.stats.txt, <name>.stats.json, <name>.nebula.yaml.\n"
+         "  ground_truth/result.g2o) to DIR/<name>.jrl, <name>.stats.txt, <name>.stats.json, <name>.nebula.yaml,\n"
+         "  the dataset's figures (<name>.trajectories / .frontend, SVG and PNG) and prints the inliers' solve check.\n"
          "options:\n"
          "  --name NAME                 dataset name (default: the folder's name)\n"
          "  --noise-models FILE         one odometry and one loop-closure covariance for all factors (YAML as\n"
@@ -182,6 +185,8 @@ int main(int argc, char** argv) {
       std::cout << ", .noise_models.yaml";
     }
     std::cout << ")\n" << cosmo::jrl::formatStats(stats) << "\n";
+    std::cout << cosmo::backend::inliersSolveLine(c.dataset) << "\n"
+              << cosmo::report::writeFiguresBesideJrl(c.dataset, base.string() + ".jrl") << "\n";
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "cosmo_nebula: " << e.what() << "\n";
