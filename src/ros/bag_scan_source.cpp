@@ -8,9 +8,14 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/pipeline/trial_coverage.hpp"
+#include "cosmo/ros/point_cloud.hpp"
+
 namespace cosmo::ros_glue {
 
-pipeline::TrialSpan readTrialSpan(const std::string& bag_path, const std::string& topic, char robot) {
+pipeline::TrialSpan readTrialSpan(const std::string& bag_path, const std::string& topic, char robot,
+                                  bool stamp_at_end) {
   if (!ros::Time::isValid()) ros::Time::init();
   rosbag::Bag bag;
   try {
@@ -25,7 +30,10 @@ pipeline::TrialSpan readTrialSpan(const std::string& bag_path, const std::string
     if (!msg)
       throw std::runtime_error(bag_path + " " + topic + ": message type " + m.getDataType() +
                                " is not sensor_msgs/PointCloud2");
-    return static_cast<StampNs>(msg->header.stamp.toNSec());
+    if (stamp_at_end) return static_cast<StampNs>(msg->header.stamp.toNSec());
+    Scan scan = fromPointCloud2(*msg, false, bag_path + " " + topic);  // the sweep end: the latest point
+    pipeline::stampAtSweepEnd(scan);
+    return scan.stamp;
   };
   pipeline::TrialSpan span;
   span.robot = robot;
@@ -41,14 +49,16 @@ pipeline::TrialSpan readTrialSpan(const std::string& bag_path, const std::string
 
 pipeline::SequenceTiming synchronizeSequence(const pipeline::SequenceConfig& config) {
   std::vector<pipeline::TrialSpan> spans;
-  for (const auto& t : config.trials) spans.push_back(readTrialSpan(t.bag, t.topic, t.robot));
+  for (const auto& t : config.trials)
+    spans.push_back(pipeline::trialCoverage(t).clip(readTrialSpan(t.bag, t.topic, t.robot, t.stamp_at_end)));
   return pipeline::SequenceTiming::synchronize(spans, config.anchor, config.time_offset_sigma, config.seed);
 }
 
 std::map<char, std::unique_ptr<pipeline::ScanSource>> openTrialSources(const pipeline::SequenceConfig& config) {
   std::map<char, std::unique_ptr<pipeline::ScanSource>> sources;
   for (const auto& t : config.trials)
-    sources[t.robot] = std::make_unique<BagScanSource>(t.bag, t.topic, t.stamp_at_end);
+    sources[t.robot] = std::make_unique<pipeline::CoveredScanSource>(
+        std::make_unique<BagScanSource>(t.bag, t.topic, t.stamp_at_end), pipeline::trialCoverage(t));
   return sources;
 }
 

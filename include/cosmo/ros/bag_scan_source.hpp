@@ -13,9 +13,10 @@
 
 namespace cosmo::ros_glue {
 
-/// Header stamps of the first and the last PointCloud2 message on `topic` (reads only the first message and
-/// the messages of the bag's last few seconds).
-pipeline::TrialSpan readTrialSpan(const std::string& bag_path, const std::string& topic, char robot);
+/// Sweep-end stamps of the first and the last PointCloud2 message on `topic` (reads only the first message and
+/// the messages of the bag's last few seconds; a start-stamped trial's scans are decoded for their latest point).
+pipeline::TrialSpan readTrialSpan(const std::string& bag_path, const std::string& topic, char robot,
+                                  bool stamp_at_end = true);
 
 /// ScanBagReader as a pipeline::ScanSource.
 class BagScanSource : public pipeline::ScanSource {
@@ -29,10 +30,12 @@ class BagScanSource : public pipeline::ScanSource {
   ScanBagReader reader_;
 };
 
-/// The synchronized timing of a sequence config (reads every trial's span).
+/// The synchronized timing of a sequence config (reads every trial's span, clipped to its reference's span:
+/// pipeline/trial_coverage.hpp).
 pipeline::SequenceTiming synchronizeSequence(const pipeline::SequenceConfig& config);
 
-/// A reader of each trial's scans (robot -> source), in recorded time.
+/// A reader of each trial's scans (robot -> source), in recorded time: stamped at the sweep end, only the scans
+/// its reference covers (pipeline::CoveredScanSource).
 std::map<char, std::unique_ptr<pipeline::ScanSource>> openTrialSources(const pipeline::SequenceConfig& config);
 
 /// One merged stream over all trials of a sequence config, in sequence time.

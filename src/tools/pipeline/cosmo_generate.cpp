@@ -3,9 +3,9 @@
 // as fast as the CPU allows, and writes <out>/<name>_<comm>.jrl (+ .recorder.yaml), the transfer log
 // <out>/<name>_<comm>_transfers.csv (+ .summary.json), and prints the dataset's Fig. 1 statistics.
 //
-//   cosmo_generate SEQUENCE.yaml [--comm wifi,proradio] [--seed N] [--out DIR] [--config-dir DIR]
+//   cosmo_generate SEQUENCE.yaml [--data-root DIR] [--comm wifi,proradio] [--seed N] [--out DIR] [--config-dir DIR]
 //                  [--noise-models FILE] [--outlier-rule fidelity|squared] [--reference-odometry]
-//                  [--registration-threads N] [--max-seconds S] [--quiet]
+//                  [--registration-threads N] [--max-seconds S] [--no-check] [--quiet]
 //
 // Determinism: the same sequence, seed and parameters give a byte-identical JRL (the team's events in one order,
 // randomness from the seed only), whatever the threads: the robots' LOAM and keyframes run ahead on one thread per
@@ -34,6 +34,7 @@
 #include "cosmo/pipeline/team_radio.hpp"
 #include "cosmo/pipeline/team_run.hpp"
 #include "cosmo/ros/bag_scan_source.hpp"
+#include "cosmo/ros/trial_probe.hpp"
 
 namespace fs = std::filesystem;
 using namespace cosmo;
@@ -42,9 +43,12 @@ using namespace cosmo::pipeline;
 namespace {
 
 void usage() {
-  std::cerr << "usage: cosmo_generate SEQUENCE.yaml [--comm wifi,proradio] [--seed N] [--out DIR]\n"
+  std::cerr << "usage: cosmo_generate SEQUENCE.yaml [--data-root DIR] [--comm wifi,proradio] [--seed N] [--out DIR]\n"
                "         [--config-dir DIR] [--noise-models FILE] [--outlier-rule fidelity|squared]\n"
-               "         [--reference-odometry] [--serial-odometry] [--registration-threads N] [--max-seconds S] [--quiet]\n"
+               "         [--reference-odometry] [--serial-odometry] [--registration-threads N] [--max-seconds S] [--no-check] [--quiet]\n"
+               "  --data-root DIR      the folder the trials' bags and references are below (default: the config's\n"
+               "                       data_root key, else $COSMO_DATA_ROOT, else the config's folder)\n"
+               "  --no-check           skip the pre-flight check (cosmo_check) that stops a run that would be unlabelled\n"
                "  --comm LIST          comm models, comma separated (wifi, proradio, or a config/comm/*.yaml); default wifi.\n"
                "                       The robots' odometry and keyframes are computed once for all of them\n"
                "  --seed N             overrides the sequence config's seed\n"
@@ -98,13 +102,28 @@ double peakRssMb() {
   return static_cast<double>(ru.ru_maxrss) / 1024.0;
 }
 
+/// The sequence's own lines of the dataset metadata: where the trials came from and the one reference offset.
+std::vector<std::pair<std::string, std::string>> sequenceMetadata(const SequenceConfig& config) {
+  const Eigen::Vector3d o = sequenceReferenceOffset(config);
+  char offset[160];
+  std::snprintf(offset, sizeof offset, "[%.3f, %.3f, %.3f]  # m, subtracted from every reference position", o.x(),
+                o.y(), o.z());
+  std::vector<std::pair<std::string, std::string>> lines{{"sequence", config.name}, {"source", config.source},
+                                                         {"reference_offset", offset}};
+  for (const auto& t : config.trials)
+    lines.push_back({std::string("trial_") + t.robot,
+                     t.name + "  # stamp " + (t.stamp_at_end ? "end" : "start")});
+  return lines;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   cosmo::keepScanBuffersInProcess();
   std::string sequence_path, out_dir = ".", config_dir = defaultConfigDir(), noise_path, rule_name = "fidelity";
   std::vector<std::string> comms{"wifi"};
-  bool seed_given = false, reference_odometry = false, quiet = false, serial_odometry = false;
+  bool seed_given = false, reference_odometry = false, quiet = false, serial_odometry = false, skip_check = false;
+  std::string data_root;
   unsigned long long seed = 0;
   double max_seconds = 0.0;
   int registration_threads = -1;  // -1: the default
@@ -123,6 +142,8 @@ int main(int argc, char** argv) {
       else if (a == "--seed") { seed = std::stoull(value()); seed_given = true; }
       else if (a == "--out") out_dir = value();
       else if (a == "--config-dir") config_dir = value();
+      else if (a == "--data-root") data_root = value();
+      else if (a == "--no-check") skip_check = true;
       else if (a == "--noise-models") noise_path = value();
       else if (a == "--outlier-rule") rule_name = value();
       else if (a == "--reference-odometry") reference_odometry = true;
@@ -145,19 +166,22 @@ int main(int argc, char** argv) {
   }
   try {
     bench::Stopwatch total;
-    SequenceConfig config = SequenceConfig::load(sequence_path);
+    SequenceConfig config = SequenceConfig::load(sequence_path, data_root);
     if (seed_given) config.seed = seed;
     const auto rule = parseOutlierRule(rule_name);
     if (!rule) throw std::runtime_error("--outlier-rule: expected fidelity or squared, got '" + rule_name + "'");
-    if (noise_path.empty()) noise_path = config.noise_models;
-    if (noise_path.empty()) {
-      const fs::path p = fs::path(config_dir) / "noise_models" / (config.environment + ".yaml");
-      if (fs::exists(p)) noise_path = p.string();
+    noise_path = chooseNoiseModels(config, config_dir, noise_path);
+    if (!skip_check) {  // the pre-flight check (cosmo_check): stop before hours of work that give no labels
+      std::string check;
+      const bool ok = ros_glue::checkSequence(config, noise_path, check);
+      if (!quiet || !ok) std::printf("%s", check.c_str());
+      if (!ok) throw std::runtime_error("the pre-flight check failed (above); --no-check runs anyway");
     }
     TeamRunParams params;
     params.frontend = FrontendParams::loadDir(config_dir);
     params.noise = noise_path.empty() ? NoiseModels{} : NoiseModels::load(noise_path);
     params.outlier_rule = *rule;
+    params.metadata = sequenceMetadata(config);
     params.reference_odometry = reference_odometry;
     params.registration_threads = registration_threads >= 0 ? static_cast<unsigned>(registration_threads)
                                   : serial_odometry           ? 0u
@@ -172,8 +196,7 @@ int main(int argc, char** argv) {
       std::printf("  robot %c  %-22s starts at +%7.2f s, %7.1f s long (offset %+.3f s)\n", t.robot,
                   config.trial(t.robot).name.c_str(), toSeconds(t.start() - timing.start()),
                   toSeconds(t.end() - t.start()), static_cast<double>(t.offset_ns) * 1e-9);
-    std::map<char, Trajectory> references;
-    for (const auto& t : config.trials) references[t.robot] = loadSensorReference(t, timing.of(t.robot));
+    const std::map<char, Trajectory> references = loadSequenceReferences(config, timing);
 
     // Radio steps on the absolute grid k * delta (as the comm_broker node does on ROS time).
     const StampNs end = max_seconds > 0 ? std::min(timing.end(), timing.start() + toStampNs(max_seconds)) : timing.end();
