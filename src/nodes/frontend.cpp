@@ -35,7 +35,6 @@
 #include <map>
 
 #include "cosmo/common/allocator_tuning.hpp"
-#include "cosmo/pipeline/trial_coverage.hpp"
 #include "cosmo/ros/pose_msg.hpp"
 #include "cosmo/ros/resolved_sequence.hpp"
 #include "cosmo/FrontendAck.h"
@@ -183,11 +182,9 @@ class FrontendNode {
   void process(const sensor_msgs::PointCloud2::ConstPtr& m) {
     const StampNs header_stamp = m->header.stamp.toNSec();  // acknowledged as received
     try {
-      // Decoded with the topic's stamp convention, then stamped at the sweep end as everywhere in the pipeline
-      // (pipeline/trial_coverage.hpp); the player publishes scans already stamped so.
+      // Decoded with the topic's stamp convention: stamped at the sweep end as everywhere in the pipeline
+      // (trials/point_cloud_decode.hpp); the player publishes scans stamped so.
       Scan scan = ros_glue::fromPointCloud2(*m, stamp_at_end_, points_sub_.getTopic());
-      scan.stamp = header_stamp;
-      pipeline::stampAtSweepEnd(scan);
       const StampNs stamp = scan.stamp;
       if (stamp <= frontend_->lastStamp() && frontend_->scansProcessed() > 0) {
         ROS_WARN_THROTTLE(5.0, "frontend %c: %s: stamp not increasing, scan dropped", robot_, points_sub_.getTopic().c_str());

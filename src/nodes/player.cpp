@@ -54,7 +54,7 @@
 #include "cosmo/ros/trial_probe.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/sim/simulation_params.hpp"
-#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/trials/trial_reference.hpp"
 #include "cosmo/ros/bag_scan_source.hpp"
 #include "cosmo/ros/point_cloud.hpp"
 
@@ -135,7 +135,7 @@ int main(int argc, char** argv) {
     ROS_INFO("player: pre-flight check:\n%s", check.c_str());
     if (!check_ok) throw std::runtime_error("the pre-flight check failed (above)");
     timing = ros_glue::synchronizeSequence(config);
-    refs = pipeline::loadSequenceReferences(config, timing);
+    refs = trials::loadSequenceReferences(config, timing);
     ros_glue::publishResolvedSequence(std::filesystem::absolute(sequence_path).string(), config.seed,
                                       std::filesystem::absolute(config.data_root).string());
   } catch (const std::exception& e) {

@@ -8,18 +8,6 @@
 
 namespace cosmo::pipeline {
 
-void stampAtSweepEnd(Scan& scan) {
-  if (!scan.hasTime()) return;
-  float latest = -std::numeric_limits<float>::infinity();
-  for (float t : scan.time)
-    if (std::isfinite(t)) latest = std::max(latest, t);
-  if (!std::isfinite(latest) || latest == 0.0f) return;
-  const long long shift = std::llround(static_cast<double>(latest) * 1e9);
-  const long long stamp = static_cast<long long>(scan.stamp) + shift;
-  scan.stamp = static_cast<StampNs>(std::max(0LL, stamp));
-  for (float& t : scan.time) t -= latest;
-}
-
 std::string formatStamp(StampNs stamp) {
   char buf[48];
   std::snprintf(buf, sizeof buf, "%.3f", static_cast<double>(stamp) * 1e-9);
@@ -84,7 +72,6 @@ CoveredScanSource::CoveredScanSource(std::unique_ptr<ScanSource> scans, TrialCov
 
 bool CoveredScanSource::next(Scan& scan) {
   while (!ended_ && scans_->next(scan)) {
-    stampAtSweepEnd(scan);
     if (coverage_.covers(scan)) {
       started_ = true;
       return true;

@@ -26,7 +26,26 @@ struct ScanBagReader::Impl {
   bool stamp_at_end = true;
   std::vector<uint8_t> buffer;  ///< the serialized message, reused (it only grows)
   sensor_msgs::PointCloud2 meta;  ///< everything but `data`, which is decoded from `buffer` in place
+  trials::CloudLayout layout;
+  trials::DecodeCounts counts;
 };
+
+namespace {
+std::string withoutSlash(const std::string& t) { return !t.empty() && t[0] == '/' ? t.substr(1) : t; }
+
+/// The bag's spelling of `topic` (with or without a leading slash); throws listing the bag's topics.
+std::string findTopic(rosbag::Bag& bag, const std::string& bag_path, const std::string& topic) {
+  rosbag::View all(bag);
+  std::string topics;
+  for (const auto* c : all.getConnections()) {
+    if (withoutSlash(c->topic) == withoutSlash(topic)) return c->topic;
+    if (topics.find(c->topic + " (") == std::string::npos)
+      topics += (topics.empty() ? "" : ", ") + c->topic + " (" + c->datatype + ")";
+  }
+  throw std::runtime_error(bag_path + ": no topic " + topic + " in this ROS 1 bag; it has: " +
+                           (topics.empty() ? "none" : topics));
+}
+}  // namespace
 
 ScanBagReader::ScanBagReader(const std::string& bag_path, const std::string& topic, bool stamp_at_end)
     : impl_(std::make_unique<Impl>()) {
@@ -38,7 +57,7 @@ ScanBagReader::ScanBagReader(const std::string& bag_path, const std::string& top
   } catch (const std::exception& e) {
     throw std::runtime_error(bag_path + ": cannot open bag: " + e.what());
   }
-  impl_->view = std::make_unique<rosbag::View>(impl_->bag, rosbag::TopicQuery(topic));
+  impl_->view = std::make_unique<rosbag::View>(impl_->bag, rosbag::TopicQuery(findTopic(impl_->bag, bag_path, topic)));
   if (impl_->view->size() == 0) throw std::runtime_error(impl_->where + ": no messages on this topic");
   impl_->it = impl_->view->begin();
 }
@@ -73,7 +92,17 @@ bool ScanBagReader::next(Scan& scan) {
       ros::serialization::deserialize(in, bytes);
       const uint8_t* data = in.advance(bytes);
       ros::serialization::deserialize(in, meta.is_dense);
-      decodePointCloud2(meta, data, bytes, impl_->stamp_at_end, impl_->where, scan);
+      impl_->counts = decodePointCloud2(meta, data, bytes, impl_->stamp_at_end, impl_->where, scan);
+      impl_->layout.stamp = scan.stamp;
+      impl_->layout.frame_id = meta.header.frame_id;
+      impl_->layout.height = meta.height;
+      impl_->layout.width = meta.width;
+      impl_->layout.fields.clear();
+      for (const auto& f : meta.fields) impl_->layout.fields.push_back({f.name, f.offset, f.datatype, f.count});
+      impl_->layout.is_bigendian = meta.is_bigendian;
+      impl_->layout.point_step = meta.point_step;
+      impl_->layout.row_step = meta.row_step;
+      impl_->layout.is_dense = meta.is_dense;
     } catch (const ros::serialization::StreamOverrunException& e) {
       throw std::runtime_error(impl_->where + ": truncated PointCloud2 message: " + e.what());
     }
@@ -82,10 +111,16 @@ bool ScanBagReader::next(Scan& scan) {
   return false;
 }
 
-ScanBagWriter::ScanBagWriter(const std::string& bag_path) : bag_(std::make_unique<rosbag::Bag>()), path_(bag_path) {
+const trials::CloudLayout& ScanBagReader::lastLayout() const { return impl_->layout; }
+trials::DecodeCounts ScanBagReader::lastCounts() const { return impl_->counts; }
+
+ScanBagWriter::ScanBagWriter(const std::string& bag_path, BagCompression compression)
+    : bag_(std::make_unique<rosbag::Bag>()), path_(bag_path) {
   initTime();
   try {
     bag_->open(bag_path, rosbag::bagmode::Write);
+    if (compression == BagCompression::Bz2) bag_->setCompression(rosbag::compression::BZ2);
+    if (compression == BagCompression::Lz4) bag_->setCompression(rosbag::compression::LZ4);
   } catch (const std::exception& e) {
     throw std::runtime_error(bag_path + ": cannot write bag: " + e.what());
   }
@@ -95,6 +130,11 @@ ScanBagWriter::~ScanBagWriter() { close(); }
 
 void ScanBagWriter::write(const std::string& topic, const Scan& scan, const std::string& frame_id) {
   const auto msg = toPointCloud2(scan, frame_id);
+  bag_->write(topic, msg.header.stamp, msg);
+}
+
+void ScanBagWriter::write(const std::string& topic, const trials::RawCloud& cloud) {
+  const auto msg = toPointCloud2(cloud);
   bag_->write(topic, msg.header.stamp, msg);
 }
 

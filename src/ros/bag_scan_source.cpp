@@ -8,20 +8,30 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "cosmo/pipeline/sequence_references.hpp"
 #include "cosmo/pipeline/trial_coverage.hpp"
-#include "cosmo/ros/point_cloud.hpp"
+#include "cosmo/trials/bag_format.hpp"
+#include "cosmo/trials/trial_reference.hpp"
 
 namespace cosmo::ros_glue {
 
-pipeline::TrialSpan readTrialSpan(const std::string& bag_path, const std::string& topic, char robot,
-                                  bool stamp_at_end) {
+namespace {
+
+/// ROS 1: the first message and the messages received in the bag's last 5 s.
+pipeline::TrialSpan readRos1TrialSpan(const std::string& bag_path, const std::string& requested_topic, char robot) {
   if (!ros::Time::isValid()) ros::Time::init();
   rosbag::Bag bag;
   try {
     bag.open(bag_path, rosbag::bagmode::Read);
   } catch (const std::exception& e) {
     throw std::runtime_error(bag_path + ": cannot open bag: " + e.what());
+  }
+  std::string topic = requested_topic;
+  {
+    rosbag::View any(bag);
+    for (const auto* c : any.getConnections())
+      if (c->topic == requested_topic || c->topic == "/" + requested_topic ||
+          "/" + c->topic == requested_topic)
+        topic = c->topic;
   }
   rosbag::View all(bag, rosbag::TopicQuery(topic));
   if (all.size() == 0) throw std::runtime_error(bag_path + " " + topic + ": no messages on this topic");
@@ -30,10 +40,7 @@ pipeline::TrialSpan readTrialSpan(const std::string& bag_path, const std::string
     if (!msg)
       throw std::runtime_error(bag_path + " " + topic + ": message type " + m.getDataType() +
                                " is not sensor_msgs/PointCloud2");
-    if (stamp_at_end) return static_cast<StampNs>(msg->header.stamp.toNSec());
-    Scan scan = fromPointCloud2(*msg, false, bag_path + " " + topic);  // the sweep end: the latest point
-    pipeline::stampAtSweepEnd(scan);
-    return scan.stamp;
+    return static_cast<StampNs>(msg->header.stamp.toNSec());
   };
   pipeline::TrialSpan span;
   span.robot = robot;
@@ -47,18 +54,44 @@ pipeline::TrialSpan readTrialSpan(const std::string& bag_path, const std::string
   return span;
 }
 
+}  // namespace
+
+std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const pipeline::TrialConfig& trial) {
+  if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1)
+    return std::make_unique<BagScanSource>(trial.bag, trial.topic, trial.stamp_at_end);
+  return std::make_unique<trials::Ros2ScanSource>(trial.bag, trial.topic, trial.stamp_at_end);
+}
+
+pipeline::TrialSpan readTrialSpan(const pipeline::TrialConfig& trial) {
+  if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1)
+    return readRos1TrialSpan(trial.bag, trial.topic, trial.robot);
+  return trials::readRos2TrialSpan(trial.bag, trial.topic, trial.robot);
+}
+
+pipeline::TrialSpan readSweepEndSpan(const pipeline::TrialConfig& trial) {
+  pipeline::TrialSpan span = readTrialSpan(trial);
+  if (trial.stamp_at_end) return span;
+  // Header stamps at the sweep start: the decoded scans are stamped at its end; every sweep lasts as the first.
+  Scan first;
+  if (openTrialScanSource(trial)->next(first) && first.stamp > span.first) {
+    const StampNs sweep = first.stamp - span.first;
+    span.first += sweep;
+    span.last += sweep;
+  }
+  return span;
+}
+
 pipeline::SequenceTiming synchronizeSequence(const pipeline::SequenceConfig& config) {
   std::vector<pipeline::TrialSpan> spans;
-  for (const auto& t : config.trials)
-    spans.push_back(pipeline::trialCoverage(t).clip(readTrialSpan(t.bag, t.topic, t.robot, t.stamp_at_end)));
+  for (const auto& t : config.trials) spans.push_back(trials::trialCoverage(t).clip(readSweepEndSpan(t)));
   return pipeline::SequenceTiming::synchronize(spans, config.anchor, config.time_offset_sigma, config.seed);
 }
 
 std::map<char, std::unique_ptr<pipeline::ScanSource>> openTrialSources(const pipeline::SequenceConfig& config) {
   std::map<char, std::unique_ptr<pipeline::ScanSource>> sources;
   for (const auto& t : config.trials)
-    sources[t.robot] = std::make_unique<pipeline::CoveredScanSource>(
-        std::make_unique<BagScanSource>(t.bag, t.topic, t.stamp_at_end), pipeline::trialCoverage(t));
+    sources[t.robot] =
+        std::make_unique<pipeline::CoveredScanSource>(openTrialScanSource(t), trials::trialCoverage(t));
   return sources;
 }
 

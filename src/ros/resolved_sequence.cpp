@@ -6,7 +6,7 @@
 
 #include <stdexcept>
 
-#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/trials/trial_reference.hpp"
 #include "cosmo/ros/bag_scan_source.hpp"
 
 namespace cosmo::ros_glue {
@@ -14,7 +14,7 @@ namespace cosmo::ros_glue {
 Trajectory ResolvedSequence::reference(char robot) const {
   for (const auto& t : config.trials)
     if (t.robot == robot)
-      return pipeline::loadSensorReference(t, timing.of(robot), pipeline::sequenceReferenceOffset(config));
+      return trials::loadSensorReference(t, timing.of(robot), trials::sequenceReferenceOffset(config));
   return {};
 }
 

@@ -3,32 +3,44 @@
 #include <ros/time.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
-#include <sensor_msgs/PointCloud2.h>
 
 #include <filesystem>
 #include <set>
 
-#include "cosmo/pipeline/sequence_references.hpp"
-#include "cosmo/pipeline/trial_coverage.hpp"
 #include "cosmo/ros/bag_scan_source.hpp"
-#include "cosmo/ros/point_cloud.hpp"
+#include "cosmo/trials/bag_format.hpp"
+#include "cosmo/trials/ros2_bag.hpp"
+#include "cosmo/trials/trial_reference.hpp"
 
 namespace cosmo::ros_glue {
 
 namespace {
-const char* typeName(uint8_t datatype) {
-  switch (datatype) {
-    case sensor_msgs::PointField::INT8: return "int8";
-    case sensor_msgs::PointField::UINT8: return "uint8";
-    case sensor_msgs::PointField::INT16: return "int16";
-    case sensor_msgs::PointField::UINT16: return "uint16";
-    case sensor_msgs::PointField::INT32: return "int32";
-    case sensor_msgs::PointField::UINT32: return "uint32";
-    case sensor_msgs::PointField::FLOAT32: return "float32";
-    case sensor_msgs::PointField::FLOAT64: return "float64";
-    default: return "unknown";
+
+/// "name (type)" of every topic of the bag; `has` = whether `topic` is one of them (with or without its slash).
+std::vector<std::string> listTopics(const pipeline::TrialConfig& trial, bool& has) {
+  std::set<std::string> out;
+  has = false;
+  auto match = [&](const std::string& name) {
+    if (name == trial.topic || "/" + name == trial.topic || name == "/" + trial.topic) has = true;
+  };
+  if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1) {
+    if (!ros::Time::isValid()) ros::Time::init();
+    rosbag::Bag bag;
+    bag.open(trial.bag, rosbag::bagmode::Read);
+    rosbag::View all(bag);
+    for (const auto* c : all.getConnections()) {
+      out.insert(c->topic + " (" + c->datatype + ")");
+      match(c->topic);
+    }
+  } else {
+    for (const auto& t : trials::listRos2Topics(trial.bag)) {
+      out.insert(t.name + " (" + t.type + ")");
+      match(t.name);
+    }
   }
+  return {out.begin(), out.end()};
 }
+
 }  // namespace
 
 pipeline::TrialProbe probeTrial(const pipeline::TrialConfig& trial, std::size_t scans) {
@@ -37,39 +49,26 @@ pipeline::TrialProbe probeTrial(const pipeline::TrialConfig& trial, std::size_t 
     probe.error = "bag not found: " + trial.bag;
     return probe;
   }
-  if (!ros::Time::isValid()) ros::Time::init();
-  rosbag::Bag bag;
   try {
-    bag.open(trial.bag, rosbag::bagmode::Read);
+    probe.topics = listTopics(trial, probe.topic_found);
+    probe.bag_found = true;
   } catch (const std::exception& e) {
     probe.error = trial.bag + ": cannot open bag: " + e.what();
     return probe;
   }
-  probe.bag_found = true;
-  rosbag::View all(bag);
-  std::set<std::string> topics;
-  for (const auto* c : all.getConnections()) topics.insert(c->topic + " (" + c->datatype + ")");
-  probe.topics.assign(topics.begin(), topics.end());
-  rosbag::View view(bag, rosbag::TopicQuery(trial.topic));
-  probe.messages = view.size();
-  if (probe.messages == 0) return probe;
-  probe.topic_found = true;
-  const std::string where = trial.bag + " " + trial.topic;
+  if (!probe.topic_found) return probe;
   try {
-    for (const auto& m : view) {
-      if (probe.first_scans.size() >= scans) break;
-      auto msg = m.instantiate<sensor_msgs::PointCloud2>();
-      if (!msg) throw std::runtime_error(where + ": message type " + m.getDataType() + " is not sensor_msgs/PointCloud2");
-      if (probe.fields.empty())
-        for (const auto& f : msg->fields)
-          probe.fields += (probe.fields.empty() ? "" : " ") + f.name + ":" + typeName(f.datatype);
-      probe.points_in_messages += static_cast<std::size_t>(msg->width) * msg->height;
-      Scan scan = fromPointCloud2(*msg, trial.stamp_at_end, where);
-      pipeline::stampAtSweepEnd(scan);
-      probe.first_scans.push_back(std::move(scan));
+    auto source = openTrialScanSource(trial);
+    probe.messages = source->size();
+    Scan scan;
+    while (probe.first_scans.size() < scans && source->next(scan)) {
+      if (probe.fields.empty()) probe.fields = trials::describeFields(source->lastLayout());
+      probe.points_in_messages += source->lastCounts().points;
+      probe.first_scans.push_back(scan);
     }
+    if (probe.first_scans.empty()) throw std::runtime_error(trial.bag + " " + trial.topic + ": no scan");
     probe.first_stamp = probe.first_scans.front().stamp;
-    probe.last_stamp = readTrialSpan(trial.bag, trial.topic, trial.robot, trial.stamp_at_end).last;
+    probe.last_stamp = readSweepEndSpan(trial).last;
   } catch (const std::exception& e) {
     probe.error = e.what();
   }
@@ -85,7 +84,7 @@ bool checkSequence(const pipeline::SequenceConfig& config, const std::string& no
       if (!t.reference.empty() && !std::filesystem::exists(t.reference))
         reference_error = t.name + ": reference not found: " + t.reference;
       else
-        reference = pipeline::readBodyReference(t);
+        reference = trials::readBodyReference(t);
     } catch (const std::exception& e) {
       reference_error = t.name + ": " + e.what();
     }

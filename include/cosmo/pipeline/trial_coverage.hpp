@@ -1,17 +1,14 @@
 #pragma once
-// A trial's scans as the pipeline uses them.
+// Which of a trial's scans the pipeline uses: those its reference covers.
 //
-// Stamp: every scan is stamped at its sweep end, the latest point's time, with point times <= 0 relative to it
-// (stampAtSweepEnd). Readers decode with the trial's convention (`stamp: start | end`: which instant of the sweep
-// the header stamp is), so after this step a start-stamped and an end-stamped copy of the same sweeps are the same
-// scans, and every module downstream (odometry, keyframes, dewarp, radio, recorder) sees one convention.
-//
-// Reference span: a trial's reference is valid over its own span, [first pose, last pose]. A scan is covered when
-// its whole sweep lies inside it (first point at or after the first pose, sweep end at or before the last) and the
-// reference poses around its sweep end are at most kMaxReferenceGap apart. The robot is off until its first
-// covered scan (scans before it are skipped) and its trial ends at its last one (scans after the reference's end
-// are not read), so every keyframe it writes has a groundtruth pose. A covered scan after an uncovered one inside
-// the span (a gap in the reference) stops the run: std::runtime_error naming the trial, the stamp and the span.
+// Scans arrive stamped at their sweep end, point times <= 0 (the decode applies the trial's `stamp: start | end`,
+// trials/point_cloud_decode.hpp). A trial's reference is valid over its own span, [first pose, last pose]. A scan
+// is covered when its whole sweep lies inside it (first point at or after the first pose, sweep end at or before
+// the last) and the reference poses around its sweep end are at most kMaxReferenceGap apart. The robot is off
+// until its first covered scan (scans before it are skipped) and its trial ends at its last one (scans after the
+// reference's end are not read), so every keyframe it writes has a groundtruth pose. An uncovered scan inside the
+// span after a covered one (a gap in the reference) stops the run: std::runtime_error naming the trial, the stamp
+// and the span.
 #include <memory>
 #include <string>
 
@@ -24,10 +21,6 @@ namespace cosmo::pipeline {
 
 /// Largest spacing of the reference poses around a covered sweep end (s).
 inline constexpr double kMaxReferenceGap = 1.0;
-
-/// Moves `scan.stamp` to its latest point's time and makes the point times relative to it (<= 0). A scan already
-/// stamped at its end (latest time 0) or without point times is left as it is.
-void stampAtSweepEnd(Scan& scan);
 
 /// "<seconds since the epoch, 3 decimals>" for messages.
 std::string formatStamp(StampNs stamp);
@@ -58,7 +51,7 @@ class TrialCoverage {
   Trajectory reference_;
 };
 
-/// A trial's scans in recorded time, stamped at the sweep end, only the covered ones (see the file comment).
+/// A trial's scans in recorded time, only the covered ones (see the file comment).
 class CoveredScanSource : public ScanSource {
  public:
   CoveredScanSource(std::unique_ptr<ScanSource> scans, TrialCoverage coverage);

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cosmo/common/scan.hpp"
+#include "cosmo/trials/point_cloud_decode.hpp"
 
 namespace rosbag {
 class Bag;
@@ -12,7 +13,9 @@ class View;
 
 namespace cosmo::ros_glue {
 
-/// Reads the sensor_msgs/PointCloud2 messages of one topic in time order.
+/// Reads the sensor_msgs/PointCloud2 messages of one topic in time order (decoded by trials::decodeCloud:
+/// invalid returns dropped). The topic is found with or without its leading slash; when it is missing the
+/// error lists the bag's topics.
 class ScanBagReader {
  public:
   ScanBagReader(const std::string& bag_path, const std::string& topic, bool stamp_at_end = true);
@@ -21,18 +24,26 @@ class ScanBagReader {
   std::size_t size() const;
   /// Next scan (stamped with its header stamp); false at the end.
   bool next(Scan& scan);
+  /// Layout and counts of the last message decoded by next().
+  const trials::CloudLayout& lastLayout() const;
+  trials::DecodeCounts lastCounts() const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 
+/// Chunk compression of a written bag.
+enum class BagCompression { None, Bz2, Lz4 };
+
 /// Writes scans as sensor_msgs/PointCloud2 (fields x y z intensity t ring), received time = header stamp.
 class ScanBagWriter {
  public:
-  explicit ScanBagWriter(const std::string& bag_path);
+  explicit ScanBagWriter(const std::string& bag_path, BagCompression compression = BagCompression::None);
   ~ScanBagWriter();
   void write(const std::string& topic, const Scan& scan, const std::string& frame_id);
+  /// A cloud exactly as given (fields, organisation), received time = its header stamp.
+  void write(const std::string& topic, const trials::RawCloud& cloud);
   void close();
 
  private:

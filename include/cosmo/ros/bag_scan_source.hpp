@@ -1,7 +1,8 @@
 #pragma once
-// The trials of a sequence config read from their bags (ROS glue for the pipeline's drivers, the `player`
-// node and `cosmo_generate`): each trial's first/last scan stamps (for the synchronization) and a
-// pipeline::ScanSource over its scans. Errors throw std::runtime_error naming the bag and topic.
+// The trials of a sequence config read from their bags, whatever the container (the pipeline's drivers, the
+// `player` node, `cosmo_generate`, pre-flight checks): a trial's `bag:` may name a ROS 1 bag, a ROS 2 sqlite3
+// bag folder or its .db3, told apart by content (trials::detectBagFormat). ROS 1 bags are read here (rosbag is
+// ROS); ROS 2 bags by the ROS-free trials module. Errors throw std::runtime_error naming the bag and topic.
 #include <map>
 #include <memory>
 #include <string>
@@ -10,32 +11,40 @@
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/pipeline/sequence_timing.hpp"
 #include "cosmo/ros/bag_io.hpp"
+#include "cosmo/trials/trial_scans.hpp"
 
 namespace cosmo::ros_glue {
 
-/// Sweep-end stamps of the first and the last PointCloud2 message on `topic` (reads only the first message and
-/// the messages of the bag's last few seconds; a start-stamped trial's scans are decoded for their latest point).
-pipeline::TrialSpan readTrialSpan(const std::string& bag_path, const std::string& topic, char robot,
-                                  bool stamp_at_end = true);
-
-/// ScanBagReader as a pipeline::ScanSource.
-class BagScanSource : public pipeline::ScanSource {
+/// ScanBagReader (ROS 1 bag) as a trial scan source.
+class BagScanSource : public trials::TrialScanSource {
  public:
   BagScanSource(const std::string& bag_path, const std::string& topic, bool stamp_at_end = true)
       : reader_(bag_path, topic, stamp_at_end) {}
   bool next(Scan& scan) override { return reader_.next(scan); }
-  std::size_t size() const { return reader_.size(); }
+  std::size_t size() const override { return reader_.size(); }
+  const trials::CloudLayout& lastLayout() const override { return reader_.lastLayout(); }
+  trials::DecodeCounts lastCounts() const override { return reader_.lastCounts(); }
 
  private:
   ScanBagReader reader_;
 };
 
+/// The scans of one trial (its bag, topic and stamp convention), from a ROS 1 or ROS 2 bag.
+std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const pipeline::TrialConfig& trial);
+
+/// Header stamps of the trial's first and last PointCloud2 (reads only the first message and the messages of
+/// the bag's last few seconds), from a ROS 1 or ROS 2 bag.
+pipeline::TrialSpan readTrialSpan(const pipeline::TrialConfig& trial);
+
+/// readTrialSpan as stamps of the sweep ends (the stamps of the decoded scans, whatever the trial's convention).
+pipeline::TrialSpan readSweepEndSpan(const pipeline::TrialConfig& trial);
+
 /// The synchronized timing of a sequence config (reads every trial's span, clipped to its reference's span:
 /// pipeline/trial_coverage.hpp).
 pipeline::SequenceTiming synchronizeSequence(const pipeline::SequenceConfig& config);
 
-/// A reader of each trial's scans (robot -> source), in recorded time: stamped at the sweep end, only the scans
-/// its reference covers (pipeline::CoveredScanSource).
+/// A reader of each trial's scans (robot -> source), in recorded time: only the scans its reference covers
+/// (pipeline::CoveredScanSource).
 std::map<char, std::unique_ptr<pipeline::ScanSource>> openTrialSources(const pipeline::SequenceConfig& config);
 
 /// One merged stream over all trials of a sequence config, in sequence time.

@@ -1,16 +1,14 @@
 #pragma once
 // sensor_msgs/PointCloud2 <-> cosmo::Scan.
 //
-// Reading: fields x y z (float32 or float64) are required; intensity, ring (any integer type) and a per-point
-// time are used when present. The per-point time is taken from `t` (uint32 ns, Ouster), `time` or
-// `timestamp` (float seconds, Velodyne/Hesai); it is converted to seconds relative to the message stamp:
-// with `stamp_at_end` (the Ouster/MCD convention) the latest point is at the stamp, otherwise the stamp is the
-// sweep start. Errors throw std::runtime_error naming the topic (`source`) and field.
+// Reading is trials::decodeCloud (cosmo/trials/point_cloud_decode.hpp: fields, per-point time conventions,
+// invalid returns dropped). Errors throw std::runtime_error naming the topic (`source`) and field.
 #include <sensor_msgs/PointCloud2.h>
 
 #include <string>
 
 #include "cosmo/common/scan.hpp"
+#include "cosmo/trials/point_cloud_decode.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -19,8 +17,11 @@ Scan fromPointCloud2(const sensor_msgs::PointCloud2& msg, bool stamp_at_end = tr
 
 /// The same for a cloud whose point bytes lie elsewhere (`data`, `bytes`; msg.data is not read): a message
 /// parsed in place from its serialized form (ScanBagReader). Fills `scan`, reusing its vectors' capacity.
-void decodePointCloud2(const sensor_msgs::PointCloud2& msg, const uint8_t* data, std::size_t bytes, bool stamp_at_end,
-                       const std::string& source, Scan& scan);
+trials::DecodeCounts decodePointCloud2(const sensor_msgs::PointCloud2& msg, const uint8_t* data, std::size_t bytes,
+                                       bool stamp_at_end, const std::string& source, Scan& scan);
+
+/// A plain cloud (e.g. the simulator's organised Ouster cloud) as a message, fields and bytes unchanged.
+sensor_msgs::PointCloud2 toPointCloud2(const trials::RawCloud& cloud);
 
 /// How toPointCloud2 writes the per-point time.
 enum class PointTimeEncoding {

@@ -30,7 +30,7 @@
 #include "cosmo/pipeline/odometry_run_ahead.hpp"
 #include "cosmo/pipeline/seed_streams.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
-#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/trials/trial_reference.hpp"
 #include "cosmo/pipeline/team_radio.hpp"
 #include "cosmo/pipeline/team_run.hpp"
 #include "cosmo/ros/bag_scan_source.hpp"
@@ -104,7 +104,7 @@ double peakRssMb() {
 
 /// The sequence's own lines of the dataset metadata: where the trials came from and the one reference offset.
 std::vector<std::pair<std::string, std::string>> sequenceMetadata(const SequenceConfig& config) {
-  const Eigen::Vector3d o = sequenceReferenceOffset(config);
+  const Eigen::Vector3d o = trials::sequenceReferenceOffset(config);
   char offset[160];
   std::snprintf(offset, sizeof offset, "[%.3f, %.3f, %.3f]  # m, subtracted from every reference position", o.x(),
                 o.y(), o.z());
@@ -196,7 +196,7 @@ int main(int argc, char** argv) {
       std::printf("  robot %c  %-22s starts at +%7.2f s, %7.1f s long (offset %+.3f s)\n", t.robot,
                   config.trial(t.robot).name.c_str(), toSeconds(t.start() - timing.start()),
                   toSeconds(t.end() - t.start()), static_cast<double>(t.offset_ns) * 1e-9);
-    const std::map<char, Trajectory> references = loadSequenceReferences(config, timing);
+    const std::map<char, Trajectory> references = trials::loadSequenceReferences(config, timing);
 
     // Radio steps on the absolute grid k * delta (as the comm_broker node does on ROS time).
     const StampNs end = max_seconds > 0 ? std::min(timing.end(), timing.start() + toStampNs(max_seconds)) : timing.end();

@@ -1,8 +1,10 @@
-// cosmo_simulate: writes a synthetic multi-trial sequence (MCD-style bags, pose_inW.csv ground truth and a
-// sequence config) from a generation config, cached by a hash of all parameters and the code version.
+// cosmo_simulate: writes a synthetic multi-trial sequence (bags, ground truth and a sequence config) from a
+// generation config, cached by a hash of all parameters, the layout and the code version. The layout is cosmo's
+// own (one ROS 1 bag and one pose CSV per trial) or a real dataset's exactly (--layout mcd | cu-multi, see
+// cosmo/ros/trial_layout_writer.hpp), so that the readers of those datasets can be checked against the truth.
 //
-//   cosmo_simulate [--config config/sim/default.yaml | --small] [--out DIR] [--cache-dir DIR] [--no-cache] [--force]
-//                  [--plan-only]
+//   cosmo_simulate [--config config/sim/default.yaml | --small] [--layout cosmo|mcd|cu-multi] [--out DIR]
+//                  [--cache-dir DIR] [--no-cache] [--force] [--plan-only]
 //
 // The last line printed is the path of the sequence config.
 #include <unistd.h>
@@ -14,12 +16,15 @@
 #include <future>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/ros/bag_io.hpp"
+#include "cosmo/ros/trial_layout_writer.hpp"
 #include "cosmo/sim/scan_simulator.hpp"
 #include "cosmo/sim/sequence_planner.hpp"
 
@@ -29,9 +34,15 @@ using namespace cosmo;
 namespace {
 
 void usage() {
-  std::cerr << "usage: cosmo_simulate [--config FILE | --small] [--out DIR] [--cache-dir DIR] [--no-cache] [--force]\n"
+  std::cerr << "usage: cosmo_simulate [--config FILE | --small] [--layout L] [--out DIR] [--cache-dir DIR] [--no-cache] [--force]\n"
                "  --config FILE    generation parameters (default: config/sim/default.yaml of the source tree)\n"
                "  --small          use config/sim/ci.yaml (a CI-sized sequence)\n"
+               "  --layout L       cosmo (default): <trial>.bag + <trial>_pose_inW.csv;\n"
+               "                   mcd: <trial>/<trial>_os1_<beams>.bag (bz2, organised Ouster clouds stamped at the\n"
+               "                   sweep end), <trial>/pose_inW.csv (body, 10 Hz, from 1 s after the first scan),\n"
+               "                   calibration.yaml;\n"
+               "                   cu-multi: robotN_<trial>_lidar/ (ROS 2 sqlite3 bag, clouds stamped at the sweep\n"
+               "                   start; the LiDAR runs at 20 Hz), robotN_<trial>_gt_utm.csv (UTM-offset body poses)\n"
                "  --out DIR        put the sequence here (symlinks into the cache, or real files with --no-cache)\n"
                "  --cache-dir DIR  cache root (default: $COSMO_SIM_CACHE, else ~/.cache/cosmo/sim)\n"
                "  --no-cache       generate straight into --out, do not read or fill the cache\n"
@@ -60,7 +71,35 @@ void writeNetworkCsv(const std::string& path, const sim::PathNetwork& net) {
   if (!out) throw std::runtime_error(path + ": write failed");
 }
 
-void generate(const sim::SimulationParams& params, const fs::path& dir, bool plan_only) {
+// The sequence config of a trial set written in a real layout (paths relative to the config's folder).
+void writeLayoutSequenceConfig(const std::string& path, const sim::SimulationParams& params, ros_glue::TrialLayout layout,
+                               const std::vector<ros_glue::WrittenTrial>& written) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot write sequence config");
+  out << std::setprecision(17);
+  out << "# Synthetic sequence in the " << ros_glue::trialLayoutName(layout) << " layout, written by cosmo_simulate (code "
+      << sim::kSimCodeVersion << ", parameter hash " << params.hash() << ")\n";
+  if (layout == ros_glue::TrialLayout::CuMulti)
+    out << "# ground truth positions carry a UTM-like offset: x + " << ros_glue::kSimulatedUtmOffset.x() << ", y + "
+        << ros_glue::kSimulatedUtmOffset.y() << "\n";
+  out << "name: " << params.name << "\nsource: " << params.source << "\nseed: " << params.seed
+      << "\nanchor: " << params.anchor << "\ntime_offset_sigma: " << params.time_offset_sigma << "\n";
+  if (layout == ros_glue::TrialLayout::CuMulti) out << "reference_offset: anchor\n";  // one UTM frame, one offset
+  out << "trials:\n";
+  for (std::size_t i = 0; i < written.size(); ++i) {
+    const auto& w = written[i];
+    out << "  - robot: " << params.trials[i].robot << "\n    name: " << params.trials[i].name << "\n    bag: " << w.bag
+        << "\n    topic: " << w.topic << "\n    reference: " << w.reference
+        << "\n    stamp: " << (w.stamp_at_end ? "end" : "start") << "\n    extrinsic: [";
+    const Eigen::Matrix4d M = w.extrinsic.matrix();
+    for (int k = 0; k < 16; ++k) out << (k ? ", " : "") << M(k / 4, k % 4);
+    out << "]\n";
+  }
+  if (!out) throw std::runtime_error(path + ": write failed");
+}
+
+void generate(const sim::SimulationParams& params, const fs::path& dir, bool plan_only, ros_glue::TrialLayout layout) {
+  const bool own_layout = layout == ros_glue::TrialLayout::Cosmo;
   bench::Stopwatch total;
   std::cout << "planning world and routes (seed " << params.seed << ")..." << std::endl;
   const auto seq = sim::planSequence(params);
@@ -70,7 +109,9 @@ void generate(const sim::SimulationParams& params, const fs::path& dir, bool pla
               world.terrain().hi().x() - world.terrain().lo().x(), world.terrain().hi().y() - world.terrain().lo().y(),
               total.elapsedMs() * 1e-3);
   sim::ScanSimulator simulator(world, params.lidar);
-  sim::writeSequenceConfig((dir / (params.name + ".yaml")).string(), params);
+  if (own_layout) sim::writeSequenceConfig((dir / (params.name + ".yaml")).string(), params);
+  std::vector<ros_glue::WrittenTrial> written;
+  int robot_number = 0;
   if (plan_only) writeNetworkCsv((dir / "network.csv").string(), world.network());
   for (const auto& t : seq.trials) {
     const auto& tp = t.params;
@@ -81,9 +122,23 @@ void generate(const sim::SimulationParams& params, const fs::path& dir, bool pla
     for (int n : t.route) std::printf(" %d", n);
     std::printf("\n");
     std::fflush(stdout);
-    writeMcdPoseCsv((dir / (tp.name + "_pose_inW.csv")).string(), t.body);
+    ++robot_number;
+    if (own_layout) writeMcdPoseCsv((dir / (tp.name + "_pose_inW.csv")).string(), t.body);
     if (plan_only) continue;
-    ros_glue::ScanBagWriter bag((dir / (tp.name + ".bag")).string());
+    std::unique_ptr<ros_glue::ScanBagWriter> own_bag;
+    std::unique_ptr<ros_glue::TrialLayoutWriter> layout_writer;
+    if (own_layout) {
+      own_bag = std::make_unique<ros_glue::ScanBagWriter>((dir / (tp.name + ".bag")).string());
+    } else {
+      ros_glue::LayoutTrialInfo info;
+      info.name = tp.name;
+      info.robot_number = robot_number;
+      info.platform = tp.platform;
+      info.beams = params.lidar.beams;
+      info.columns = params.lidar.columns;
+      info.rate_hz = params.lidar.rate_hz;
+      layout_writer = ros_glue::makeTrialLayoutWriter(layout, dir.string(), info);
+    }
     const Pose3 extrinsic = tp.extrinsicPose();
     bench::Stopwatch sw;
     std::size_t points = 0;
@@ -93,8 +148,9 @@ void generate(const sim::SimulationParams& params, const fs::path& dir, bool pla
       Scan scan = simulator.simulate(t.body, extrinsic, t.scan_stamps[k], t.noise_seed);
       points += scan.size();
       if (pending.valid()) pending.get();  // the previous scan is written while this one is cast
-      pending = std::async(std::launch::async, [&bag, &params, s = std::move(scan)]() {
-        bag.write(params.topic, s, params.frame_id);
+      pending = std::async(std::launch::async, [&own_bag, &layout_writer, &params, s = std::move(scan)]() {
+        if (own_bag) own_bag->write(params.topic, s, params.frame_id);
+        else layout_writer->write(s);
       });
       if ((k + 1) % std::max<std::size_t>(1, n / 10) == 0 || k + 1 == n) {
         const double sec = sw.elapsedMs() * 1e-3;
@@ -105,8 +161,10 @@ void generate(const sim::SimulationParams& params, const fs::path& dir, bool pla
       }
     }
     if (pending.valid()) pending.get();
-    bag.close();
+    if (own_bag) own_bag->close();
+    else written.push_back(layout_writer->finish(t.body, extrinsic));
   }
+  if (!own_layout) writeLayoutSequenceConfig((dir / (params.name + ".yaml")).string(), params, layout, written);
   std::ofstream(dir / "parameters.txt") << params.describe() << "\n";
   std::printf("generated in %.1f s\n", total.elapsedMs() * 1e-3);
 }
@@ -114,7 +172,7 @@ void generate(const sim::SimulationParams& params, const fs::path& dir, bool pla
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string config, out, cache_dir;
+  std::string config, out, cache_dir, layout_name = "cosmo";
   bool small = false, no_cache = false, force = false, plan_only = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -127,6 +185,7 @@ int main(int argc, char** argv) {
     };
     if (a == "--config") config = value();
     else if (a == "--out") out = value();
+    else if (a == "--layout") layout_name = value();
     else if (a == "--cache-dir") cache_dir = value();
     else if (a == "--small") small = true;
     else if (a == "--no-cache") no_cache = true;
@@ -141,8 +200,11 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const auto params = sim::SimulationParams::load(config);
-    const std::string key = params.name + "-" + params.hash();
+    const ros_glue::TrialLayout layout = ros_glue::parseTrialLayout(layout_name);
+    if (plan_only && layout != ros_glue::TrialLayout::Cosmo) throw std::runtime_error("--plan-only writes the cosmo layout only");
+    auto params = sim::SimulationParams::load(config);
+    if (layout == ros_glue::TrialLayout::CuMulti) params.lidar.rate_hz = 20.0;  // CU-Multi's Ouster runs at 20 Hz
+    const std::string key = params.name + "-" + params.hash() + (layout == ros_glue::TrialLayout::Cosmo ? "" : "-" + layout_name);
     const fs::path cache = cache_dir.empty() ? defaultCacheDir() : fs::path(cache_dir);
     if (plan_only) no_cache = true;
     const fs::path final_dir = no_cache ? fs::path(out) : cache / key;
@@ -153,7 +215,7 @@ int main(int argc, char** argv) {
       fs::path tmp = no_cache ? final_dir : fs::path(final_dir.string() + ".tmp-" + std::to_string(::getpid()));
       fs::create_directories(tmp);
       std::cout << "generating " << params.name << " (" << config << ") into " << final_dir.string() << std::endl;
-      generate(params, tmp, plan_only);
+      generate(params, tmp, plan_only, layout);
       if (!plan_only) std::ofstream(tmp / "COMPLETE") << key << "\n";
       if (!no_cache) {
         if (fs::exists(final_dir / "COMPLETE")) {

@@ -9,10 +9,11 @@
 
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
-#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/trials/trial_reference.hpp"
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
+using namespace cosmo::trials;
 namespace fs = std::filesystem;
 
 namespace {

@@ -1,0 +1,136 @@
+// bench_trial_bags: CPU cost of reading one scan from each trial container — an MCD-layout ROS 1 bag with bz2
+// chunks, the same bag uncompressed, and a CU-Multi-layout ROS 2 sqlite3 bag — for simulated organised Ouster
+// sweeps of 64 x 1024 and 128 x 1024 (decompression + decode + invalid-return removal, one thread).
+//
+//   bench_trial_bags [--scans N] [--beams 64,128] [--dir DIR]
+#include <unistd.h>
+
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/ros/bag_io.hpp"
+#include "cosmo/ros/bag_scan_source.hpp"
+#include "cosmo/sim/scan_simulator.hpp"
+#include "cosmo/sim/sequence_planner.hpp"
+#include "cosmo/trials/cu_multi_layout.hpp"
+#include "cosmo/trials/mcd_layout.hpp"
+
+using namespace cosmo;
+namespace fs = std::filesystem;
+
+namespace {
+
+double cpuMs() { return 1e3 * static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+sim::PlannedSequence plan(const sim::LidarModel& lidar) {
+  sim::SimulationParams p;
+  p.world.blocks_x = 2;
+  p.world.blocks_y = 2;
+  p.lidar = lidar;
+  sim::TrialParams t;
+  t.name = "bench";
+  t.motion = sim::MotionParams::preset("atv");
+  t.length = 200;
+  t.start_node = 0;
+  p.trials.push_back(t);
+  return sim::planSequence(p);
+}
+
+struct ReadCost {
+  double cpu_ms_per_scan = 0.0;
+  double points_per_scan = 0.0;
+};
+
+ReadCost readAll(const pipeline::TrialConfig& trial) {
+  auto src = ros_glue::openTrialScanSource(trial);
+  Scan s;
+  std::size_t n = 0, points = 0;
+  const double c0 = cpuMs();
+  while (src->next(s)) {
+    ++n;
+    points += s.size();
+  }
+  return {(cpuMs() - c0) / std::max<std::size_t>(1, n), static_cast<double>(points) / std::max<std::size_t>(1, n)};
+}
+
+double megabytes(const fs::path& p) {
+  std::uintmax_t bytes = 0;
+  if (fs::is_directory(p)) {
+    for (const auto& e : fs::recursive_directory_iterator(p))
+      if (e.is_regular_file()) bytes += e.file_size();
+  } else {
+    bytes = fs::file_size(p);
+  }
+  return static_cast<double>(bytes) / 1e6;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int scans = 30;
+  std::vector<int> beam_counts{64, 128};
+  fs::path dir = fs::temp_directory_path() / ("cosmo_bench_trial_bags_" + std::to_string(::getpid()));
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--scans" && i + 1 < argc) scans = std::stoi(argv[++i]);
+    else if (a == "--dir" && i + 1 < argc) dir = argv[++i];
+    else if (a == "--beams" && i + 1 < argc) {
+      beam_counts.clear();
+      std::stringstream ss(argv[++i]);
+      std::string b;
+      while (std::getline(ss, b, ',')) beam_counts.push_back(std::stoi(b));
+    } else {
+      std::cerr << "usage: bench_trial_bags [--scans N] [--beams 64,128] [--dir DIR]\n";
+      return 2;
+    }
+  }
+  fs::create_directories(dir);
+  std::printf("%-9s %6s %10s %10s %10s | %12s %12s %12s | %10s\n", "sweep", "scans", "bz2 MB", "raw MB", "ros2 MB",
+              "bz2 ms/scan", "raw ms/scan", "ros2 ms/scan", "pts/scan");
+  for (int beams : beam_counts) {
+    sim::LidarModel lidar = beams == 128 ? sim::LidarModel::os1_128() : sim::LidarModel::os1_64();
+    lidar.beams = beams;
+    const auto seq = plan(lidar);
+    const auto& t = seq.trials.at(0);
+    sim::ScanSimulator simulator(*seq.world, lidar);
+    const auto mcd_sweep = trials::mcdSweep(beams, lidar.columns, lidar.rate_hz);
+    const auto cu_sweep = trials::cuMultiSweep(beams, lidar.columns, lidar.rate_hz);
+    const fs::path bz2 = dir / ("os1_" + std::to_string(beams) + "_bz2.bag");
+    const fs::path raw = dir / ("os1_" + std::to_string(beams) + "_raw.bag");
+    const fs::path ros2 = dir / ("robot1_os1_" + std::to_string(beams) + "_lidar");
+    {
+      ros_glue::ScanBagWriter w_bz2(bz2.string(), ros_glue::BagCompression::Bz2);
+      ros_glue::ScanBagWriter w_raw(raw.string(), ros_glue::BagCompression::None);
+      trials::CuMultiBagWriter w_ros2(ros2.string(), 1);
+      const int n = std::min<int>(scans, static_cast<int>(t.scan_stamps.size()));
+      for (int k = 0; k < n; ++k) {
+        const Scan s = simulator.simulate(t.body, t.params.extrinsicPose(), t.scan_stamps[k], t.noise_seed);
+        w_bz2.write(trials::kMcdTopic, trials::organisedOusterCloud(s, mcd_sweep));
+        w_raw.write(trials::kMcdTopic, trials::organisedOusterCloud(s, mcd_sweep));
+        w_ros2.write(trials::organisedOusterCloud(s, cu_sweep));
+      }
+    }
+    pipeline::TrialConfig trial;
+    trial.topic = trials::kMcdTopic;
+    trial.bag = bz2.string();
+    const ReadCost c_bz2 = readAll(trial);
+    trial.bag = raw.string();
+    const ReadCost c_raw = readAll(trial);
+    trial.bag = ros2.string();
+    trial.topic = trials::cuMultiTopic(1);
+    trial.stamp_at_end = false;
+    const ReadCost c_ros2 = readAll(trial);
+    std::printf("%4d x %-4d %6d %10.1f %10.1f %10.1f | %12.1f %12.1f %12.1f | %10.0f\n", beams, lidar.columns, scans,
+                megabytes(bz2), megabytes(raw), megabytes(ros2), c_bz2.cpu_ms_per_scan, c_raw.cpu_ms_per_scan,
+                c_ros2.cpu_ms_per_scan, c_bz2.points_per_scan);
+    std::fflush(stdout);
+  }
+  fs::remove_all(dir);
+  return 0;
+}
