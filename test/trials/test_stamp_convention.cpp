@@ -30,7 +30,7 @@ Pose3 truePose(double t) {
 trials::OusterSweep sweepOf(bool stamp_at_end) {
   trials::OusterSweep s;
   s.beams = 16;
-  s.columns = 512;
+  s.columns = 500;  // a column of 200 us: header stamps in whole ns for either convention
   s.rate_hz = 10.0;
   s.stamp_at_end = stamp_at_end;
   return s;
@@ -41,7 +41,7 @@ std::vector<Scan> decodedSweeps(int n, bool stamp_at_end) {
   static const SyntheticScene scene = SyntheticScene::street(300.0);
   SyntheticLidar lidar;
   lidar.rings = 16;
-  lidar.columns = 512;
+  lidar.columns = 500;
   std::vector<Scan> out;
   for (int k = 0; k < n; ++k) {
     const double t_end = 0.1 * k;
