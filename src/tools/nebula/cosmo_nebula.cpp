@@ -1,0 +1,190 @@
+// cosmo_nebula: a Nebula (LAMP 2.0) multi-robot dataset folder as distributed -> a JRL dataset, the way the
+// COSMO-Bench paper converts them (§5): per-robot odometry chains, loop closures in the entry of the robot and
+// time at which they were made, the prior, groundtruth from ground_truth/result.g2o, dead-reckoned
+// initialization, noise models and chi^2 outlier labels.
+#include <cstdlib>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+#include "cosmo/dataset/atomic_file.hpp"
+#include "cosmo/jrl/io.hpp"
+#include "cosmo/jrl/stats.hpp"
+#include "cosmo/jrl/validate.hpp"
+#include "cosmo/nebula/message_definition.hpp"
+#include "cosmo/nebula/metadata.hpp"
+#include "cosmo/ros/nebula_dataset.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+void usage(std::ostream& out) {
+  out << "usage: cosmo_nebula DATASET_DIR --out DIR [options]\n"
+         "  Converts a Nebula dataset folder (rosbag/*.bag with /<robot>/lamp/pose_graph_incremental,\n"
+         "  ground_truth/result.g2o) to DIR/<name>.jrl, <name>.stats.txt, <name>.stats.json, <name>.nebula.yaml.\n"
+         "options:\n"
+         "  --name NAME                 dataset name (default: the folder's name)\n"
+         "  --noise-models FILE         one odometry and one loop-closure covariance for all factors (YAML as\n"
+         "                              config/noise_models/*.yaml; e.g. the one estimated from tunnel)\n"
+         "  --estimate-noise-models     estimate them from this dataset against its reference (paper's procedure)\n"
+         "                              and write DIR/<name>.noise_models.yaml; default: each edge's recorded one\n"
+         "  --max-translation M         good loop closures for the estimate: error < M (default 0.5)\n"
+         "  --max-rotation RAD          ... and < RAD (default 0.05)\n"
+         "  --outlier-rule R            fidelity (sqrt(d2) > 12.592, COSMO-Bench's) | squared (d2 > 12.592)\n"
+         "  --covariance-order O        recorded covariances' order: translation-first (the message definition's\n"
+         "                              comment; default) | rotation-first\n"
+         "  --from-g2o                  read g2o_pcd/*.g2o instead of the bags (no stamps there: pose i of each\n"
+         "                              robot is stamped i seconds; an edge between consecutive poses of one\n"
+         "                              robot is odometry, any other a loop closure)\n";
+}
+
+double positive(const std::string& flag, const char* text) {
+  char* end = nullptr;
+  const double v = std::strtod(text, &end);
+  if (!end || *end || !(v > 0)) throw std::invalid_argument(flag + ": expected a positive number, got '" + text + "'");
+  return v;
+}
+
+void printSummary(const cosmo::ros_glue::NebulaConversion& c) {
+  const auto& g = c.graph;
+  std::cout << "read " << c.inputs.size() << " files, " << g.messages << " messages: " << g.nodes_read << " nodes ("
+            << g.repeated_nodes << " repeated), " << g.edges_read << " edges (" << g.repeated_edges << " repeated)\n";
+  for (const auto& t : c.topics)
+    if (!t.md5_matches)
+      std::cout << "NOTE: " << t.bag << " " << t.topic << ": md5sum " << t.md5sum << " differs from "
+                << cosmo::nebula::kPoseGraphType << "'s " << cosmo::nebula::poseGraphMd5()
+                << " (decoded all the same: every message had exactly the expected layout)\n";
+  std::cout << "robots:";
+  for (const auto& [ch, r] : g.robots)
+    std::cout << ' ' << ch << '=' << (r.name.empty() ? "?" : r.name) << " (" << r.stamps.size() << " poses)";
+  std::cout << "\nloop closures: " << c.report.intra << " intra, " << c.report.inter << " inter ("
+            << c.report.inverted << " stored the other way round: key1 = the later pose)\n";
+  std::cout << "ignored edges:";
+  if (g.ignored_edges.empty()) std::cout << " none";
+  for (const auto& [type, n] : g.ignored_edges) std::cout << ' ' << type << ' ' << n;
+  std::cout << "\nother nodes (artifacts, UWB, base):";
+  if (g.other_nodes.empty()) std::cout << " none";
+  for (const auto& [ch, n] : g.other_nodes) std::cout << ' ' << ch << ' ' << n;
+  std::cout << "\n";
+  if (g.warnings.total()) std::cout << "WARNINGS (" << g.warnings.total() << "):\n" << g.warnings.str();
+  if (c.report.estimate) {
+    const auto& e = *c.report.estimate;
+    std::cout << "noise models estimated: odometry from " << e.odometry.used << ", loop closures from "
+              << e.loop_closure.used << " good ones (" << e.loop_closure.rejected << " over the thresholds)\n";
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  cosmo::ros_glue::NebulaOptions options;
+  std::string out_dir, noise_file, name;
+  bool estimate = false;
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      auto value = [&]() -> const char* {
+        if (i + 1 >= argc) throw std::invalid_argument(a + ": missing value");
+        return argv[++i];
+      };
+      if (a == "-h" || a == "--help") {
+        usage(std::cout);
+        return 0;
+      } else if (a == "--out") {
+        out_dir = value();
+      } else if (a == "--name") {
+        name = value();
+      } else if (a == "--noise-models") {
+        noise_file = value();
+      } else if (a == "--estimate-noise-models") {
+        estimate = true;
+      } else if (a == "--max-translation") {
+        options.params.estimation.max_translation_error = positive(a, value());
+      } else if (a == "--max-rotation") {
+        options.params.estimation.max_rotation_error = positive(a, value());
+      } else if (a == "--outlier-rule") {
+        const auto rule = cosmo::parseOutlierRule(value());
+        if (!rule) throw std::invalid_argument("--outlier-rule: expected fidelity or squared");
+        options.params.rule = *rule;
+      } else if (a == "--covariance-order") {
+        const std::string o = value();
+        if (o == "translation-first")
+          options.covariance_order = cosmo::nebula::CovarianceOrder::TranslationFirst;
+        else if (o == "rotation-first")
+          options.covariance_order = cosmo::nebula::CovarianceOrder::RotationFirst;
+        else
+          throw std::invalid_argument("--covariance-order: expected translation-first or rotation-first, got " + o);
+      } else if (a == "--from-g2o") {
+        options.from_g2o = true;
+      } else if (!a.empty() && a[0] == '-') {
+        throw std::invalid_argument("unknown option " + a);
+      } else if (options.dataset_dir.empty()) {
+        options.dataset_dir = a;
+      } else {
+        throw std::invalid_argument("unexpected argument " + a);
+      }
+    }
+    if (options.dataset_dir.empty()) throw std::invalid_argument("need DATASET_DIR");
+    if (out_dir.empty()) throw std::invalid_argument("need --out DIR");
+    if (estimate && !noise_file.empty())
+      throw std::invalid_argument("--noise-models and --estimate-noise-models exclude each other");
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "cosmo_nebula: " << e.what() << "\n";
+    usage(std::cerr);
+    return 2;
+  }
+  try {
+    auto& params = options.params;
+    params.name = name;
+    if (params.name.empty()) {
+      fs::path dir = fs::path(options.dataset_dir).lexically_normal();
+      if (dir.filename().empty()) dir = dir.parent_path();  // "tunnel/" -> "tunnel"
+      params.name = dir.filename().string();
+    }
+    if (params.name.empty() || params.name == "." || params.name == "..")
+      throw std::runtime_error("give the dataset a name with --name");
+    if (estimate) params.noise = cosmo::nebula::NoiseSource::Estimated;
+    if (!noise_file.empty()) {
+      params.noise = cosmo::nebula::NoiseSource::Given;
+      params.models = cosmo::NoiseModels::load(noise_file);
+    }
+
+    const cosmo::ros_glue::NebulaConversion c = cosmo::ros_glue::convertNebulaDataset(options);
+    printSummary(c);
+    const auto violations = cosmo::jrl::validate(c.dataset);
+    if (!violations.empty()) {
+      std::cerr << "cosmo_nebula: the converted dataset is not valid JRL (" << violations.size()
+                << " violations), nothing written:\n";
+      for (std::size_t i = 0; i < violations.size() && i < 20; ++i) std::cerr << "  " << violations[i].str() << "\n";
+      return 1;
+    }
+
+    fs::create_directories(out_dir);
+    const fs::path base = fs::path(out_dir) / params.name;
+    cosmo::jrl::writeJrl(base.string() + ".jrl", c.dataset);
+    const cosmo::jrl::DatasetStats stats = cosmo::jrl::computeStats(c.dataset);
+    cosmo::writeFileAtomically(base.string() + ".stats.txt", cosmo::jrl::formatStats(stats) + "\n");
+    cosmo::writeFileAtomically(base.string() + ".stats.json", cosmo::jrl::statsJson(stats) + "\n");
+    cosmo::nebula::MetadataInputs inputs{options.dataset_dir, c.inputs, options.from_g2o, options.covariance_order};
+    cosmo::writeFileAtomically(base.string() + ".nebula.yaml",
+                               cosmo::nebula::metadataYaml(c.graph, c.report, params, inputs));
+    std::cout << "wrote " << base.string() << ".jrl (+ .stats.txt, .stats.json, .nebula.yaml";
+    if (c.report.estimate) {
+      std::ostringstream header;
+      header << "Noise models estimated by cosmo_nebula from " << options.dataset_dir << ": "
+             << c.report.estimate->odometry.used << " odometry factors, " << c.report.estimate->loop_closure.used
+             << " good loop closures (error < " << params.estimation.max_translation_error << " m and < "
+             << params.estimation.max_rotation_error << " rad)";
+      c.report.estimate->models.save(base.string() + ".noise_models.yaml", header.str());
+      std::cout << ", .noise_models.yaml";
+    }
+    std::cout << ")\n" << cosmo::jrl::formatStats(stats) << "\n";
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "cosmo_nebula: " << e.what() << "\n";
+    return 1;
+  }
+}
