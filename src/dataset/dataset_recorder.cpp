@@ -290,6 +290,7 @@ std::string DatasetRecorder::metadataYaml(const BuildReport& report) const {
   out << "keyframes_pending: " << report.keyframes_pending << "  # after a gap in a robot's indices, not written\n";
   out << "loop_closures_pending: " << report.loop_closures_pending << "  # touching keys not written\n";
   out << "inputs_rejected: " << counts_.rejected << "\n";
+  for (const auto& [key, value] : extra_metadata_) out << key << ": " << value << "\n";
   return out.str();
 }
 

@@ -17,7 +17,8 @@
 // Params      ~robot (default: the namespace), ~config_dir (frontend/odometry/place_recognition/registration
 //             .yaml), ~odometry loam|reference|external, ~noise_models (YAML, for the inlier/outlier colours),
 //             ~world_frame (world), ~reference_wait (s of message time a scan waits for its reference pose; without
-//             any reference, live use, scans are processed this much later), ~lockstep (false)
+//             any reference, live use, scans are processed this much later), ~lockstep (false), ~stamp end|start
+//             (the sweep instant of the points' header stamp; scans are processed stamped at the sweep end)
 // Lockstep (~lockstep true, sequence.launch mode:=lockstep): the reference trajectory is the player's sequence's
 //   own (ros_glue::readResolvedSequence: the CSV as the offline driver reads it, not the rounded reference_pose
 //   messages, which are ignored), reference odometry takes it held at the ends as TeamRun does, and loop
@@ -93,6 +94,12 @@ class FrontendNode {
     pnh.param<std::string>("world_frame", world_frame_, "world");
     pnh.param("reference_wait", reference_wait_, 0.5);
     pnh.param("lockstep", lockstep_, false);
+    std::string stamp_convention;
+    pnh.param<std::string>("stamp", stamp_convention, "end");
+    if (stamp_convention != "end" && stamp_convention != "start")
+      throw std::runtime_error("~stamp must be start or end (the sweep instant of the header stamp), got '" +
+                               stamp_convention + "'");
+    stamp_at_end_ = stamp_convention == "end";
     frontend_params_ = pipeline::FrontendParams::loadDir(config_dir);
     if (odometry_mode_ != "loam" && odometry_mode_ != "reference" && odometry_mode_ != "external")
       throw std::runtime_error("~odometry must be loam, reference or external, got '" + odometry_mode_ + "'");
@@ -175,10 +182,12 @@ class FrontendNode {
   }
 
   void process(const sensor_msgs::PointCloud2::ConstPtr& m) {
-    const StampNs stamp = m->header.stamp.toNSec();
+    const StampNs header_stamp = m->header.stamp.toNSec();  // acknowledged as received
     try {
-      Scan scan = ros_glue::fromPointCloud2(*m, true, points_sub_.getTopic());
-      scan.stamp = stamp;
+      // Decoded with the topic's stamp convention: stamped at the sweep end as everywhere in the pipeline
+      // (trials/point_cloud_decode.hpp); the player publishes scans stamped so.
+      Scan scan = ros_glue::fromPointCloud2(*m, stamp_at_end_, points_sub_.getTopic());
+      const StampNs stamp = scan.stamp;
       if (stamp <= frontend_->lastStamp() && frontend_->scansProcessed() > 0) {
         ROS_WARN_THROTTLE(5.0, "frontend %c: %s: stamp not increasing, scan dropped", robot_, points_sub_.getTopic().c_str());
       } else {
@@ -195,7 +204,7 @@ class FrontendNode {
           const auto pose = externalPoseAt(stamp);
           if (!pose) {
             ROS_WARN_THROTTLE(5.0, "frontend %c: no external odometry at the scan stamp; scan dropped", robot_);
-            ack(stamp);
+            ack(header_stamp);
             return;
           }
           out = frontend_->processScan(scan, *pose);
@@ -203,12 +212,12 @@ class FrontendNode {
           out = frontend_->processScan(scan);
           if (!out.odometry.ok) ROS_WARN_THROTTLE(5.0, "frontend %c: odometry: %s", robot_, out.odometry.warning.c_str());
         }
-        handle(out, m->header.stamp);
+        handle(out, ros_glue::stampToRos(stamp));
       }
     } catch (const std::exception& e) {
       ROS_ERROR_THROTTLE(5.0, "frontend %c: %s: %s", robot_, points_sub_.getTopic().c_str(), e.what());
     }
-    ack(stamp);
+    ack(header_stamp);
   }
 
   void ack(StampNs stamp) {
@@ -404,6 +413,7 @@ class FrontendNode {
   std::deque<sensor_msgs::PointCloud2::ConstPtr> pending_;
   double reference_wait_ = 0.5;
   bool lockstep_ = false, sequence_loaded_ = false;
+  bool stamp_at_end_ = true;  ///< ~stamp: the points topic's header stamp is the sweep end (else its start)
   pipeline::FrontendParams frontend_params_;
   ros::Publisher offer_pub_, kf_pub_, lc_pub_, ack_pub_, marker_pub_;
   ros::Subscriber points_sub_, ref_sub_, recv_sub_, odom_sub_;

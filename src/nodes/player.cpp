@@ -19,7 +19,7 @@
 //   acknowledged (FrontendAck.keyframes / loop_closures), so the final JRL never depends on message timing. The resolved sequence path and seed are set on
 //   the parameter server first (ros_glue::publishResolvedSequence) for the lockstep front-ends and broker.
 //   Real time (~mode realtime): scans at ~rate x wall speed, nothing waited for (results may depend on CPU speed).
-// Params: ~sequence (config path), ~mode, ~rate, ~seed (-1: the config's), ~max_seconds (0: all),
+// Params: ~sequence (config path), ~data_root (the trials' data root; empty: the config's precedence), ~mode, ~rate, ~seed (-1: the config's), ~max_seconds (0: all),
 //         ~ack_timeout (s wall; a front-end silent this long is skipped with a warning), ~wait_for_broker,
 //         ~end_linger (s wall after the last scan, radio still stepping; default 3 realtime, 0 lockstep), ~world_frame.
 //         With an empty ~sequence the built-in synthetic sequence is used: cosmo_simulate --config
@@ -51,9 +51,11 @@
 #include "cosmo/RadioStepRequest.h"
 #include "cosmo/RecorderProgress.h"
 #include "cosmo/ros/pose_msg.hpp"
+#include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/ros/resolved_sequence.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/pipeline/sequence_noise_models.hpp"
+#include "cosmo/ros/trial_probe.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/sim/simulation_params.hpp"
 #include "cosmo/trials/trial_reference.hpp"
@@ -97,6 +99,8 @@ int main(int argc, char** argv) {
   pnh.param("wait_for_broker", wait_for_broker, true);
   pnh.param("end_linger", end_linger, -1.0);
   pnh.param<std::string>("world_frame", world_frame, "world");
+  std::string data_root;
+  pnh.param<std::string>("data_root", data_root, "");
   std::string simulate_config, simulate_out;
   pnh.param<std::string>("simulate_config", simulate_config, "");
   pnh.param<std::string>("simulate_out", simulate_out, "/tmp/cosmo_builtin_sequence");
@@ -131,14 +135,19 @@ int main(int argc, char** argv) {
   pipeline::SequenceTiming timing;
   std::map<char, Trajectory> refs;
   try {
-    config = pipeline::SequenceConfig::load(sequence_path);
+    config = pipeline::SequenceConfig::load(sequence_path, data_root);
     // The run's noise models must exist before anything is played (the recorder labels with them).
     ROS_INFO("player: noise models %s",
              pipeline::loadSequenceNoiseModels(config, config_dir, noise_models).describe().c_str());
     if (seed >= 0) config.seed = static_cast<unsigned long long>(seed);
+    std::string check;  // the pre-flight check (cosmo_check): a run that cannot be labelled does not start
+    const bool check_ok = ros_glue::checkSequence(config, pipeline::chooseNoiseModels(config, pipeline::defaultConfigDir()), check);
+    ROS_INFO("player: pre-flight check:\n%s", check.c_str());
+    if (!check_ok) throw std::runtime_error("the pre-flight check failed (above)");
     timing = ros_glue::synchronizeSequence(config);
-    for (const auto& t : config.trials) refs[t.robot] = trials::loadSensorReference(t, timing.of(t.robot));
-    ros_glue::publishResolvedSequence(std::filesystem::absolute(sequence_path).string(), config.seed);
+    refs = trials::loadSequenceReferences(config, timing);
+    ros_glue::publishResolvedSequence(std::filesystem::absolute(sequence_path).string(), config.seed,
+                                      std::filesystem::absolute(config.data_root).string());
   } catch (const std::exception& e) {
     ROS_FATAL("player: %s", e.what());
     return 1;

@@ -63,9 +63,10 @@ void deskewConstantVelocity(const std::vector<Eigen::Vector3d>& points, const st
     return;
   }
   const Vector6 xi = logSE3(delta);
-  // Bin the fraction s = t / period (in [-1.5, 0.5]) to 1/256 and cache the poses.
+  // Bin the fraction s = t / period to 1/256 and cache the poses: [-1.5, 1.5] holds a sweep stamped at its end
+  // (s in [-1, 0]) or at its start ([0, 1]) with room for a late or early stamp.
   constexpr int kSteps = 256;
-  constexpr double kLo = -1.5, kHi = 0.5;
+  constexpr double kLo = -1.5, kHi = 1.5;
   const int nb = static_cast<int>((kHi - kLo) * kSteps) + 1;
   std::vector<Pose3, Eigen::aligned_allocator<Pose3>> cache(nb);
   std::vector<std::uint8_t> have(nb, 0);

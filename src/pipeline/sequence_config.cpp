@@ -1,5 +1,7 @@
 #include "cosmo/pipeline/sequence_config.hpp"
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <set>
 #include <stdexcept>
@@ -26,14 +28,63 @@ char readRobotId(const ConfigNode& node, const std::string& key) {
   return id[0];
 }
 
+bool readStampAtEnd(const ConfigNode& t) {
+  if (t.has("stamp_at_end")) throw std::runtime_error(t.where + ".stamp_at_end: use `stamp: end` or `stamp: start`");
+  std::string stamp = "end";
+  t.read("stamp", stamp);
+  if (stamp != "end" && stamp != "start")
+    throw std::runtime_error(t.where + ".stamp: expected start or end (the sweep instant of the header stamp), got '" +
+                             stamp + "'");
+  return stamp == "end";
+}
+
+ReferenceOffsetConfig readReferenceOffset(const ConfigNode& root) {
+  ReferenceOffsetConfig r;
+  if (!root.has("reference_offset")) return r;
+  const YAML::Node n = root.node["reference_offset"];
+  const std::string where = root.where + ": reference_offset";
+  if (n.IsSequence()) {
+    std::vector<double> v;
+    root.read("reference_offset", v);
+    if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
+      throw std::runtime_error(where + ": expected none, anchor or [x, y, z]");
+    r.mode = ReferenceOffsetConfig::Mode::Fixed;
+    r.fixed = Eigen::Vector3d(v[0], v[1], v[2]);
+    return r;
+  }
+  std::string mode;
+  root.read("reference_offset", mode);
+  if (mode == "none") return r;
+  if (mode != "anchor") throw std::runtime_error(where + ": expected none, anchor or [x, y, z], got '" + mode + "'");
+  r.mode = ReferenceOffsetConfig::Mode::Anchor;
+  return r;
+}
+
 }  // namespace
 
-SequenceConfig SequenceConfig::load(const std::string& path) {
+SequenceConfig SequenceConfig::load(const std::string& path, const std::string& data_root) {
   const ConfigNode root = ConfigNode::load(path);
   if (!root.node.IsMap()) throw std::runtime_error(path + ": expected a map with name, seed, anchor, trials");
   SequenceConfig cfg;
   cfg.path = path;
   const std::string dir = std::filesystem::path(path).parent_path().string();
+  std::string file_root;
+  root.read("data_root", file_root);
+  const char* env_root = std::getenv("COSMO_DATA_ROOT");
+  if (!data_root.empty()) {
+    cfg.data_root = resolvePath(std::filesystem::current_path().string(), data_root);
+    cfg.data_root_from = "argument";
+  } else if (!file_root.empty()) {
+    cfg.data_root = resolvePath(dir, file_root);
+    cfg.data_root_from = "data_root key";
+  } else if (env_root && *env_root) {
+    cfg.data_root = resolvePath(std::filesystem::current_path().string(), env_root);
+    cfg.data_root_from = "COSMO_DATA_ROOT";
+  } else {
+    cfg.data_root = dir.empty() ? std::string(".") : dir;
+    cfg.data_root_from = "config folder";
+  }
+  cfg.reference_offset = readReferenceOffset(root);
   if (!root.has("name")) throw std::runtime_error(path + ": name: missing");
   root.read("name", cfg.name);
   if (cfg.name.empty()) throw std::runtime_error(path + ": name: empty");
@@ -65,9 +116,9 @@ SequenceConfig SequenceConfig::load(const std::string& path) {
     t.read("bag", bag);
     t.read("topic", trial.topic);
     t.read("reference", reference);
-    t.read("stamp_at_end", trial.stamp_at_end);
-    trial.bag = resolvePath(dir, bag);
-    trial.reference = resolvePath(dir, reference);
+    trial.stamp_at_end = readStampAtEnd(t);
+    trial.bag = resolvePath(cfg.data_root, bag);
+    trial.reference = resolvePath(cfg.data_root, reference);
     if (t.has("extrinsic")) {
       std::vector<double> v;
       t.read("extrinsic", v);
@@ -83,6 +134,13 @@ SequenceConfig SequenceConfig::load(const std::string& path) {
   if (!seen.count(cfg.anchor))
     throw std::runtime_error(path + ": anchor: robot '" + std::string(1, cfg.anchor) + "' has no trial");
   return cfg;
+}
+
+std::string chooseNoiseModels(const SequenceConfig& config, const std::string& config_dir, const std::string& given) {
+  if (!given.empty()) return given;
+  if (!config.noise_models.empty()) return config.noise_models;
+  const std::filesystem::path p = std::filesystem::path(config_dir) / "noise_models" / (config.environment + ".yaml");
+  return std::filesystem::exists(p) ? p.string() : std::string();
 }
 
 std::vector<char> SequenceConfig::robots() const {

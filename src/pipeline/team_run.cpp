@@ -25,6 +25,7 @@ TeamRun::TeamRun(std::string dataset_name, std::map<char, Trajectory> references
       origin_(time_origin) {
   // One feature cache for the team: a delivered scan is the sender's own object, so its features are computed
   // once, not once per robot that registers against it (same results).
+  recorder_.setMetadata(params.metadata);
   auto features = std::make_shared<FeatureCache>();
   if (params.registration_threads > 0) pool_ = std::make_shared<RegistrationPool>(params.registration_threads);
   for (auto& [robot, ref] : references) {

@@ -8,8 +8,10 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "cosmo/pipeline/trial_coverage.hpp"
 #include "cosmo/trials/bag_format.hpp"
 #include "cosmo/trials/scan_cache.hpp"
+#include "cosmo/trials/trial_reference.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -76,16 +78,30 @@ pipeline::TrialSpan readTrialSpan(const pipeline::TrialConfig& trial) {
   return trials::readRos2TrialSpan(trial.bag, trial.topic, trial.robot);
 }
 
+pipeline::TrialSpan readSweepEndSpan(const pipeline::TrialConfig& trial) {
+  pipeline::TrialSpan span = readTrialSpan(trial);
+  if (trial.stamp_at_end) return span;
+  // Header stamps at the sweep start: the decoded scans are stamped at its end; every sweep lasts as the first.
+  Scan first;
+  if (openTrialScanSource(trial)->next(first) && first.stamp > span.first) {
+    const StampNs sweep = first.stamp - span.first;
+    span.first += sweep;
+    span.last += sweep;
+  }
+  return span;
+}
+
 pipeline::SequenceTiming synchronizeSequence(const pipeline::SequenceConfig& config) {
   std::vector<pipeline::TrialSpan> spans;
-  for (const auto& t : config.trials) spans.push_back(readTrialSpan(t));
+  for (const auto& t : config.trials) spans.push_back(trials::trialCoverage(t).clip(readSweepEndSpan(t)));
   return pipeline::SequenceTiming::synchronize(spans, config.anchor, config.time_offset_sigma, config.seed);
 }
 
 std::map<char, std::unique_ptr<pipeline::ScanSource>> openTrialSources(const pipeline::SequenceConfig& config) {
   std::map<char, std::unique_ptr<pipeline::ScanSource>> sources;
   for (const auto& t : config.trials)
-    sources[t.robot] = openTrialScanSource(t);
+    sources[t.robot] =
+        std::make_unique<pipeline::CoveredScanSource>(openTrialScanSource(t), trials::trialCoverage(t));
   return sources;
 }
 

@@ -123,10 +123,14 @@ void readTimes(const CloudLayout& L, const std::uint8_t* data, std::size_t n, bo
     if (std::isfinite(ti)) { t_max = std::max(t_max, ti); t_min = std::min(t_min, ti); }
   const bool absolute = t_min > 1e6;
   const bool organised_ouster = ft->name == "t" && L.height > 1 && L.width > 1;
-  double ref = 0.0;
-  if (absolute) ref = toSeconds(scan.stamp);
-  else if (stamp_at_end && organised_ouster) ref = t_max * L.width / (L.width - 1.0);
-  else if (stamp_at_end) ref = t_max;
+  // The sweep end relative to its start: one period for an organised Ouster cloud, else the latest point.
+  const double sweep = organised_ouster ? t_max * L.width / (L.width - 1.0) : t_max;
+  double ref = sweep;
+  if (absolute) {
+    ref = toSeconds(scan.stamp);
+  } else if (!stamp_at_end && std::isfinite(sweep)) {  // stamped at the start: move the stamp to the end
+    scan.stamp += static_cast<StampNs>(std::llround(std::max(0.0, sweep) * 1e9));
+  }
   for (std::size_t i = 0; i < n; ++i) scan.time[i] = static_cast<float>(t[i] - ref);
 }
 

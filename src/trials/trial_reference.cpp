@@ -5,9 +5,37 @@
 
 namespace cosmo::trials {
 
-Trajectory loadSensorReference(const pipeline::TrialConfig& trial, const pipeline::TrialTiming& timing) {
+Trajectory readBodyReference(const pipeline::TrialConfig& trial) {
   if (trial.reference.empty()) return {};
-  return pipeline::toSensorReference(readReference(trial.reference), trial.extrinsic, timing);
+  return readReference(trial.reference);
+}
+
+pipeline::TrialCoverage trialCoverage(const pipeline::TrialConfig& trial) {
+  return pipeline::TrialCoverage(trial.name, readBodyReference(trial));
+}
+
+Eigen::Vector3d sequenceReferenceOffset(const pipeline::SequenceConfig& config) {
+  using Mode = pipeline::ReferenceOffsetConfig::Mode;
+  switch (config.reference_offset.mode) {
+    case Mode::None: return Eigen::Vector3d::Zero();
+    case Mode::Fixed: return config.reference_offset.fixed;
+    case Mode::Anchor: break;
+  }
+  return pipeline::roundedFirstPosition(readBodyReference(config.trial(config.anchor)));
+}
+
+Trajectory loadSensorReference(const pipeline::TrialConfig& trial, const pipeline::TrialTiming& timing,
+                               const Eigen::Vector3d& offset) {
+  if (trial.reference.empty()) return {};
+  return pipeline::toSensorReference(readBodyReference(trial), trial.extrinsic, timing, offset);
+}
+
+std::map<char, Trajectory> loadSequenceReferences(const pipeline::SequenceConfig& config,
+                                                  const pipeline::SequenceTiming& timing) {
+  const Eigen::Vector3d offset = sequenceReferenceOffset(config);
+  std::map<char, Trajectory> refs;
+  for (const auto& t : config.trials) refs[t.robot] = loadSensorReference(t, timing.of(t.robot), offset);
+  return refs;
 }
 
 }  // namespace cosmo::trials

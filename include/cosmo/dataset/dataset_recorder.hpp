@@ -101,8 +101,11 @@ class DatasetRecorder {
   static std::string metadataPath(const std::string& jrl_path);
   /// "<path without .jrl>.stats.txt": the dataset's Fig. 1 statistics as `cosmo_jrl stats` prints them.
   static std::string statsPath(const std::string& jrl_path);
-  /// The metadata text written next to the JRL: rule, whether labels exist, noise models, counts.
+  /// The metadata text written next to the JRL: rule, whether labels exist, noise models, counts, and the
+  /// caller's own lines (setMetadata).
   std::string metadataYaml(const BuildReport& report) const;
+  /// Extra `key: value` lines of the metadata (value as YAML text, e.g. the sequence's reference offset).
+  void setMetadata(std::vector<std::pair<std::string, std::string>> lines) { extra_metadata_ = std::move(lines); }
 
   const RecorderCounts& counts() const { return counts_; }
   /// One line for progress output, e.g. "keyframes a 12 b 10 | loop closures 5 (intra 3, inter 2)".
@@ -128,6 +131,7 @@ class DatasetRecorder {
   NoiseModels noise_;
   OutlierRule rule_;
   double critical_value_ = kChi2Critical95Dof6;
+  std::vector<std::pair<std::string, std::string>> extra_metadata_;
   std::map<char, std::map<std::size_t, Keyframe>> keyframes_;
   std::vector<LoopClosureMeasurement> loop_closures_;  ///< normalised (key1 owned), in arrival order
   std::set<std::tuple<char, std::uint64_t, std::uint64_t, StampNs>> loop_closure_ids_;

@@ -1,7 +1,12 @@
 #pragma once
 // A sequence config (config/sequences/*.yaml, format in config/sequence_format.md): a named set of trials, one
-// per robot, with the anchor robot and the seed of every random choice. Relative paths are resolved against
-// the config file's folder. Errors throw std::runtime_error naming the file and the field.
+// per robot, with the anchor robot and the seed of every random choice. The trials' data files (bag,
+// reference) are relative to the data root, the other paths (noise_models) to the config file's folder.
+// Errors throw std::runtime_error naming the file and the field.
+//
+// Data root, first one set wins: the caller's argument (cosmo_generate / cosmo_check --data-root, the launch's
+// data_root:=), the file's `data_root:` key (relative to the file's folder), the COSMO_DATA_ROOT environment
+// variable, the config file's folder.
 #include <string>
 #include <vector>
 
@@ -17,7 +22,15 @@ struct TrialConfig {
   std::string topic = "/os_cloud_node/points";  ///< PointCloud2 topic in the bag
   std::string reference;                     ///< absolute path of the reference CSV; empty: none
   Pose3 extrinsic = Pose3::Identity();       ///< T_body_lidar (LiDAR pose = body pose * extrinsic)
-  bool stamp_at_end = true;                  ///< scans stamped at sweep end (Ouster/MCD convention)
+  bool stamp_at_end = true;                  ///< `stamp: end` (Ouster/MCD) or `stamp: start` (CU-Multi)
+};
+
+/// How the references' world frame is moved near the origin (one offset for the whole sequence: trials that
+/// share a frame, e.g. CU-Multi's UTM, keep sharing it).
+struct ReferenceOffsetConfig {
+  enum class Mode { None, Anchor, Fixed };
+  Mode mode = Mode::None;              ///< `none`, `anchor` (the anchor's first reference position, whole metres)
+  Eigen::Vector3d fixed = Eigen::Vector3d::Zero();  ///< `[x, y, z]`
 };
 
 struct SequenceConfig {
@@ -29,14 +42,21 @@ struct SequenceConfig {
   double time_offset_sigma = 40.0;     ///< s, sigma of the N(0, sigma) start offsets of the other trials
   std::string environment;             ///< noise-model environment (config/noise_models/<environment>.yaml); "": none
   std::string noise_models;            ///< absolute path of a noise-model YAML; empty: by environment
+  ReferenceOffsetConfig reference_offset;  ///< subtracted from every reference position
+  std::string data_root;               ///< the folder the trials' relative paths were resolved against
+  std::string data_root_from;          ///< where it came from: argument, data_root key, COSMO_DATA_ROOT, config folder
   std::vector<TrialConfig> trials;
 
-  /// Read and check a sequence config; relative paths resolve against the file's folder.
-  static SequenceConfig load(const std::string& path);
+  /// Read and check a sequence config. `data_root`: the caller's data root (empty: the precedence above).
+  static SequenceConfig load(const std::string& path, const std::string& data_root = "");
 
   std::vector<char> robots() const;
   const TrialConfig& trial(char robot) const;  ///< throws naming the file when the robot is unknown
 };
+
+/// The noise-model file a run uses: `given` (--noise-models) when set, else the config's noise_models, else
+/// <config_dir>/noise_models/<environment>.yaml when it exists, else "" (the built-in defaults).
+std::string chooseNoiseModels(const SequenceConfig& config, const std::string& config_dir, const std::string& given = "");
 
 /// `path` when absolute, else `base_dir/path` (an empty path stays empty).
 std::string resolvePath(const std::string& base_dir, const std::string& path);

@@ -49,6 +49,8 @@ struct TeamRunParams {
   bool reference_odometry = false;
   /// Threads that run the loop-closure registrations (0: inline on the caller's thread). Same output either way.
   unsigned registration_threads = 0;
+  /// Extra lines of the dataset's metadata (DatasetRecorder::setMetadata), e.g. the sequence's reference offset.
+  std::vector<std::pair<std::string, std::string>> metadata;
 };
 
 /// Running totals for progress output.

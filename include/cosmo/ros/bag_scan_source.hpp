@@ -38,10 +38,15 @@ std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const pipeline::Tri
 /// the bag's last few seconds), from a ROS 1 or ROS 2 bag.
 pipeline::TrialSpan readTrialSpan(const pipeline::TrialConfig& trial);
 
-/// The synchronized timing of a sequence config (reads every trial's span).
+/// readTrialSpan as stamps of the sweep ends (the stamps of the decoded scans, whatever the trial's convention).
+pipeline::TrialSpan readSweepEndSpan(const pipeline::TrialConfig& trial);
+
+/// The synchronized timing of a sequence config (reads every trial's span, clipped to its reference's span:
+/// pipeline/trial_coverage.hpp).
 pipeline::SequenceTiming synchronizeSequence(const pipeline::SequenceConfig& config);
 
-/// A reader of each trial's scans (robot -> source), in recorded time.
+/// A reader of each trial's scans (robot -> source), in recorded time: only the scans its reference covers
+/// (pipeline::CoveredScanSource).
 std::map<char, std::unique_ptr<pipeline::ScanSource>> openTrialSources(const pipeline::SequenceConfig& config);
 
 /// One merged stream over all trials of a sequence config, in sequence time.

@@ -15,6 +15,8 @@ namespace cosmo::ros_glue {
 /// Parameter names: the config path and its (effective) seed, a decimal string (64 bits).
 inline constexpr const char* kResolvedSequenceParam = "/player/resolved_sequence";
 inline constexpr const char* kResolvedSeedParam = "/player/resolved_seed";
+/// The data root the player resolved the trials' paths against (the config's own precedence applies when empty).
+inline constexpr const char* kResolvedDataRootParam = "/player/resolved_data_root";
 
 struct ResolvedSequence {
   pipeline::SequenceConfig config;  ///< seed = the effective seed
@@ -23,10 +25,11 @@ struct ResolvedSequence {
   Trajectory reference(char robot) const;
 };
 
-/// Loads the config at `path`, sets its seed, synchronizes it (reads the bags' spans). Throws on bad input.
-ResolvedSequence resolveSequence(const std::string& path, unsigned long long seed);
-/// Sets the two parameters (the player).
-void publishResolvedSequence(const std::string& path, unsigned long long seed);
+/// Loads the config at `path` (trials below `data_root`, empty: the config's precedence), sets its seed,
+/// synchronizes it (reads the bags' spans). Throws on bad input.
+ResolvedSequence resolveSequence(const std::string& path, unsigned long long seed, const std::string& data_root = "");
+/// Sets the parameters (the player).
+void publishResolvedSequence(const std::string& path, unsigned long long seed, const std::string& data_root = "");
 /// Reads the two parameters, waiting up to `timeout_s` (wall) for them, and resolves the sequence. Throws
 /// std::runtime_error when they do not appear.
 ResolvedSequence readResolvedSequence(double timeout_s);

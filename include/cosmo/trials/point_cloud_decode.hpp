@@ -4,13 +4,13 @@
 //
 // Fields x y z (float32 or float64) are required; intensity, ring (any numeric type) and a per-point time are
 // used when present. The time is `t` (uint32 ns from the sweep start, Ouster) or `time` / `timestamp` (float
-// seconds, Velodyne/Hesai), made relative to the message stamp:
-//  - stamp at the sweep start: time = t;
-//  - stamp at the sweep end, organised Ouster cloud (height > 1, `t` in ns): the sweep lasts
-//    t_max * width / (width - 1) (the columns are evenly spaced) and time = t - that duration, i.e. a point's
-//    time is stamp - period + t (MCD's convention, the period read from the cloud itself);
-//  - stamp at the sweep end otherwise: the latest point sits at the stamp (time = t - t_max);
-//  - absolute per-point stamps (> 1e6 s) are made relative to the message stamp.
+// seconds, Velodyne/Hesai). Every scan comes out stamped at its sweep end, times <= 0 relative to it:
+//  - the sweep lasts t_max * width / (width - 1) in an organised Ouster cloud (height > 1, `t` in ns: the
+//    columns are evenly spaced), else up to the latest point (t_max); time = t - that duration;
+//  - stamp at the sweep end (`stamp_at_end`, MCD): the stamp is kept, i.e. a point's time is stamp - period + t;
+//  - stamp at the sweep start (CU-Multi): the stamp moves to stamp + duration (a start- and an end-stamped copy
+//    of the same sweep decode to the same scan);
+//  - absolute per-point stamps (> 1e6 s) are made relative to the message stamp, which is kept.
 // Invalid returns — (0, 0, 0), or `range` 0 where that field exists — are dropped here, so no module sees
 // them. Errors throw std::runtime_error naming `source` and the field.
 #include <cstddef>

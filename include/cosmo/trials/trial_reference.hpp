@@ -1,14 +1,35 @@
 #pragma once
 // A trial's reference in the form the pipeline uses: LiDAR poses in the world frame in sequence time,
-// T_world_lidar = T_world_body * T_body_lidar (the trial's extrinsic), read from whichever reference format the
-// trial's `reference:` file has (reference_file.hpp).
+// T_world_lidar = T_world_body * T_body_lidar (the trial's extrinsic), minus the sequence's reference offset, read
+// from whichever reference format the trial's `reference:` file has (reference_file.hpp). Also which of the
+// trial's scans that reference covers (pipeline/trial_coverage.hpp) and the sequence's one reference offset.
+#include <Eigen/Core>
+#include <map>
+
 #include "cosmo/common/trajectory.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/pipeline/sequence_timing.hpp"
+#include "cosmo/pipeline/trial_coverage.hpp"
 
 namespace cosmo::trials {
 
+/// The reference file as read: body poses in the file's frame and the trial's recorded time; an empty
+/// `reference` path gives an empty trajectory. Throws naming the file and line on bad input.
+Trajectory readBodyReference(const pipeline::TrialConfig& trial);
+
+/// Which of the trial's scans its reference covers.
+pipeline::TrialCoverage trialCoverage(const pipeline::TrialConfig& trial);
+
+/// The sequence's reference offset: zero (`none`), the configured one, or the anchor trial's first reference
+/// position rounded to whole metres (`anchor`; zero when the anchor has no reference).
+Eigen::Vector3d sequenceReferenceOffset(const pipeline::SequenceConfig& config);
+
 /// An empty `reference` path gives an empty trajectory. Throws naming the file and line on bad input.
-Trajectory loadSensorReference(const pipeline::TrialConfig& trial, const pipeline::TrialTiming& timing);
+Trajectory loadSensorReference(const pipeline::TrialConfig& trial, const pipeline::TrialTiming& timing,
+                               const Eigen::Vector3d& offset = Eigen::Vector3d::Zero());
+
+/// Every trial's sensor reference (robot -> trajectory), with the sequence's offset.
+std::map<char, Trajectory> loadSequenceReferences(const pipeline::SequenceConfig& config,
+                                                  const pipeline::SequenceTiming& timing);
 
 }  // namespace cosmo::trials

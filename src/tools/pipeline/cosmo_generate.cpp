@@ -3,9 +3,9 @@
 // as fast as the CPU allows, and writes <out>/<name>_<comm>.jrl (+ .recorder.yaml), the transfer log
 // <out>/<name>_<comm>_transfers.csv (+ .summary.json), and prints the dataset's Fig. 1 statistics.
 //
-//   cosmo_generate SEQUENCE.yaml [--comm wifi,proradio] [--seed N] [--out DIR] [--config-dir DIR]
+//   cosmo_generate SEQUENCE.yaml [--data-root DIR] [--comm wifi,proradio] [--seed N] [--out DIR] [--config-dir DIR]
 //                  [--noise-models FILE] [--outlier-rule fidelity|squared] [--reference-odometry]
-//                  [--registration-threads N] [--max-seconds S] [--quiet]
+//                  [--registration-threads N] [--max-seconds S] [--no-check] [--quiet]
 //                  [--estimate-noise-models TRIAL [--noise-models-out FILE] [--good-translation M] [--good-rotation RAD]]
 //
 // Noise models: the ones the sequence names (sequence_noise_models.hpp); none: the run stops and says how to make
@@ -44,6 +44,7 @@
 #include "cosmo/pipeline/team_radio.hpp"
 #include "cosmo/pipeline/team_run.hpp"
 #include "cosmo/ros/bag_scan_source.hpp"
+#include "cosmo/ros/trial_probe.hpp"
 
 namespace fs = std::filesystem;
 using namespace cosmo;
@@ -52,9 +53,12 @@ using namespace cosmo::pipeline;
 namespace {
 
 void usage() {
-  std::cerr << "usage: cosmo_generate SEQUENCE.yaml [--comm wifi,proradio] [--seed N] [--out DIR]\n"
+  std::cerr << "usage: cosmo_generate SEQUENCE.yaml [--data-root DIR] [--comm wifi,proradio] [--seed N] [--out DIR]\n"
                "         [--config-dir DIR] [--noise-models FILE] [--outlier-rule fidelity|squared]\n"
-               "         [--reference-odometry] [--serial-odometry] [--registration-threads N] [--max-seconds S] [--quiet]\n"
+               "         [--reference-odometry] [--serial-odometry] [--registration-threads N] [--max-seconds S] [--no-check] [--quiet]\n"
+               "  --data-root DIR      the folder the trials' bags and references are below (default: the config's\n"
+               "                       data_root key, else $COSMO_DATA_ROOT, else the config's folder)\n"
+               "  --no-check           skip the pre-flight check (cosmo_check) that stops a run that would be unlabelled\n"
                "  --comm LIST          comm models, comma separated (wifi, proradio, or a config/comm/*.yaml); default wifi.\n"
                "                       The robots' odometry and keyframes are computed once for all of them\n"
                "  --seed N             overrides the sequence config's seed\n"
@@ -173,6 +177,20 @@ NoiseModels estimateFirst(const SequenceConfig& config, const std::string& which
   return NoiseModels::load(out_path);
 }
 
+/// The sequence's own lines of the dataset metadata: where the trials came from and the one reference offset.
+std::vector<std::pair<std::string, std::string>> sequenceMetadata(const SequenceConfig& config) {
+  const Eigen::Vector3d o = trials::sequenceReferenceOffset(config);
+  char offset[160];
+  std::snprintf(offset, sizeof offset, "[%.3f, %.3f, %.3f]  # m, subtracted from every reference position", o.x(),
+                o.y(), o.z());
+  std::vector<std::pair<std::string, std::string>> lines{{"sequence", config.name}, {"source", config.source},
+                                                         {"reference_offset", offset}};
+  for (const auto& t : config.trials)
+    lines.push_back({std::string("trial_") + t.robot,
+                     t.name + "  # stamp " + (t.stamp_at_end ? "end" : "start")});
+  return lines;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -181,7 +199,8 @@ int main(int argc, char** argv) {
   std::string estimate_trial, noise_out;
   NoiseModelEstimationParams estimation;
   std::vector<std::string> comms{"wifi"};
-  bool seed_given = false, reference_odometry = false, quiet = false, serial_odometry = false;
+  bool seed_given = false, reference_odometry = false, quiet = false, serial_odometry = false, skip_check = false;
+  std::string data_root;
   unsigned long long seed = 0;
   double max_seconds = 0.0;
   int registration_threads = -1;  // -1: the default
@@ -200,6 +219,8 @@ int main(int argc, char** argv) {
       else if (a == "--seed") { seed = std::stoull(value()); seed_given = true; }
       else if (a == "--out") out_dir = value();
       else if (a == "--config-dir") config_dir = value();
+      else if (a == "--data-root") data_root = value();
+      else if (a == "--no-check") skip_check = true;
       else if (a == "--noise-models") noise_path = value();
       else if (a == "--outlier-rule") rule_name = value();
       else if (a == "--estimate-noise-models") estimate_trial = value();
@@ -226,7 +247,7 @@ int main(int argc, char** argv) {
   }
   try {
     bench::Stopwatch total;
-    SequenceConfig config = SequenceConfig::load(sequence_path);
+    SequenceConfig config = SequenceConfig::load(sequence_path, data_root);
     if (seed_given) config.seed = seed;
     const auto rule = parseOutlierRule(rule_name);
     if (!rule) throw std::runtime_error("--outlier-rule: expected fidelity or squared, got '" + rule_name + "'");
@@ -234,9 +255,18 @@ int main(int argc, char** argv) {
       throw std::runtime_error("--good-translation / --good-rotation: expected positive numbers");
     if (!estimate_trial.empty() && !noise_path.empty())
       throw std::runtime_error("--estimate-noise-models and --noise-models: give one of them");
+    if (!skip_check) {  // the pre-flight check (cosmo_check): stop before hours of work that give no labels
+      std::string check;
+      const bool ok = ros_glue::checkSequence(
+          config, estimate_trial.empty() ? chooseNoiseModels(config, config_dir, noise_path)
+                                         : "estimated first from trial " + estimate_trial, check);
+      if (!quiet || !ok) std::printf("%s", check.c_str());
+      if (!ok) throw std::runtime_error("the pre-flight check failed (above); --no-check runs anyway");
+    }
     TeamRunParams params;
     params.frontend = FrontendParams::loadDir(config_dir);
     params.outlier_rule = *rule;
+    params.metadata = sequenceMetadata(config);
     params.reference_odometry = reference_odometry;
     params.registration_threads = registration_threads >= 0 ? static_cast<unsigned>(registration_threads)
                                   : serial_odometry           ? 0u
@@ -256,8 +286,7 @@ int main(int argc, char** argv) {
       std::printf("  robot %c  %-22s starts at +%7.2f s, %7.1f s long (offset %+.3f s)\n", t.robot,
                   config.trial(t.robot).name.c_str(), toSeconds(t.start() - timing.start()),
                   toSeconds(t.end() - t.start()), static_cast<double>(t.offset_ns) * 1e-9);
-    std::map<char, Trajectory> references;
-    for (const auto& t : config.trials) references[t.robot] = trials::loadSensorReference(t, timing.of(t.robot));
+    const std::map<char, Trajectory> references = trials::loadSequenceReferences(config, timing);
 
     // Radio steps on the absolute grid k * delta (as the comm_broker node does on ROS time).
     const StampNs end = max_seconds > 0 ? std::min(timing.end(), timing.start() + toStampNs(max_seconds)) : timing.end();

@@ -84,12 +84,14 @@ void writeLayoutSequenceConfig(const std::string& path, const sim::SimulationPar
         << ros_glue::kSimulatedUtmOffset.y() << "\n";
   out << "name: " << params.name << "\nsource: " << params.source << "\nseed: " << params.seed
       << "\nanchor: " << params.anchor << "\ntime_offset_sigma: " << params.time_offset_sigma
-      << "\nenvironment: " << params.environment << "\ntrials:\n";
+      << "\nenvironment: " << params.environment << "\n";
+  if (layout == ros_glue::TrialLayout::CuMulti) out << "reference_offset: anchor\n";  // one UTM frame, one offset
+  out << "trials:\n";
   for (std::size_t i = 0; i < written.size(); ++i) {
     const auto& w = written[i];
     out << "  - robot: " << params.trials[i].robot << "\n    name: " << params.trials[i].name << "\n    bag: " << w.bag
         << "\n    topic: " << w.topic << "\n    reference: " << w.reference
-        << "\n    stamp_at_end: " << (w.stamp_at_end ? "true" : "false") << "\n    extrinsic: [";
+        << "\n    stamp: " << (w.stamp_at_end ? "end" : "start") << "\n    extrinsic: [";
     const Eigen::Matrix4d M = w.extrinsic.matrix();
     for (int k = 0; k < 16; ++k) out << (k ? ", " : "") << M(k / 4, k % 4);
     out << "]\n";
