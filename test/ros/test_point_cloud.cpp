@@ -72,10 +72,13 @@ TEST(PointCloud, OusterNanosecondsAreSecondsBeforeTheStamp) {
   ASSERT_TRUE(r.hasTime());
   for (std::size_t i = 0; i < s.size(); ++i) EXPECT_NEAR(r.time[i], s.time[i], 2e-8);
   EXPECT_EQ(r.time.back(), 0.0f);
-  // stamped at the sweep start: the first point at 0, the rest after it
+  // stamped at the sweep start: the decode moves the scan's stamp to the sweep end (header + one sweep), so the
+  // points keep their times before it, exactly as the end-stamped decode gives them
   const Scan start = fromPointCloud2(toPointCloud2(s, "lidar", PointTimeEncoding::OusterNs), false);
-  EXPECT_EQ(start.time.front(), 0.0f);
-  EXPECT_NEAR(start.time.back(), 0.1f, 1e-7);
+  ASSERT_EQ(start.size(), r.size());
+  EXPECT_NEAR(start.time.front(), r.time.front(), 1e-6);
+  EXPECT_NEAR(start.time.back(), 0.0f, 1e-6);
+  EXPECT_NEAR(static_cast<double>(start.stamp - r.stamp), 0.1e9, 1e3);
 }
 
 TEST(PointCloud, AbsoluteEpochTimesKeepMicroseconds) {

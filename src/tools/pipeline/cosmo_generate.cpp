@@ -151,7 +151,7 @@ NoiseModels estimateFirst(const SequenceConfig& config, const std::string& which
   alone.trials = {trial};
   alone.anchor = trial.robot;
   const SequenceTiming timing = ros_glue::synchronizeSequence(alone);
-  const Trajectory reference = loadSensorReference(trial, timing.of(trial.robot));
+  const Trajectory reference = trials::loadSensorReference(trial, timing.of(trial.robot));
   if (reference.empty())
     throw std::runtime_error(config.path + ": trial " + trial.name + " has no reference: the noise models need one");
   std::printf("noise models: running trial %s (robot %c) alone, %.1f s\n", trial.name.c_str(), trial.robot,
