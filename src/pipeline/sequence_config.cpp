@@ -136,13 +136,6 @@ SequenceConfig SequenceConfig::load(const std::string& path, const std::string& 
   return cfg;
 }
 
-std::string chooseNoiseModels(const SequenceConfig& config, const std::string& config_dir, const std::string& given) {
-  if (!given.empty()) return given;
-  if (!config.noise_models.empty()) return config.noise_models;
-  const std::filesystem::path p = std::filesystem::path(config_dir) / "noise_models" / (config.environment + ".yaml");
-  return std::filesystem::exists(p) ? p.string() : std::string();
-}
-
 std::vector<char> SequenceConfig::robots() const {
   std::vector<char> r;
   for (const auto& t : trials) r.push_back(t.robot);

@@ -31,6 +31,16 @@ std::string sequenceNoiseModelsPath(const SequenceConfig& sequence, const std::s
                            howToMakeNoiseModels(sequence, "config/noise_models/NAME.yaml"));
 }
 
+std::string chooseNoiseModels(const SequenceConfig& config, const std::string& config_dir, const std::string& given) {
+  try {
+    const std::string path = sequenceNoiseModelsPath(config, config_dir, given);
+    const bool by_environment = given.empty() && config.noise_models.empty();
+    return by_environment && !std::filesystem::exists(path) ? std::string() : path;
+  } catch (const NoiseModelsMissing&) {
+    return "";
+  }
+}
+
 NoiseModels loadSequenceNoiseModels(const SequenceConfig& sequence, const std::string& config_dir,
                                     const std::string& override_path) {
   const std::string path = sequenceNoiseModelsPath(sequence, config_dir, override_path);

@@ -54,9 +54,6 @@ struct SequenceConfig {
   const TrialConfig& trial(char robot) const;  ///< throws naming the file when the robot is unknown
 };
 
-/// The noise-model file a run uses: `given` (--noise-models) when set, else the config's noise_models, else
-/// <config_dir>/noise_models/<environment>.yaml when it exists, else "" (the built-in defaults).
-std::string chooseNoiseModels(const SequenceConfig& config, const std::string& config_dir, const std::string& given = "");
 
 /// `path` when absolute, else `base_dir/path` (an empty path stays empty).
 std::string resolvePath(const std::string& base_dir, const std::string& path);

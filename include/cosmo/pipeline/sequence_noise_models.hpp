@@ -23,6 +23,11 @@ struct NoiseModelsMissing : std::runtime_error {
 std::string sequenceNoiseModelsPath(const SequenceConfig& sequence, const std::string& config_dir,
                                     const std::string& override_path = "");
 
+/// For reports (cosmo_check): that file, or "" when the sequence names none or names it only by an environment
+/// whose file does not exist. Never throws.
+std::string chooseNoiseModels(const SequenceConfig& config, const std::string& config_dir,
+                              const std::string& given = "");
+
 /// Loads that file (NoiseModels::source = its path). Throws NoiseModelsMissing when it does not exist or says
 /// its models are unknown, std::runtime_error naming file and key when it is malformed.
 NoiseModels loadSequenceNoiseModels(const SequenceConfig& sequence, const std::string& config_dir,

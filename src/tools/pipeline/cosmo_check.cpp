@@ -11,6 +11,7 @@
 
 #include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
+#include "cosmo/pipeline/sequence_noise_models.hpp"
 #include "cosmo/ros/trial_probe.hpp"
 
 using namespace cosmo;
