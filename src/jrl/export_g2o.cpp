@@ -25,21 +25,27 @@ std::vector<double> poseNumbers(const cosmo::Pose3& T) {
   return {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()};
 }
 
-/// Σ^-1 with rows and columns reordered from [r, t] to [t, r], upper triangle row by row.
-std::vector<double> g2oInformation(const Matrix6& covariance) {
-  Eigen::PermutationMatrix<6> P;
-  P.indices() << 3, 4, 5, 0, 1, 2;  // new index i takes old index P(i)
-  Matrix6 reordered;
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j) reordered(i, j) = covariance(P.indices()(i), P.indices()(j));
-  const Matrix6 info = reordered.inverse();
+/// The 21 upper-triangular entries, row by row, of a symmetric matrix.
+std::vector<double> upperTriangle(const Matrix6& m) {
   std::vector<double> upper;
   for (int i = 0; i < 6; ++i)
-    for (int j = i; j < 6; ++j) upper.push_back(0.5 * (info(i, j) + info(j, i)));
+    for (int j = i; j < 6; ++j) upper.push_back(0.5 * (m(i, j) + m(j, i)));
   return upper;
 }
 
 }  // namespace
+
+Matrix6 g2oInformation(const Matrix6& covariance) {
+  // e_g2o = D P r to first order: P moves [w, v] to [v, w], D = diag(1, 1, 1, 1/2, 1/2, 1/2) (q.xyz = w/2).
+  // r^T Σ^-1 r = e^T (D^-1 P Σ^-1 P^T D^-1) e.
+  const Matrix6 info = covariance.inverse();
+  const Eigen::Matrix<double, 6, 1> scale = (Eigen::Matrix<double, 6, 1>() << 1, 1, 1, 2, 2, 2).finished();
+  const int from[6] = {3, 4, 5, 0, 1, 2};  // g2o index i takes GTSAM index from[i]
+  Matrix6 out;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) out(i, j) = scale(i) * scale(j) * info(from[i], from[j]);
+  return out;
+}
 
 void exportG2o(const Dataset& dataset, const std::string& path) {
   const PoseGraph g = poseGraph(dataset);
@@ -62,7 +68,7 @@ void exportG2o(const Dataset& dataset, const std::string& path) {
     if (a == id.end() || b == id.end())
       throw std::runtime_error(dataset.name + ": no initialization of pose " + keyName(a == id.end() ? f.key1 : f.key2));
     out << "EDGE_SE3:QUAT " << a->second << " " << b->second << numbers(poseNumbers(f.measured))
-        << numbers(g2oInformation(f.covariance)) << "\n";
+        << numbers(upperTriangle(g2oInformation(f.covariance))) << "\n";
   }
   out.close();
   if (!out) throw std::runtime_error(path + ": cannot write");

@@ -43,7 +43,7 @@ std::vector<std::string> splitBy(const std::string& line, char sep) {
 struct G2oEdge {
   long a = 0, b = 0;
   Pose3 measured;
-  Matrix6 information;  // g2o order [t, r]
+  Matrix6 information;  // g2o's convention (jrl/exports.hpp)
 };
 
 struct G2oGraph {
@@ -89,6 +89,17 @@ G2oGraph readG2o(const std::string& path) {
 
 double poseDistance(const Pose3& a, const Pose3& b) { return logSE3(a.inverse() * b).norm(); }
 
+/// g2o's chi² of an EDGE_SE3:QUAT as g2o defines its error (types_slam3d, EdgeSE3::computeError): the
+/// translation and the quaternion's vector part (sign chosen with w >= 0) of m^-1 T1^-1 T2, in that order.
+double g2oChi2(const Pose3& m, const Matrix6& information, const Pose3& T1, const Pose3& T2) {
+  const Pose3 delta = m.inverse() * T1.inverse() * T2;
+  Eigen::Quaterniond q(delta.linear());
+  if (q.w() < 0.0) q.coeffs() *= -1.0;
+  Vector6 e;
+  e << delta.translation(), q.vec();
+  return e.dot(information * e);
+}
+
 void expectG2oRoundTrip(const Dataset& d, const fs::path& dir) {
   const std::string path = (dir / "graph.g2o").string();
   exportG2o(d, path);
@@ -106,11 +117,12 @@ void expectG2oRoundTrip(const Dataset& d, const fs::path& dir) {
     EXPECT_EQ(edge.a, id.at(f.key1));
     EXPECT_EQ(edge.b, id.at(f.key2));
     EXPECT_LT(poseDistance(edge.measured, f.measured), 1e-12);
-    // Back to GTSAM order and to a covariance: the stored one.
+    // Back to GTSAM's order and units (rotation vector, not half of it) and to a covariance: the stored one.
     Matrix6 info;
     const int back[6] = {3, 4, 5, 0, 1, 2};
+    const double unit[6] = {0.5, 0.5, 0.5, 1.0, 1.0, 1.0};
     for (int i = 0; i < 6; ++i)
-      for (int j = 0; j < 6; ++j) info(i, j) = edge.information(back[i], back[j]);
+      for (int j = 0; j < 6; ++j) info(i, j) = unit[i] * unit[j] * edge.information(back[i], back[j]);
     const Matrix6 cov = info.inverse();
     EXPECT_LT((cov - f.covariance).norm(), 1e-9 * f.covariance.norm());
   }
@@ -172,6 +184,46 @@ void expectLabelsRoundTrip(const Dataset& d, const fs::path& dir) {
 }
 
 }  // namespace
+
+TEST(JrlExports, G2oInformationFollowsG2osOwnErrorConvention) {
+  // Known covariance: rotation σ 0.01 rad, translation σ 0.1 m, uncorrelated. g2o's error holds the translation
+  // first and half the rotation vector, so its information is diag(1/0.1², 4/0.01²).
+  Matrix6 cov = Matrix6::Zero();
+  cov.diagonal() << 1e-4, 1e-4, 1e-4, 1e-2, 1e-2, 1e-2;
+  Matrix6 want = Matrix6::Zero();
+  want.diagonal() << 100.0, 100.0, 100.0, 40000.0, 40000.0, 40000.0;
+  EXPECT_LT((g2oInformation(cov) - want).norm(), 1e-9 * want.norm());
+
+  // A dense covariance: for a small error g2o's chi² with that information is the JRL d² (rotation first,
+  // GTSAM's Log) that the labels and the solver use.
+  std::mt19937_64 rng(4);
+  std::normal_distribution<double> n(0.0, 1.0);
+  Matrix6 A = Matrix6::Identity();
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < r; ++c) A(r, c) = 0.2 * n(rng);
+  const Vector6 sigma = (Vector6() << 0.01, 0.02, 0.015, 0.1, 0.3, 0.2).finished();
+  const Matrix6 L = sigma.asDiagonal() * A;
+  PoseFactor f;
+  f.kind = FactorKind::LoopClosure;
+  f.key1 = symbol('a', 0);
+  f.key2 = symbol('a', 9);
+  f.covariance = L * L.transpose();
+  const Matrix6 info = g2oInformation(f.covariance);
+  for (int k = 0; k < 20; ++k) {
+    Vector6 xi, noise;
+    for (int i = 0; i < 6; ++i) xi(i) = (i < 3 ? 1.0 : 10.0) * n(rng);
+    for (int i = 0; i < 6; ++i) noise(i) = 1e-4 * n(rng);
+    const Pose3 T1 = expSE3(xi * 0.3), T2 = expSE3(xi);
+    f.measured = T1.inverse() * T2 * expSE3(noise);
+    const double d2 = closureError(f, {{f.key1, T1}, {f.key2, T2}}).d2;
+    EXPECT_NEAR(g2oChi2(f.measured, info, T1, T2), d2, 1e-3 * d2);
+    // The block swap alone (no factor 4 on the rotation) gives g2o a different chi².
+    Matrix6 swapped_only = info;
+    swapped_only.bottomRows<3>() *= 0.5;
+    swapped_only.rightCols<3>() *= 0.5;
+    EXPECT_GT(std::abs(g2oChi2(f.measured, swapped_only, T1, T2) - d2), 1e-2 * d2);
+  }
+}
 
 TEST(JrlExports, TinyExampleReadsBack) {
   const Dataset d = readJrl(kTiny);

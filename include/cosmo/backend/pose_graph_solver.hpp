@@ -1,7 +1,8 @@
 #pragma once
-// Batch optimisation of a team's whole Pose3 graph with Ceres (Levenberg-Marquardt, sparse normal Cholesky), from
-// the dataset's initialization: the back-end check of `cosmo_jrl solve` and of the offline driver. Factors are
-// those of jrl::poseGraph() with the error of backend/pose_residual.hpp. Single-threaded: same input, same bytes.
+// Batch optimisation of a team's whole Pose3 graph with Ceres (Levenberg-Marquardt with GTSAM's default damping and
+// stopping rule, sparse normal Cholesky by CHOLMOD), from the dataset's initialization: the back-end check of
+// `cosmo_jrl solve` and of the offline driver. Factors are those of jrl::poseGraph() with the error and analytic
+// Jacobians of backend/pose_residual.hpp. Single-threaded: same input, same bytes.
 #include <cstddef>
 #include <string>
 
@@ -24,7 +25,7 @@ constexpr double kCauchyScale = 3.5485;
 
 struct SolverOptions {
   FactorSelection selection = FactorSelection::Inliers;
-  int max_iterations = 200;
+  int max_iterations = 100;
   double cauchy_scale = kCauchyScale;
 };
 

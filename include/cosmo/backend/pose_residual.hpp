@@ -3,14 +3,19 @@
 // between poses T1 and T2 has the error r = Log(m^-1 * T1^-1 * T2), a prior p on T the error r = Log(p^-1 * T),
 // both in the tangent order [rx, ry, rz, tx, ty, tz] (rotation first, the order of the stored covariance Σ).
 // The residual is the whitened error L^-1 r with Σ = L L^T, so that its squared norm is r^T Σ^-1 r.
-// A pose is two parameter blocks: an Eigen quaternion [x, y, z, w] (EigenQuaternionManifold) and a translation.
-#include <ceres/autodiff_cost_function.h>
+// A pose is one parameter block on PoseManifold (backend/pose_manifold.hpp). The Jacobians are GTSAM's, on the
+// right perturbation T ← T Exp(δ): dr/dδ2 = Jr⁻¹(r), dr/dδ1 = -Jr⁻¹(r) Ad(T2⁻¹ T1), with Jr⁻¹(r) (the inverse
+// right Jacobian of SE(3)) taken by forward differentiation of Log alone (6 dual numbers) instead of the whole
+// residual through the quaternion manifold (14): the Jacobians are the solve's main cost.
+#include <ceres/jet.h>
 #include <ceres/rotation.h>
+#include <ceres/sized_cost_function.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "cosmo/backend/pose_manifold.hpp"
 #include "cosmo/common/pose.hpp"
 
 namespace cosmo::backend {
@@ -46,29 +51,67 @@ inline Matrix6 whitener(const Matrix6& covariance) {
   return llt.matrixL().solve(Matrix6::Identity());
 }
 
-/// Between factor: parameters q1, t1, q2, t2.
-class BetweenResidual {
+/// Log(E) of E = (q, t) and Jr⁻¹(Log(E)), the derivative of Log(E · Exp(δ)) by δ at δ = 0 (Exp to first order,
+/// (q ⊗ [δw/2, 1], t + R δv), has the exact first derivative).
+inline void logPoseAndJacobian(const Eigen::Quaterniond& q, const Eigen::Vector3d& t, Vector6& log,
+                               Matrix66& jr_inv) {
+  using J = ceres::Jet<double, 6>;
+  const Eigen::Quaternion<J> dq(J(1.0), 0.5 * J(0.0, 0), 0.5 * J(0.0, 1), 0.5 * J(0.0, 2));
+  const Eigen::Matrix<J, 3, 1> dv(J(0.0, 3), J(0.0, 4), J(0.0, 5));
+  const Eigen::Matrix<J, 3, 3> R = q.toRotationMatrix().cast<J>();
+  const Eigen::Matrix<J, 6, 1> r = logPose<J>(q.cast<J>() * dq, t.cast<J>() + R * dv);
+  for (int i = 0; i < 6; ++i) {
+    log(i) = r(i).a;
+    jr_inv.row(i) = r(i).v.transpose();
+  }
+}
+
+/// Ad(T) in the order [w, v]: [[R, 0], [t^ R, R]].
+inline Matrix66 adjoint(const Eigen::Matrix3d& R, const Eigen::Vector3d& t) {
+  Matrix66 A;
+  A << R, Eigen::Matrix3d::Zero(), skew(t) * R, R;
+  return A;
+}
+
+/// Between factor on two PoseManifold blocks.
+class BetweenResidual final : public ceres::SizedCostFunction<6, 7, 7> {
  public:
   BetweenResidual(const Pose3& measured, const Matrix6& covariance)
       : m_inv_q_(Eigen::Quaterniond(measured.linear()).conjugate()),
         m_t_(measured.translation()),
         whitener_(whitener(covariance)) {}
 
-  template <typename T>
-  bool operator()(const T* q1p, const T* t1p, const T* q2p, const T* t2p, T* out) const {
-    const Eigen::Map<const Eigen::Quaternion<T>> q1(q1p), q2(q2p);
-    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t1(t1p), t2(t2p);
-    const Eigen::Quaternion<T> q12 = q1.conjugate() * q2;
-    const Eigen::Matrix<T, 3, 1> t12 = q1.conjugate() * (t2 - t1);
-    const Eigen::Quaternion<T> m_inv = m_inv_q_.cast<T>();
-    const Eigen::Matrix<T, 6, 1> r = logPose<T>(m_inv * q12, m_inv * (t12 - m_t_.cast<T>()));
-    Eigen::Map<Eigen::Matrix<T, 6, 1>> residual(out);
-    residual = whitener_.cast<T>() * r;
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const Eigen::Quaterniond q1 = Eigen::Map<const Eigen::Quaterniond>(parameters[0]).normalized();
+    const Eigen::Quaterniond q2 = Eigen::Map<const Eigen::Quaterniond>(parameters[1]).normalized();
+    const Eigen::Map<const Eigen::Vector3d> t1(parameters[0] + 4), t2(parameters[1] + 4);
+    const Eigen::Quaterniond q_err = m_inv_q_ * (q1.conjugate() * q2);
+    const Eigen::Vector3d t_err = m_inv_q_ * (q1.conjugate() * (t2 - t1) - m_t_);
+    Eigen::Map<Vector6> residual(residuals);
+    if (jacobians == nullptr) {
+      residual = whitener_ * logPose<double>(q_err, t_err);
+      return true;
+    }
+    Vector6 r;
+    Matrix66 jr_inv;
+    logPoseAndJacobian(q_err, t_err, r, jr_inv);
+    residual = whitener_ * r;
+    const Matrix66 d2 = whitener_ * jr_inv;  // by δ2
+    const Eigen::Matrix3d R1 = q1.toRotationMatrix(), R2 = q2.toRotationMatrix();
+    if (jacobians[0] != nullptr) {
+      const Matrix66 d1 = -d2 * adjoint(R2.transpose() * R1, R2.transpose() * (t1 - t2));
+      Eigen::Map<Matrix67> j1(jacobians[0]);
+      j1 = toAmbient(d1, q1, R1);
+    }
+    if (jacobians[1] != nullptr) {
+      Eigen::Map<Matrix67> j2(jacobians[1]);
+      j2 = toAmbient(d2, q2, R2);
+    }
     return true;
   }
 
   static ceres::CostFunction* create(const Pose3& measured, const Matrix6& covariance) {
-    return new ceres::AutoDiffCostFunction<BetweenResidual, 6, 4, 3, 4, 3>(new BetweenResidual(measured, covariance));
+    return new BetweenResidual(measured, covariance);
   }
 
  private:
@@ -77,27 +120,35 @@ class BetweenResidual {
   Matrix6 whitener_;
 };
 
-/// Prior factor: parameters q, t.
-class PriorResidual {
+/// Prior factor on one PoseManifold block.
+class PriorResidual final : public ceres::SizedCostFunction<6, 7> {
  public:
   PriorResidual(const Pose3& prior, const Matrix6& covariance)
       : p_inv_q_(Eigen::Quaterniond(prior.linear()).conjugate()),
         p_t_(prior.translation()),
         whitener_(whitener(covariance)) {}
 
-  template <typename T>
-  bool operator()(const T* qp, const T* tp, T* out) const {
-    const Eigen::Map<const Eigen::Quaternion<T>> q(qp);
-    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t(tp);
-    const Eigen::Quaternion<T> p_inv = p_inv_q_.cast<T>();
-    const Eigen::Matrix<T, 6, 1> r = logPose<T>(p_inv * q, p_inv * (t - p_t_.cast<T>()));
-    Eigen::Map<Eigen::Matrix<T, 6, 1>> residual(out);
-    residual = whitener_.cast<T>() * r;
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const Eigen::Quaterniond q = Eigen::Map<const Eigen::Quaterniond>(parameters[0]).normalized();
+    const Eigen::Map<const Eigen::Vector3d> t(parameters[0] + 4);
+    const Eigen::Quaterniond q_err = p_inv_q_ * q;
+    const Eigen::Vector3d t_err = p_inv_q_ * (t - p_t_);
+    Eigen::Map<Vector6> residual(residuals);
+    if (jacobians == nullptr || jacobians[0] == nullptr) {
+      residual = whitener_ * logPose<double>(q_err, t_err);
+      return true;
+    }
+    Vector6 r;
+    Matrix66 jr_inv;
+    logPoseAndJacobian(q_err, t_err, r, jr_inv);
+    residual = whitener_ * r;
+    Eigen::Map<Matrix67> j(jacobians[0]);
+    j = toAmbient(whitener_ * jr_inv, q, q.toRotationMatrix());
     return true;
   }
 
   static ceres::CostFunction* create(const Pose3& prior, const Matrix6& covariance) {
-    return new ceres::AutoDiffCostFunction<PriorResidual, 6, 4, 3>(new PriorResidual(prior, covariance));
+    return new PriorResidual(prior, covariance);
   }
 
  private:

@@ -5,8 +5,8 @@
 // g2o: one global graph. Vertices `VERTEX_SE3:QUAT id x y z qx qy qz qw` at the initialization (the owner's
 //   value of each key), numbered 0..n-1 in JRL key order (robot, then pose index); a first comment line names
 //   each robot's first id (`# ... first ids a 0 b 351 c 886`). Edges `EDGE_SE3:QUAT id1 id2 x y z qx qy qz qw`
-//   followed by the 21 upper-triangular entries (row by row) of the information matrix Σ^-1 in g2o's order,
-//   translation first: every BetweenFactorPose3 (odometry and every loop closure, outliers included). Priors
+//   followed by the 21 upper-triangular entries (row by row) of the information matrix in g2o's own convention
+//   (g2oInformation): every BetweenFactorPose3 (odometry and every loop closure, outliers included). Priors
 //   are not written (g2o has no prior edge its readers share); they equal the ground truth of each robot's first
 //   pose, which the vertices hold.
 // TUM: per robot <dir>/<name>_<r>_groundtruth.tum and <name>_<r>_initialization.tum, own poses in index order,
@@ -18,9 +18,18 @@
 #include <string>
 #include <vector>
 
+#include "cosmo/common/pose.hpp"
 #include "cosmo/jrl/dataset.hpp"
 
 namespace cosmo::jrl {
+
+/// The information matrix of g2o's EDGE_SE3:QUAT for a JRL covariance Σ (GTSAM's order [w, v], rotation
+/// first). g2o's error of an edge is e = [t; qx, qy, qz] of m^-1 T1^-1 T2 (translation first, the vector part of
+/// the unit quaternion with w >= 0, i.e. half the rotation vector to first order), while GTSAM's is
+/// r = Log(m^-1 T1^-1 T2) = [w; v]; so e = D P r to first order with P the block swap and
+/// D = diag(1, 1, 1, 1/2, 1/2, 1/2), and the matrix that gives g2o the same chi² as GTSAM is
+/// Ω = D^-1 P Σ^-1 P^T D^-1: Σ^-1 with the blocks swapped, the rotation block times 4, the cross blocks times 2.
+Matrix6 g2oInformation(const Matrix6& covariance);
 
 void exportG2o(const Dataset& dataset, const std::string& path);
 /// Returns the paths written.

@@ -43,7 +43,7 @@ const char* kUsage =
     "          labelled inliers only. Prints cost, iterations and the ATE (RMSE, no alignment) per robot and\n"
     "          overall against the ground truth, and the initialization's. --json: one object per line.\n"
     "export    --g2o: one global graph (VERTEX_SE3:QUAT / EDGE_SE3:QUAT, ids in key order, information\n"
-    "          translation first); --tum: ground truth and initialization per robot as TUM files in DIR;\n"
+    "          matrices in g2o's convention); --tum: ground truth and initialization per robot as TUM files in DIR;\n"
     "          --labels: every loop closure with its error against the ground truth, d^2 and label (CSV).\n"
     "\n"
     "exit code: 0 on success (validate: every file valid), 1 on invalid or unreadable files, 2 on usage errors\n";
