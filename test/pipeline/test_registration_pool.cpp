@@ -59,7 +59,7 @@ TEST(FeatureCache, ComputesAScanOnceWhenManyThreadsAskAtOnce) {
 TEST(RegistrationPool, ResultsAreTheInlineResultsBitForBitAndErrorsReachTheCaller) {
   const GlobalRegistration registration(FrontendParams::loadDir(defaultConfigDir()).registration);
   // pairs of scans of the two robots at their shared start (some register, some not)
-  std::vector<std::pair<std::shared_ptr<const Scan>, std::shared_ptr<const Scan>>> pairs;
+  std::vector<std::pair<std::shared_ptr<const KeptScan>, std::shared_ptr<const KeptScan>>> pairs;
   for (std::size_t i = 0; i < 4; ++i) pairs.emplace_back(scanOf('a', i), scanOf('b', 3 - i));
   std::vector<RegistrationResult> inline_results;
   for (const auto& [s, t] : pairs) inline_results.push_back(registration.align(*s->get(), *t->get()));
