@@ -114,7 +114,7 @@ class Builder {
     row_tree_ = {0.25, 3.0, 2.3, 1.9};
     row_ = {uni(11.0, 15.0), uni(28.0, 36.0), uni(9.0, 15.0), uni(8.0, 12.0)};
     if (p_.terrace_fraction > 0.0)  // drawn only when used: worlds without terraces stay as they were
-      terrace_ = {uni(9.0, 12.0), uni(10.0, 13.0), uni(8.0, 13.0), uni(3.0, 5.0), uni(3.0, 4.5), uni(1.2, 2.0), uni(2.8, 3.6)};
+      terrace_ = {uni(9.0, 12.0), uni(10.0, 13.0), uni(10.0, 15.0), uni(0.8, 1.6), uni(3.0, 4.5), uni(1.2, 2.0), uni(2.8, 3.6)};
   }
 
   double uni(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
