@@ -15,9 +15,10 @@
 //             TF <r>/odom -> <r>/base_link (odometry) and world -> <r>/odom (alignment: reference of keyframe 0,
 //             identity without a reference)
 // Params      ~robot (default: the namespace), ~config_dir (frontend/odometry/place_recognition/registration
-//             .yaml), ~odometry loam|reference|external, ~noise_models (YAML, for the inlier/outlier colours),
-//             ~world_frame (world), ~reference_wait (s of message time a scan waits for its reference pose; without
-//             any reference, live use, scans are processed this much later), ~lockstep (false), ~stamp end|start
+//             .yaml), ~odometry loam|reference|external, ~noise_models (YAML, for the inlier/outlier colours;
+//             empty in lockstep: the player's sequence's), ~world_frame (world), ~reference_wait (s of message
+//             time a scan waits for its reference pose; without any reference, live use, scans are processed
+//             this much later), ~lockstep (false), ~stamp end|start
 //             (the sweep instant of the points' header stamp; scans are processed stamped at the sweep end)
 // Lockstep (~lockstep true, sequence.launch mode:=lockstep): the reference trajectory is the player's sequence's
 //   own (ros_glue::readResolvedSequence: the CSV as the offline driver reads it, not the rounded reference_pose
@@ -46,6 +47,7 @@
 #include "cosmo/dataset/noise_models.hpp"
 #include "cosmo/dataset/outlier_rule.hpp"
 #include "cosmo/pipeline/robot_frontend.hpp"
+#include "cosmo/pipeline/sequence_noise_models.hpp"
 #include "cosmo/ros/point_cloud.hpp"
 
 using namespace cosmo;
@@ -101,6 +103,7 @@ class FrontendNode {
                                stamp_convention + "'");
     stamp_at_end_ = stamp_convention == "end";
     frontend_params_ = pipeline::FrontendParams::loadDir(config_dir);
+    config_dir_ = config_dir;
     if (odometry_mode_ != "loam" && odometry_mode_ != "reference" && odometry_mode_ != "external")
       throw std::runtime_error("~odometry must be loam, reference or external, got '" + odometry_mode_ + "'");
     if (!noise.empty()) noise_ = NoiseModels::load(noise);  // none: loop-closure markers without labels
@@ -167,11 +170,24 @@ class FrontendNode {
     if (sequence_loaded_) return;
     sequence_loaded_ = true;
     try {
-      Trajectory reference = ros_glue::readResolvedSequence(30.0).reference(robot_);
+      const ros_glue::ResolvedSequence sequence = ros_glue::readResolvedSequence(30.0);
+      Trajectory reference = sequence.reference(robot_);
+      if (!noise_) noise_ = loadMarkerNoiseModels(sequence.config);
       if (reference.empty()) ROS_WARN("frontend %c: the sequence has no reference for this robot", robot_);
       frontend_ = std::make_unique<pipeline::RobotFrontend>(robot_, frontend_params_, std::move(reference));
     } catch (const std::exception& e) {
       ROS_ERROR("frontend %c: lockstep: %s; no reference", robot_, e.what());
+    }
+  }
+
+  // The markers' inlier / outlier colours use the noise models the recorder labels with: without ~noise_models,
+  // those the sequence names (none: the colours stay unlabelled).
+  std::optional<NoiseModels> loadMarkerNoiseModels(const pipeline::SequenceConfig& sequence) const {
+    try {
+      return pipeline::loadSequenceNoiseModels(sequence, config_dir_);
+    } catch (const std::exception& e) {
+      ROS_WARN("frontend %c: no noise models for the loop-closure colours: %s", robot_, e.what());
+      return std::nullopt;
     }
   }
 
@@ -415,6 +431,7 @@ class FrontendNode {
   bool lockstep_ = false, sequence_loaded_ = false;
   bool stamp_at_end_ = true;  ///< ~stamp: the points topic's header stamp is the sweep end (else its start)
   pipeline::FrontendParams frontend_params_;
+  std::string config_dir_;
   ros::Publisher offer_pub_, kf_pub_, lc_pub_, ack_pub_, marker_pub_;
   ros::Subscriber points_sub_, ref_sub_, recv_sub_, odom_sub_;
   tf2_ros::TransformBroadcaster tf_;

@@ -18,6 +18,7 @@ namespace cosmo::sim {
   X(p_buildings) X(p_row) X(p_park) X(p_parking) X(tree_row_fraction) X(tree_spacing) X(pole_spacing)           \
   X(parked_car_fraction) X(wall_fraction) X(outer_ring) X(terrain_margin)
 #define COSMO_SIM_CHANGE_FIELDS(X) X(car_change) X(people_per_100m) X(foliage_change)
+#define COSMO_SIM_LOOKALIKE_FIELDS(X) X(terrace_fraction) X(p_open)
 #define COSMO_SIM_TERRAIN_FIELDS(X) X(cell) X(amplitude) X(wavelength) X(waves) X(material_cell)
 
 WorldParams WorldParams::fromConfig(const ConfigNode& node) {
@@ -31,6 +32,7 @@ WorldParams WorldParams::fromConfig(const ConfigNode& node) {
 #undef X
 #define X(f) node.read(#f, p.f);
   COSMO_SIM_CHANGE_FIELDS(X)
+  COSMO_SIM_LOOKALIKE_FIELDS(X)
 #undef X
   return p;
 }
@@ -47,6 +49,11 @@ std::string WorldParams::describe() const {
   if (changesPerTrial(*this)) {  // only when used: the cache keys of worlds without changes stay valid
 #define X(f) os << #f << '=' << f << ';';
     COSMO_SIM_CHANGE_FIELDS(X)
+#undef X
+  }
+  if (terrace_fraction > 0.0 || p_open > 0.0) {  // likewise: worlds without them keep their cache keys
+#define X(f) os << #f << '=' << f << ';';
+    COSMO_SIM_LOOKALIKE_FIELDS(X)
 #undef X
   }
   return os.str();
@@ -70,6 +77,15 @@ struct TreeShape {
 struct RowTemplate {
   double width, depth, height, gap;
 };
+
+/// The house every terrace of the world repeats: main body, a porch / bay on its street side, gap to the next.
+struct TerraceTemplate {
+  double width, depth, height, gap, porch_width, porch_depth, porch_height;
+  double pitch() const { return width + gap; }
+};
+
+/// Sides of a block rectangle, each facing the street along it.
+enum Side { kSouth = 1, kNorth = 2, kWest = 4, kEast = 8, kAllSides = 15 };
 
 /// Box with its bottom buried below the local ground and z0..z1 measured from the ground at its centre
 /// (z0 <= 0: down into the ground).
@@ -97,6 +113,8 @@ class Builder {
       : p_(p), rng_(rng), terrain_(terrain), prims_(prims), cars_(cars), canopies_(canopies) {
     row_tree_ = {0.25, 3.0, 2.3, 1.9};
     row_ = {uni(11.0, 15.0), uni(28.0, 36.0), uni(9.0, 15.0), uni(8.0, 12.0)};
+    if (p_.terrace_fraction > 0.0)  // drawn only when used: worlds without terraces stay as they were
+      terrace_ = {uni(9.0, 12.0), uni(10.0, 13.0), uni(10.0, 15.0), uni(0.8, 1.6), uni(3.0, 4.5), uni(1.2, 2.0), uni(2.8, 3.6)};
   }
 
   double uni(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
@@ -254,12 +272,67 @@ class Builder {
     }
   }
 
-  void fillBlock(const Rect& r, int type, const std::vector<std::pair<Vector2d, Vector2d>>& paths) {
+  /// Identical houses along one side of `r`, centred on it, porches towards the street; `from`..`to` is the
+  /// stretch of the side they may take (along x for south / north, along y for west / east).
+  void terrace(const Rect& r, Side side, double from, double to) {
+    const TerraceTemplate& t = terrace_;
+    const int n = static_cast<int>((to - from + t.gap) / t.pitch());
+    if (n < 1) return;
+    const bool along_x = side == kSouth || side == kNorth;
+    const double first = 0.5 * (from + to) - 0.5 * (n * t.pitch() - t.gap) + 0.5 * t.width;
+    const double out = (side == kSouth || side == kWest) ? -1.0 : 1.0;  // towards the street
+    const double edge = side == kSouth ? r.lo.y() : side == kNorth ? r.hi.y() : side == kWest ? r.lo.x() : r.hi.x();
+    const double body = edge - out * 0.5 * t.depth, porch = edge + out * 0.5 * t.porch_depth;
+    for (int i = 0; i < n; ++i) {
+      const double s = first + i * t.pitch();
+      const Vector2d c = along_x ? Vector2d(s, body) : Vector2d(body, s);
+      const Vector2d q = along_x ? Vector2d(s, porch) : Vector2d(porch, s);
+      box(c, along_x ? t.width : t.depth, along_x ? t.depth : t.width, 0.0, t.height, 0.0, kBrick);
+      box(q, along_x ? t.porch_width : t.porch_depth, along_x ? t.porch_depth : t.porch_width, 0.0, t.porch_height, 0.0,
+          kConcrete);
+    }
+  }
+
+  /// Terraces on the sides of `r` that `allowed` names, each with probability terrace_fraction; returns what
+  /// is left of `r` behind them.
+  Rect terraces(const Rect& r, int allowed) {
+    if (p_.terrace_fraction <= 0.0) return r;
+    int sides = 0;
+    for (Side s : {kSouth, kNorth, kWest, kEast})
+      if ((allowed & s) && chance(p_.terrace_fraction)) sides |= s;
+    const double d = terrace_.depth + terrace_.gap;  // the yard behind a terrace
+    if (sides & kSouth) terrace(r, kSouth, r.lo.x(), r.hi.x());
+    if (sides & kNorth) terrace(r, kNorth, r.lo.x(), r.hi.x());
+    const double y0 = r.lo.y() + ((sides & kSouth) ? d : 0.0), y1 = r.hi.y() - ((sides & kNorth) ? d : 0.0);
+    if (sides & kWest) terrace(r, kWest, y0, y1);
+    if (sides & kEast) terrace(r, kEast, y0, y1);
+    Rect inner = r;
+    if (sides & kSouth) inner.lo.y() += d;
+    if (sides & kNorth) inner.hi.y() -= d;
+    if (sides & kWest) inner.lo.x() += d;
+    if (sides & kEast) inner.hi.x() -= d;
+    return inner;
+  }
+
+  /// An open plaza or lawn: little but a few benches (registration has almost only the ground to go by).
+  void fillOpen(const Rect& r) {
+    const Vector2d sz = r.size();
+    if (sz.minCoeff() <= 2.0) return;
+    const int n = std::max(1, static_cast<int>(sz.x() * sz.y() / 600.0));
+    for (int k = 0; k < n; ++k)
+      box({uni(r.lo.x() + 1.0, r.hi.x() - 1.0), uni(r.lo.y() + 1.0, r.hi.y() - 1.0)}, 1.8, 0.5, 0.0, 0.45, uni(0, M_PI),
+          kWall);
+  }
+
+  void fillBlock(const Rect& block, int type, const std::vector<std::pair<Vector2d, Vector2d>>& paths) {
+    const Rect r = type == 2 || type == 4 ? block : terraces(block, kAllSides);  // parks and open areas stay open
+    if (r.size().minCoeff() < 6.0) return;
     switch (type) {
       case 0: fillBuildings(r); break;
       case 1: fillRow(r); break;
       case 2: fillPark(r, paths); break;
-      default: fillParking(r); break;
+      case 3: fillParking(r); break;
+      default: fillOpen(r); break;
     }
   }
 
@@ -306,6 +379,7 @@ class Builder {
 
   TreeShape row_tree_;
   RowTemplate row_;
+  TerraceTemplate terrace_{};
 
  private:
   const WorldParams& p_;
@@ -427,13 +501,14 @@ WorldLayout generateLayout(const WorldParams& p, std::uint64_t seed) {
   for (const auto& s : segs) net.addEdge(s.a, s.b, s.street);
 
   // Blocks.
-  const double total = p.p_buildings + p.p_row + p.p_park + p.p_parking;
+  const double total = p.p_buildings + p.p_row + p.p_park + p.p_parking + p.p_open;
   auto pickType = [&]() {
     double u = uni(0.0, total > 0 ? total : 1.0);
     if ((u -= p.p_buildings) < 0) return 0;
     if ((u -= p.p_row) < 0) return 1;
     if ((u -= p.p_park) < 0) return 2;
-    return 3;
+    if ((u -= p.p_parking) < 0 || p.p_open <= 0.0) return 3;
+    return 4;
   };
   const double inset = p.street_half_width + p.sidewalk_width + 2.0;
   for (int j = 0; j < by; ++j)
@@ -452,18 +527,22 @@ WorldLayout generateLayout(const WorldParams& p, std::uint64_t seed) {
   // The ring outside the outer streets: buildings or woods, so that the campus does not end in a void.
   const double ring = p.outer_ring;
   if (ring > inset + 5.0) {
-    std::vector<Rect> outer;
+    std::vector<std::pair<Rect, Side>> outer;  // each with its side along the campus's outer street
     for (int i = 0; i < bx; ++i) {
-      outer.push_back({{xs[i] + inset, ys.front() - ring}, {xs[i + 1] - inset, ys.front() - inset}});
-      outer.push_back({{xs[i] + inset, ys.back() + inset}, {xs[i + 1] - inset, ys.back() + ring}});
+      outer.push_back({{{xs[i] + inset, ys.front() - ring}, {xs[i + 1] - inset, ys.front() - inset}}, kNorth});
+      outer.push_back({{{xs[i] + inset, ys.back() + inset}, {xs[i + 1] - inset, ys.back() + ring}}, kSouth});
     }
     for (int j = 0; j < by; ++j) {
-      outer.push_back({{xs.front() - ring, ys[j] + inset}, {xs.front() - inset, ys[j + 1] - inset}});
-      outer.push_back({{xs.back() + inset, ys[j] + inset}, {xs.back() + ring, ys[j + 1] - inset}});
+      outer.push_back({{{xs.front() - ring, ys[j] + inset}, {xs.front() - inset, ys[j + 1] - inset}}, kEast});
+      outer.push_back({{{xs.back() + inset, ys[j] + inset}, {xs.back() + ring, ys[j + 1] - inset}}, kWest});
     }
-    for (const auto& r : outer) {
-      if (b.chance(0.55)) b.fillBuildings(r);
-      else b.fillTrees(r, 0.5);
+    for (const auto& [r, side] : outer) {
+      if (b.chance(0.55)) {
+        const Rect inner = b.terraces(r, side);
+        if (inner.size().minCoeff() >= 8.0) b.fillBuildings(inner);
+      } else {
+        b.fillTrees(r, 0.5);
+      }
     }
   }
   for (const auto& s : segs) b.street(net.nodes[s.a], net.nodes[s.b], s.street);

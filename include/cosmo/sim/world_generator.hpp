@@ -1,7 +1,8 @@
 #pragma once
 // Procedural campus: a grid of blocks separated by streets (some turned into footpaths, some blocks crossed
 // by diagonal footpaths), each block filled with buildings (boxes, L-shapes, courtyards), a row of identical
-// buildings (repeated in several blocks: look-alike places), a park (trees, paths) or a car park; streets
+// buildings (repeated in several blocks: look-alike places), a park (trees, paths), a car park or an open plaza;
+// block sides optionally lined with terraces of one repeated house (look-alike streets); streets
 // lined with kerbs, poles, tree rows, walls/fences and parked cars; gentle terrain under everything.
 // What changes between the days the trials are recorded (parked cars moved or gone, people on the pavements,
 // tree canopies grown or blown) is kept apart (WorldLayout) and drawn anew for every trial (trialWorld): a
@@ -42,6 +43,11 @@ struct WorldParams {
   double car_change = 0.0;           ///< per trial: share of parked cars moved along the kerb (1-5 m) or gone
   double people_per_100m = 0.0;      ///< per trial: pedestrians per 100 m of path network, on the pavements
   double foliage_change = 0.0;       ///< per trial: relative change of every tree canopy (size and centre)
+  /// Block sides along streets lined with a terrace of identical houses (one house for the whole world, the
+  /// terraces centred on their side): with equal blocks, places a block apart along a long street look alike to
+  /// ScanContext and align convincingly, as repeated façades do on real campuses. 0: none.
+  double terrace_fraction = 0.0;
+  double p_open = 0.0;               ///< block type weight: open plaza / lawn with little structure (benches)
   TerrainParams terrain;
 
   static WorldParams fromConfig(const ConfigNode& node);
