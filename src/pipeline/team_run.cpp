@@ -3,7 +3,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "cosmo/comm/scan_compression.hpp"
 #include "cosmo/jrl/dataset.hpp"
 #include "cosmo/pipeline/team_radio.hpp"
 
@@ -21,7 +20,9 @@ TeamRun::TeamRun(std::string dataset_name, std::map<char, Trajectory> references
                  std::uint64_t radio_seed, StampNs time_origin)
     : params_(params),
       radio_(params.radio, keysOf(references), radio_seed),
+      schedule_(keysOf(references), true),
       recorder_(std::move(dataset_name), keysOf(references), params.noise, params.outlier_rule),
+      payloads_(params.radio.size_model == RadioParams::SizeModel::RealCompressed),
       origin_(time_origin) {
   // One feature cache for the team: a delivered scan is the sender's own object, so its features are computed
   // once, not once per robot that registers against it (same results).
@@ -79,13 +80,8 @@ void TeamRun::advanceRadioTo(StampNs t) {
       return;
     }
     ++counts_.transfers_delivered;
-    std::shared_ptr<const Scan> scan = frontends_.at(tr.sender)->keyframeScanShared(tr.keyframe);
+    const std::shared_ptr<const Scan> scan = payloads_.deliver(tr.sender, tr.keyframe);
     if (!scan) return;
-    if (params_.radio.size_model == RadioParams::SizeModel::RealCompressed) {
-      Scan received = decompressScan(compressScan(*scan));
-      received.stamp = scan->stamp;
-      scan = std::make_shared<const Scan>(std::move(received));
-    }
     for (auto& p : frontends_.at(tr.receiver)->receiveTeammateScanPending(tr.sender, tr.keyframe, scan, step_stamp)) {
       pending_.push_back(PendingRecord{std::nullopt, std::move(p)});
       ++pending_loop_closures_;
@@ -93,6 +89,11 @@ void TeamRun::advanceRadioTo(StampNs t) {
     flush(false);
   };
   advanceRadio(radio_, origin_, t, state, deliver);
+  schedule_.radioStepped(nextRadioStepStamp(radio_, origin_), {});
+}
+
+void TeamRun::beforeScan(char robot, StampNs stamp) {
+  if (schedule_.beforeScan(robot, stamp).step_radio) advanceRadioTo(stamp);
 }
 
 void TeamRun::addScan(char robot, const Scan& scan) { addScan(robot, scan, nullptr); }
@@ -107,7 +108,7 @@ RobotFrontend& TeamRun::frontendFor(char robot) {
 
 void TeamRun::addScan(char robot, const Scan& scan, const OdometryResult* loam_result) {
   RobotFrontend& fe = frontendFor(robot);
-  advanceRadioTo(scan.stamp);
+  beforeScan(robot, scan.stamp);
   ++counts_.scans;
   const ScanOutcome out = params_.reference_odometry && fe.hasReference()
                               ? fe.processScan(scan, fe.reference().atClamped(scan.stamp))
@@ -121,7 +122,7 @@ void TeamRun::addPrepared(char robot, StampNs stamp, const OdometryResult& loam_
   RobotFrontend& fe = frontendFor(robot);
   if (params_.reference_odometry && fe.hasReference())
     throw std::logic_error("team run: prepared scans carry LOAM odometry, but the run uses the reference odometry");
-  advanceRadioTo(stamp);
+  beforeScan(robot, stamp);
   ++counts_.scans;
   take(fe, fe.processPrepared(stamp, loam_result, std::move(keyframe_scan)));
 }
@@ -132,11 +133,8 @@ void TeamRun::take(const RobotFrontend& fe, const ScanOutcome& out) {
     const KeyframeRecord& kf = *out.keyframe;
     ++counts_.keyframes;
     pending_.push_back(PendingRecord{kf, {}});
-    const Scan* kf_scan = fe.keyframeScan(kf.index);
-    const std::size_t raw = rawPayloadBytes(*kf_scan);
-    std::size_t payload = raw;
-    if (params_.radio.size_model == RadioParams::SizeModel::RealCompressed) payload = compressScan(*kf_scan).size();
-    radio_.offerKeyframe(robot, kf.index, payload, raw);
+    const PayloadStore::Sizes sizes = payloads_.offer(robot, kf.index, fe.keyframeScanShared(kf.index));
+    radio_.offerKeyframe(robot, kf.index, sizes.payload, sizes.raw);
   }
   for (const auto& a : out.loop_closures) {  // registered inline: ready
     PendingRecord r;
