@@ -9,7 +9,7 @@
 //             /comm/links          (visualization_msgs/MarkerArray, frame `world`) active links, coloured by
 //                                  their mean throughput so far (red 0 .. green B)
 //             /comm/stats          (std_msgs/String, JSON, once per step batch) counters + active links
-// Params      ~robots [a, b, c] (or "a,b,c"), ~comm wifi|proradio, ~config (a config/comm/*.yaml, wins over
+// Params      ~robots [a, b, c] (or "a,b,c"; absent: the player's sequence, /player/robots), ~comm wifi|proradio, ~config (a config/comm/*.yaml, wins over
 //             ~comm), ~seed (int), ~size_model paper|real, ~timeout_mode no_progress|total_duration,
 //             ~log_file (CSV of every transfer + <name>.summary.json; written every 30 s of ROS time and on
 //             shutdown; empty = none), ~xz_preset (0..9, default 6), ~frame_id (default world),
@@ -23,8 +23,10 @@
 //   these robots on) and the broker answers on /comm/step_done (cosmo/RadioStepDone: deliveries per receiver so
 //   far) after publishing the deliveries. Grid, robot states and seed are the offline driver's
 //   (pipeline::advanceRadio, the shared rule): radio time 0 at the sequence start rounded down to k * delta,
-//   positions from the sequence's reference trajectories at the step time (ros_glue::readResolvedSequence),
-//   seed deriveSeed(sequence seed, "radio") (~seed is not used).
+//   positions from the sequence's reference trajectories at the step time, seed deriveSeed(sequence seed, "radio")
+//   (~seed is not used), all from the player's latched /player/sequence (cosmo/TeamSequence) and
+//   /<r>/reference_trajectory (cosmo/ReferenceTrajectory): nothing is read from disk. Requests wait until they came.
+//   Keyframe payloads: comm::PayloadStore, the one TeamRun holds.
 #include <geometry_msgs/PoseStamped.h>
 #include <ros/ros.h>
 #include <std_msgs/String.h>
@@ -35,6 +37,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -45,7 +48,8 @@
 #include "cosmo/pipeline/seed_streams.hpp"
 #include "cosmo/pipeline/team_radio.hpp"
 #include "cosmo/ros/pose_msg.hpp"
-#include "cosmo/ros/resolved_sequence.hpp"
+#include "cosmo/ros/team_sequence_msg.hpp"
+#include "cosmo/comm/payload_store.hpp"
 #include "cosmo/comm/radio_simulator.hpp"
 #include "cosmo/comm/scan_compression.hpp"
 #include "cosmo/comm/transfer_log.hpp"
@@ -66,7 +70,7 @@ std_msgs::ColorRGBA throughputColor(double fraction) {
 class CommBroker {
  public:
   CommBroker(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
-    const std::vector<char> robots = cosmo::ros_glue::readRobotsParam(pnh);
+    const std::vector<char> robots = cosmo::ros_glue::readTeamRobots(pnh);
     std::string comm = "wifi", config, size_model, timeout_mode;
     pnh.param<std::string>("comm", comm, comm);
     pnh.param<std::string>("config", config, "");
@@ -88,6 +92,7 @@ class CommBroker {
     }
     pnh.param("lockstep", lockstep_, false);
     sim_ = std::make_unique<cosmo::RadioSimulator>(params, robots, static_cast<std::uint64_t>(seed));
+    payloads_ = std::make_unique<cosmo::PayloadStore>(compress_, static_cast<std::uint32_t>(xz_preset_));
 
     for (char r : sim_->robots()) {
       const std::string ns(1, r);
@@ -100,6 +105,12 @@ class CommBroker {
     links_pub_ = nh.advertise<visualization_msgs::MarkerArray>("comm/links", 2);
     stats_pub_ = nh.advertise<std_msgs::String>("comm/stats", 10);
     if (lockstep_) {
+      sequence_sub_ = nh.subscribe<cosmo::TeamSequence>(
+          cosmo::ros_glue::kTeamSequenceTopic, 1, [this](const cosmo::TeamSequence::ConstPtr& m) { onSequence(*m); });
+      for (char r : sim_->robots())
+        trajectory_subs_.push_back(nh.subscribe<cosmo::ReferenceTrajectory>(
+            cosmo::ros_glue::referenceTrajectoryTopic(r), 1,
+            [this, r](const cosmo::ReferenceTrajectory::ConstPtr& m) { onTrajectory(r, *m); }));
       step_done_pub_ = nh.advertise<cosmo::RadioStepDone>("comm/step_done", 100);
       step_request_sub_ = nh.subscribe<cosmo::RadioStepRequest>(
           "comm/step_request", 100, [this](const cosmo::RadioStepRequest::ConstPtr& m) { onStepRequest(*m); });
@@ -126,12 +137,11 @@ class CommBroker {
   }
 
  private:
+  /// What a delivery carries besides the scan (which the payload store holds).
   struct Stored {
     std_msgs::Header header;
     geometry_msgs::Pose reference;
     bool has_reference = false;
-    std::vector<std::uint8_t> payload;  ///< xz payload (compress_payload) ...
-    cosmo::Scan points;                  ///< ... or the x y z points as they came
   };
 
   void onKeyframe(char r, const cosmo::Keyframe& m) {
@@ -139,15 +149,11 @@ class CommBroker {
     if (!m.robot.empty() && m.robot != std::string(1, r))
       ROS_WARN_THROTTLE(5.0, "comm_broker: %s: message says robot '%s'; using '%c'", topic.c_str(), m.robot.c_str(), r);
     Stored s;
-    std::size_t raw = 0;
+    cosmo::PayloadStore::Payload payload;
     try {
-      const cosmo::Scan scan = cosmo::ros_glue::fromPointCloud2(m.cloud, true, topic);
-      raw = cosmo::rawPayloadBytes(scan);
-      if (compress_) {
-        s.payload = cosmo::compressScan(scan, static_cast<std::uint32_t>(xz_preset_));  // outside the lock
-      } else {
-        s.points.points = scan.points;
-      }
+      auto scan = std::make_shared<cosmo::Scan>();  // only x y z travel
+      scan->points = cosmo::ros_glue::fromPointCloud2(m.cloud, true, topic).points;
+      payload = payloads_->pack(std::move(scan));  // xz outside the lock
     } catch (const std::exception& e) {
       ROS_ERROR("comm_broker: dropping keyframe %u: %s", m.index, e.what());
       std::lock_guard<std::mutex> lock(mutex_);
@@ -160,8 +166,9 @@ class CommBroker {
     s.reference = m.reference;
     s.has_reference = m.has_reference;
     std::lock_guard<std::mutex> lock(mutex_);
-    if (lockstep_) initLockstep();
-    sim_->offerKeyframe(r, m.index, compress_ ? s.payload.size() : raw, raw);
+    const cosmo::PayloadStore::Sizes sizes = payloads_->store(r, m.index, std::move(payload));
+    sim_->offerKeyframe(r, m.index, sizes.payload, sizes.raw);
+    if (lockstep_ && !lockstep_ready_) early_offers_.push_back({r, m.index, sizes});  // offered again once seeded
     store_[{r, m.index}] = std::move(s);
     ++offers_received_[r];
     runPendingSteps();
@@ -215,11 +222,52 @@ class CommBroker {
     }
   }
 
-  // Lockstep, with the mutex held: the sequence's references, grid origin and radio seed (once).
-  void initLockstep() {
-    if (lockstep_ready_) return;
+  // Lockstep: the player's resolved sequence (latched): grid origin and radio seed, then every robot's reference.
+  void onSequence(const cosmo::TeamSequence& m) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    sequence_ = m;
+    for (char r : sim_->robots())
+      if (m.robots.find(r) == std::string::npos) {
+        ROS_ERROR("comm_broker: robot %c is not in the player's sequence (%s): positions from its reference_pose", r,
+                  m.robots.c_str());
+        references_[r] = cosmo::Trajectory{};
+      }
+    startLockstep();
+  }
+
+  void onTrajectory(char r, const cosmo::ReferenceTrajectory& m) {
+    cosmo::Trajectory reference;
+    try {
+      reference = cosmo::ros_glue::trajectoryFromMsg(m, cosmo::ros_glue::referenceTrajectoryTopic(r));
+    } catch (const std::exception& e) {
+      ROS_ERROR("comm_broker: %s; positions from its reference_pose", e.what());
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    references_[r] = std::move(reference);
+    startLockstep();
+  }
+
+  // Lockstep, with the mutex held, once the sequence and every reference arrived: grid origin and radio seed as
+  // the offline driver's, the front-ends connected; then the requests waiting for it run.
+  void startLockstep() {
+    if (lockstep_ready_ || !sequence_) return;
+    for (char r : sim_->robots())
+      if (!references_.count(r)) return;
+    waitForFrontends();
+    origin_ = cosmo::pipeline::radioGridOrigin(sequence_->start.toNSec(), sim_->params().step);
+    const std::uint64_t seed = cosmo::pipeline::deriveSeed(sequence_->seed, "radio");
+    sim_ = std::make_unique<cosmo::RadioSimulator>(sim_->params(), sim_->robots(), seed);
+    for (const auto& o : early_offers_) sim_->offerKeyframe(o.robot, o.index, o.sizes.payload, o.sizes.raw);
+    early_offers_.clear();
     lockstep_ready_ = true;
-    // every front-end's offers and deliveries connected (a message sent before its connection exists is lost)
+    ROS_INFO("comm_broker: lockstep on sequence %s (seed %llu): radio seed %llu, grid origin %.3f s",
+             sequence_->name.c_str(), static_cast<unsigned long long>(sequence_->seed),
+             static_cast<unsigned long long>(seed), cosmo::toSeconds(origin_));
+    runPendingSteps();
+  }
+
+  // Every front-end's offers and deliveries connected (a message sent before its connection exists is lost).
+  void waitForFrontends() {
     const ros::WallTime wait_start = ros::WallTime::now();
     auto connected = [&] {
       for (const auto& sub : keyframe_subs_)
@@ -230,31 +278,17 @@ class CommBroker {
     };
     while (ros::ok() && !connected() && (ros::WallTime::now() - wait_start).toSec() < 30.0) ros::WallDuration(0.05).sleep();
     if (!connected()) ROS_WARN("comm_broker: lockstep: not every front-end is connected; going on");
-    try {
-      const cosmo::ros_glue::ResolvedSequence seq = cosmo::ros_glue::readResolvedSequence(30.0);
-      for (char r : sim_->robots()) references_[r] = seq.reference(r);
-      origin_ = cosmo::pipeline::radioGridOrigin(seq.timing.start(), sim_->params().step);
-      const std::uint64_t seed = cosmo::pipeline::deriveSeed(seq.config.seed, "radio");
-      sim_ = std::make_unique<cosmo::RadioSimulator>(sim_->params(), sim_->robots(), seed);
-      ROS_INFO("comm_broker: lockstep on sequence %s (seed %llu): radio seed %llu, grid origin %.3f s",
-               seq.config.name.c_str(), static_cast<unsigned long long>(seq.config.seed),
-               static_cast<unsigned long long>(seed), cosmo::toSeconds(origin_));
-    } catch (const std::exception& e) {
-      ROS_ERROR("comm_broker: lockstep: %s; radio time 0 at the first request, positions from reference_pose", e.what());
-      origin_ = 0;
-    }
   }
 
   void onStepRequest(const cosmo::RadioStepRequest& m) {
     std::lock_guard<std::mutex> lock(mutex_);
-    initLockstep();
-    if (origin_ == 0) origin_ = cosmo::pipeline::radioGridOrigin(m.stamp.toNSec(), sim_->params().step);
     pending_steps_.push_back(m);
     runPendingSteps();
   }
 
   // Lockstep, with the mutex held: runs the pending requests, in order, whose keyframe offers all arrived.
   void runPendingSteps() {
+    if (lockstep_ && !lockstep_ready_) return;  // the sequence has not arrived yet
     while (!pending_steps_.empty()) {
       const cosmo::RadioStepRequest& m = pending_steps_.front();
       std::map<char, bool> on;
@@ -288,9 +322,7 @@ class CommBroker {
       cosmo::RadioStepDone done;
       done.seq = m.seq;
       done.stamp = cosmo::ros_glue::stampToRos(last_step_);
-      // advanceRadio runs a step when (t - origin) s + 1 ns >= the next step time: 10 ns earlier is safe
-      const cosmo::StampNs next = cosmo::pipeline::radioStepStamp(origin_, sim_->nextStepTime());
-      done.next_stamp = cosmo::ros_glue::stampToRos(next > 10 ? next - 10 : 0);
+      done.next_stamp = cosmo::ros_glue::stampToRos(cosmo::pipeline::nextRadioStepStamp(*sim_, origin_));
       for (char r : sim_->robots()) {
         done.robots.push_back(r);
         done.delivered.push_back(delivered_[r]);
@@ -311,8 +343,8 @@ class CommBroker {
     const Stored& s = it->second;
     cosmo::Keyframe out;
     try {
-      const cosmo::Scan scan = compress_ ? cosmo::decompressScan(s.payload) : s.points;
-      out.cloud = cosmo::ros_glue::toPointCloud2(scan, s.header.frame_id);
+      const std::shared_ptr<const cosmo::Scan> scan = payloads_->deliver(x.sender, x.keyframe);
+      out.cloud = cosmo::ros_glue::toPointCloud2(*scan, s.header.frame_id);
     } catch (const std::exception& e) {
       ROS_ERROR("comm_broker: keyframe %c%zu: %s", x.sender, x.keyframe, e.what());
       return;
@@ -402,6 +434,7 @@ class CommBroker {
 
   std::mutex mutex_;
   std::unique_ptr<cosmo::RadioSimulator> sim_;
+  std::unique_ptr<cosmo::PayloadStore> payloads_;
   std::map<std::pair<char, std::size_t>, Stored> store_;
   std::vector<ros::Subscriber> keyframe_subs_, pose_subs_;
   std::map<char, ros::Publisher> received_pubs_;
@@ -410,7 +443,16 @@ class CommBroker {
   // lockstep
   bool lockstep_ = false, lockstep_ready_ = false;
   cosmo::StampNs origin_ = 0, last_step_ = 0;
-  std::map<char, cosmo::Trajectory> references_;
+  std::map<char, cosmo::Trajectory> references_;  ///< from the player, one per robot (empty: none)
+  std::optional<cosmo::TeamSequence> sequence_;
+  struct Offer {
+    char robot;
+    std::uint32_t index;
+    cosmo::PayloadStore::Sizes sizes;
+  };
+  std::vector<Offer> early_offers_;  ///< offers before the sequence arrived (the radio is re-seeded then)
+  ros::Subscriber sequence_sub_;
+  std::vector<ros::Subscriber> trajectory_subs_;
   std::map<char, Eigen::Vector3d> last_position_;
   std::map<char, std::uint32_t> offers_received_, delivered_;
   std::deque<cosmo::RadioStepRequest> pending_steps_;

@@ -1,6 +1,7 @@
 // frontend: one robot's front-end (cosmo::pipeline::RobotFrontend) in namespace /<r>.
 //
 // Subscribes  points          (sensor_msgs/PointCloud2) the robot's LiDAR; remap to any robot's topic
+//             reference_trajectory (cosmo/ReferenceTrajectory, latched) the whole reference, lockstep only
 //             reference_pose  (geometry_msgs/PoseStamped, world) the LiDAR's reference pose (optional)
 //             odom            (nav_msgs/Odometry) external odometry when ~odometry external (remappable)
 //             received_scans  (cosmo/Keyframe) teammates' scans delivered by the comm_broker
@@ -21,8 +22,8 @@
 //             this much later), ~lockstep (false), ~stamp end|start
 //             (the sweep instant of the points' header stamp; scans are processed stamped at the sweep end)
 // Lockstep (~lockstep true, sequence.launch mode:=lockstep): the reference trajectory is the player's sequence's
-//   own (ros_glue::readResolvedSequence: the CSV as the offline driver reads it, not the rounded reference_pose
-//   messages, which are ignored), reference odometry takes it held at the ends as TeamRun does, and loop
+//   own (reference_trajectory, cosmo/ReferenceTrajectory, latched: the CSV as the offline driver reads it, poses
+//   bit-exact; the rounded reference_pose messages are ignored; scans wait until it arrived), reference odometry takes it held at the ends as TeamRun does, and loop
 //   closures on delivered scans are stamped with the broker's delivery step (Keyframe.received_at); with the
 //   bit-exact pose fields of the recorder messages this makes the JRL byte-identical to cosmo_generate's.
 #include <geometry_msgs/PoseStamped.h>
@@ -40,12 +41,13 @@
 #include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/ros/pose_msg.hpp"
 #include "cosmo/ros/resolved_sequence.hpp"
+#include "cosmo/ros/team_sequence_msg.hpp"
 #include "cosmo/FrontendAck.h"
 #include "cosmo/Keyframe.h"
 #include "cosmo/RecorderKeyframe.h"
 #include "cosmo/RecorderLoopClosure.h"
 #include "cosmo/dataset/noise_models.hpp"
-#include "cosmo/dataset/outlier_rule.hpp"
+#include "cosmo/pipeline/closure_label.hpp"
 #include "cosmo/pipeline/robot_frontend.hpp"
 #include "cosmo/pipeline/sequence_noise_models.hpp"
 #include "cosmo/ros/point_cloud.hpp"
@@ -79,6 +81,17 @@ std_msgs::ColorRGBA robotColor(char r) {
   return color(c[0], c[1], c[2]);
 }
 
+/// Red rejected, green inlier, orange outlier, blue accepted without a label.
+std_msgs::ColorRGBA labelColor(pipeline::ClosureLabel label) {
+  switch (label) {
+    case pipeline::ClosureLabel::Rejected: return color(0.9f, 0.1f, 0.1f, 0.5f);
+    case pipeline::ClosureLabel::Inlier: return color(0.1f, 0.9f, 0.2f);
+    case pipeline::ClosureLabel::Outlier: return color(1.0f, 0.6f, 0.0f);
+    case pipeline::ClosureLabel::Unlabelled: break;
+  }
+  return color(0.2f, 0.4f, 1.0f);
+}
+
 class FrontendNode {
  public:
   FrontendNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
@@ -106,7 +119,9 @@ class FrontendNode {
     config_dir_ = config_dir;
     if (odometry_mode_ != "loam" && odometry_mode_ != "reference" && odometry_mode_ != "external")
       throw std::runtime_error("~odometry must be loam, reference or external, got '" + odometry_mode_ + "'");
-    if (!noise.empty()) noise_ = NoiseModels::load(noise);  // none: loop-closure markers without labels
+    std::optional<NoiseModels> noise_models;
+    if (!noise.empty()) noise_models = NoiseModels::load(noise);  // none: loop-closure markers without labels
+    labeller_ = std::make_unique<pipeline::ClosureLabeller>(std::move(noise_models));
     frontend_ = std::make_unique<pipeline::RobotFrontend>(robot_, frontend_params_);
     odom_frame_ = std::string(1, robot_) + "/odom";
     base_frame_ = std::string(1, robot_) + "/base_link";
@@ -119,6 +134,7 @@ class FrontendNode {
     points_sub_ = nh.subscribe("points", 5, &FrontendNode::onPoints, this);
     ref_sub_ = nh.subscribe("reference_pose", 1000, &FrontendNode::onReference, this);
     recv_sub_ = nh.subscribe("received_scans", 100, &FrontendNode::onReceived, this);
+    if (lockstep_) trajectory_sub_ = nh.subscribe("reference_trajectory", 1, &FrontendNode::onTrajectory, this);
     if (odometry_mode_ == "external") odom_sub_ = nh.subscribe("odom", 1000, &FrontendNode::onOdom, this);
     ROS_INFO("frontend %c: odometry %s, config %s%s", robot_, odometry_mode_.c_str(), config_dir.c_str(),
              lockstep_ ? ", lockstep (reference from the player's sequence)" : "");
@@ -126,7 +142,7 @@ class FrontendNode {
 
  private:
   void onReference(const geometry_msgs::PoseStamped::ConstPtr& m) {
-    if (lockstep_) return;  // the sequence's own reference (loadSequenceReference)
+    if (lockstep_) return;  // the sequence's own reference (onTrajectory)
     frontend_->appendReference(m->header.stamp.toNSec(), ros_glue::poseFromMsg(m->pose));
     drainPending();
   }
@@ -135,6 +151,7 @@ class FrontendNode {
   // topics whose messages may arrive in either order. A scan older than the newest by more than
   // ~reference_wait seconds of message time goes ahead without (its keyframe then has no reference pose).
   void drainPending() {
+    if (lockstep_ && !sequence_loaded_) return;  // the sequence's reference first
     while (!pending_.empty()) {
       const StampNs stamp = pending_.front()->header.stamp.toNSec();
       const bool covered = frontend_->hasReference() && frontend_->reference().endStamp() >= stamp;
@@ -165,26 +182,33 @@ class FrontendNode {
     return std::nullopt;
   }
 
-  // Lockstep: before the first scan, the front-end is rebuilt with the sequence's reference trajectory.
-  void loadSequenceReference() {
+  // Lockstep: the front-end is rebuilt with the sequence's reference trajectory (the player's, latched) before
+  // its first scan; scans that arrive earlier wait for it.
+  void onTrajectory(const cosmo::ReferenceTrajectory::ConstPtr& m) {
     if (sequence_loaded_) return;
     sequence_loaded_ = true;
     try {
-      const ros_glue::ResolvedSequence sequence = ros_glue::readResolvedSequence(30.0);
-      Trajectory reference = sequence.reference(robot_);
-      if (!noise_) noise_ = loadMarkerNoiseModels(sequence.config);
+      Trajectory reference = ros_glue::trajectoryFromMsg(*m, trajectory_sub_.getTopic());
+      if (!labeller_->hasNoiseModels()) {
+        if (std::optional<NoiseModels> noise = loadMarkerNoiseModels()) labeller_->setNoiseModels(std::move(*noise));
+      }
       if (reference.empty()) ROS_WARN("frontend %c: the sequence has no reference for this robot", robot_);
       frontend_ = std::make_unique<pipeline::RobotFrontend>(robot_, frontend_params_, std::move(reference));
     } catch (const std::exception& e) {
       ROS_ERROR("frontend %c: lockstep: %s; no reference", robot_, e.what());
     }
+    drainPending();
   }
 
   // The markers' inlier / outlier colours use the noise models the recorder labels with: without ~noise_models,
-  // those the sequence names (none: the colours stay unlabelled).
-  std::optional<NoiseModels> loadMarkerNoiseModels(const pipeline::SequenceConfig& sequence) const {
+  // those the player's sequence names (its config file and the noise-model file it names are read; none: the
+  // colours stay unlabelled).
+  std::optional<NoiseModels> loadMarkerNoiseModels() const {
+    std::string path, data_root;
+    if (!ros::param::get(ros_glue::kResolvedSequenceParam, path) || path.empty()) return std::nullopt;
+    ros::param::get(ros_glue::kResolvedDataRootParam, data_root);
     try {
-      return pipeline::loadSequenceNoiseModels(sequence, config_dir_);
+      return pipeline::loadSequenceNoiseModels(pipeline::SequenceConfig::load(path, data_root), config_dir_);
     } catch (const std::exception& e) {
       ROS_WARN("frontend %c: no noise models for the loop-closure colours: %s", robot_, e.what());
       return std::nullopt;
@@ -192,7 +216,6 @@ class FrontendNode {
   }
 
   void onPoints(const sensor_msgs::PointCloud2::ConstPtr& m) {
-    if (lockstep_) loadSequenceReference();
     pending_.push_back(m);
     drainPending();
   }
@@ -279,6 +302,7 @@ class FrontendNode {
       offer.has_reference = km.has_reference;
       offer_pub_.publish(offer);
       positions_[{robot_, kf.index}] = kf.reference ? kf.reference->translation() : (world_T_odom_ * kf.odom_pose).translation();
+      if (kf.reference) labeller_->addReference(robot_, kf.index, *kf.reference);
       trajectory_.push_back(positions_[{robot_, kf.index}]);
     }
     for (const auto& a : out.loop_closures) loopClosure(a);
@@ -290,8 +314,11 @@ class FrontendNode {
       if (m->robot.size() != 1 || m->robot[0] == robot_) throw std::runtime_error("bad robot field '" + m->robot + "'");
       Scan scan = ros_glue::fromPointCloud2(m->cloud, true, recv_sub_.getTopic());
       scan.stamp = m->header.stamp.toNSec();
-      if (m->has_reference) positions_[{m->robot[0], m->index}] = ros_glue::poseFromMsg(m->reference).translation();
-      if (m->has_reference) references_[{m->robot[0], m->index}] = ros_glue::poseFromMsg(m->reference);
+      if (m->has_reference) {
+        const Pose3 reference = ros_glue::poseFromMsg(m->reference);
+        positions_[{m->robot[0], m->index}] = reference.translation();
+        labeller_->addReference(m->robot[0], m->index, reference);
+      }
       // computed at the delivery's radio step (the offline driver's time); a broker without it: now
       const StampNs now = m->received_at.isZero() ? ros::Time::now().toNSec() : m->received_at.toNSec();
       for (const auto& a : frontend_->receiveTeammateScan(m->robot[0], m->index, scan, now)) loopClosure(a);
@@ -304,7 +331,6 @@ class FrontendNode {
   }
 
   void loopClosure(const pipeline::LoopClosureAttempt& a) {
-    Marked mk{a, 0};
     if (a.accepted) {
       cosmo::RecorderLoopClosure lc;
       lc.header.stamp = ros_glue::stampToRos(a.computed_at);
@@ -318,23 +344,10 @@ class FrontendNode {
       lc.measurement_exact = ros_glue::poseToExact(a.measurement);
       lc_pub_.publish(lc);
       ++loop_closures_published_;
-      // inlier / outlier against the reference when both poses have one
-      const auto r1 = referenceOf(a.robot1, a.index1), r2 = referenceOf(a.robot2, a.index2);
-      if (r1 && r2 && noise_) mk.state = isOutlier(a.measurement, r1->inverse() * *r2, noise_->loop_closure) ? 2 : 1;
-      else mk.state = 3;
     }
     ROS_INFO("frontend %c: loop closure %c%zu-%c%zu %s (%zu inliers, descriptor %.3f)", robot_, a.robot1, a.index1,
              a.robot2, a.index2, a.accepted ? "accepted" : a.reason.c_str(), a.inliers, a.descriptor_distance);
-    closures_.push_back(mk);
-  }
-
-  std::optional<Pose3> referenceOf(char r, std::size_t i) const {
-    if (r == robot_) {
-      const auto& kfs = frontend_->keyframes();
-      return i < kfs.size() ? kfs[i].reference : std::nullopt;
-    }
-    auto it = references_.find({r, i});
-    return it == references_.end() ? std::nullopt : std::optional<Pose3>(it->second);
+    closures_.push_back({a, labeller_->label(a)});
   }
 
   void publishTf(const Pose3& odom_pose, const ros::Time& stamp) {
@@ -390,10 +403,7 @@ class FrontendNode {
       auto p1 = positions_.find({c.a.robot1, c.a.index1});
       auto p2 = positions_.find({c.a.robot2, c.a.index2});
       if (p1 == positions_.end() || p2 == positions_.end()) continue;
-      const std_msgs::ColorRGBA col = c.state == 0   ? color(0.9f, 0.1f, 0.1f, 0.5f)
-                                      : c.state == 1 ? color(0.1f, 0.9f, 0.2f)
-                                      : c.state == 2 ? color(1.0f, 0.6f, 0.0f)
-                                                     : color(0.2f, 0.4f, 1.0f);
+      const std_msgs::ColorRGBA col = labelColor(c.label);
       lcs.points.push_back(lifted(p1->second));
       lcs.points.push_back(lifted(p2->second));
       lcs.colors.push_back(col);
@@ -411,17 +421,16 @@ class FrontendNode {
 
   struct Marked {
     pipeline::LoopClosureAttempt a;
-    int state;  ///< 0 rejected, 1 accepted inlier, 2 accepted outlier, 3 accepted (no reference)
+    pipeline::ClosureLabel label;
   };
 
   char robot_ = 'a';
   std::string odometry_mode_, world_frame_, odom_frame_, base_frame_;
-  std::optional<NoiseModels> noise_;  ///< for the markers' inlier / outlier colours only
+  std::unique_ptr<pipeline::ClosureLabeller> labeller_;  ///< the markers' inlier / outlier colours
   std::unique_ptr<pipeline::RobotFrontend> frontend_;
   Pose3 world_T_odom_ = Pose3::Identity();
   std::deque<std::pair<StampNs, Pose3>> odom_;
   std::map<std::pair<char, std::size_t>, Eigen::Vector3d> positions_;
-  std::map<std::pair<char, std::size_t>, Pose3> references_;
   std::vector<Eigen::Vector3d> trajectory_;
   std::vector<Marked> closures_;
   std::size_t received_dropped_ = 0;
@@ -433,7 +442,7 @@ class FrontendNode {
   pipeline::FrontendParams frontend_params_;
   std::string config_dir_;
   ros::Publisher offer_pub_, kf_pub_, lc_pub_, ack_pub_, marker_pub_;
-  ros::Subscriber points_sub_, ref_sub_, recv_sub_, odom_sub_;
+  ros::Subscriber points_sub_, ref_sub_, recv_sub_, odom_sub_, trajectory_sub_;
   tf2_ros::TransformBroadcaster tf_;
 };
 

@@ -5,28 +5,26 @@
 //            /<r>/reference_pose     (geometry_msgs/PoseStamped, frame world) the LiDAR's reference pose, about
 //                                    every 20 ms of the reference trajectory up to each scan
 //            TF world -> <r>/reference (the reference LiDAR pose)
+//            /player/sequence        (cosmo/TeamSequence, latched) the resolved sequence: robots, spans, seed
+//            /<r>/reference_trajectory (cosmo/ReferenceTrajectory, latched) each robot's whole reference, bit-exact
 //            /player/progress        (std_msgs/String) "t / total" once per second of wall time
-// Lockstep (~mode lockstep, default): the offline driver's event order (TeamRun), so the JRL is byte-identical
-//   to cosmo_generate's. Per scan of the merged stream that lies at or after the broker's next radio step
-//   (RadioStepDone.next_stamp), or whose robot's previous scan is not acknowledged yet: every scan published so
-//   far is acknowledged (/<r>/ack, cosmo/FrontendAck); then, with a comm_broker (~wait_for_broker), the player
-//   asks it to step the radio through the scan's time (/comm/step_request: robots on = processed a scan,
-//   keyframes offered so far, which the broker waits for) and waits for /comm/step_done and for every delivered
-//   scan to be processed by its receiver. Then the scan is published (per-point times as float seconds, exact).
-//   Scans of different robots between two radio steps are independent, so they are processed in parallel. At the end
-//   the radio is stepped through the sequence end the same way, and, when a recorder is running, the player waits
-//   until /recorder/progress (cosmo/RecorderProgress) shows every keyframe and loop closure the front-ends
-//   acknowledged (FrontendAck.keyframes / loop_closures), so the final JRL never depends on message timing. The resolved sequence path and seed are set on
-//   the parameter server first (ros_glue::publishResolvedSequence) for the lockstep front-ends and broker.
+//            /player/done            (std_msgs/Empty, latched) when it is done; then it exits
+//            params /player/robots (as soon as the config is read: the launch starts one front-end per robot),
+//            /player/resolved_sequence, /player/resolved_seed, /player/resolved_data_root
+// Lockstep (~mode lockstep, default): the offline driver's event order (pipeline::LockstepSchedule, which TeamRun
+//   runs too), so the JRL is byte-identical to cosmo_generate's. Before a scan it waits for every scan published
+//   so far to be acknowledged (/<r>/ack, cosmo/FrontendAck) when the schedule says so, and asks the comm_broker to
+//   step the radio through the scan's time (/comm/step_request, answered on /comm/step_done) and waits until the
+//   delivered scans are processed. At the end the radio runs through the sequence end and the player waits until
+//   the recorder's intake (/recorder/progress) holds everything the front-ends acknowledged. The lockstep nodes
+//   take the sequence from the latched topics (nothing from disk).
 //   Real time (~mode realtime): scans at ~rate x wall speed, nothing waited for (results may depend on CPU speed).
-// Params: ~sequence (config path), ~data_root (the trials' data root; empty: the config's precedence), ~mode, ~rate, ~seed (-1: the config's), ~max_seconds (0: all),
-//         ~ack_timeout (s wall; a front-end silent this long is skipped with a warning), ~wait_for_broker,
-//         ~end_linger (s wall after the last scan, radio still stepping; default 3 realtime, 0 lockstep), ~world_frame.
-//         With an empty ~sequence the built-in synthetic sequence is used: cosmo_simulate --config
-//         ~simulate_config --out ~simulate_out (cached by its parameters, so only the first run generates it).
-//         ~noise_models (file; empty: the sequence's environment / noise_models under ~config_dir): checked before
-//         anything is played; none: the player stops with a message that says how to make them.
-// When done it publishes /player/done (latched std_msgs/Empty) and exits (the launch marks it required).
+// Params: ~sequence (config path; empty: the built-in synthetic sequence, cosmo_simulate --config ~simulate_config
+//         --out ~simulate_out, cached), ~data_root (empty: the config's precedence), ~mode, ~rate, ~seed (-1: the
+//         config's), ~max_seconds (0: all), ~ack_timeout (s wall; a silent front-end is skipped with a warning),
+//         ~connect_timeout (s wall for the nodes to connect), ~wait_for_broker, ~end_linger (s wall after the last
+//         scan; default 3 realtime, 0 lockstep), ~world_frame, ~noise_models / ~config_dir (checked before anything
+//         is played: a run that cannot be labelled does not start).
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <ros/ros.h>
@@ -34,50 +32,405 @@
 #include <std_msgs/Empty.h>
 #include <std_msgs/String.h>
 #include <tf2_ros/transform_broadcaster.h>
+#include <unistd.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
 
-#include <unistd.h>
-
-#include <cstdlib>
-#include <filesystem>
-
-#include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/FrontendAck.h"
 #include "cosmo/RadioStepDone.h"
 #include "cosmo/RadioStepRequest.h"
 #include "cosmo/RecorderProgress.h"
-#include "cosmo/ros/pose_msg.hpp"
+#include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
-#include "cosmo/ros/resolved_sequence.hpp"
-#include "cosmo/pipeline/frontend_params.hpp"
-#include "cosmo/pipeline/sequence_noise_models.hpp"
-#include "cosmo/ros/trial_probe.hpp"
+#include "cosmo/pipeline/lockstep_schedule.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
-#include "cosmo/sim/simulation_params.hpp"
-#include "cosmo/trials/trial_reference.hpp"
+#include "cosmo/pipeline/sequence_noise_models.hpp"
 #include "cosmo/ros/bag_scan_source.hpp"
 #include "cosmo/ros/point_cloud.hpp"
+#include "cosmo/ros/pose_msg.hpp"
+#include "cosmo/ros/resolved_sequence.hpp"
+#include "cosmo/ros/robot_list.hpp"
+#include "cosmo/ros/team_sequence_msg.hpp"
+#include "cosmo/ros/trial_probe.hpp"
+#include "cosmo/sim/simulation_params.hpp"
+#include "cosmo/trials/trial_reference.hpp"
 
 using namespace cosmo;
 
 namespace {
 
+struct Options {
+  std::string sequence, data_root, mode = "lockstep", world_frame = "world";
+  std::string simulate_config, simulate_out = "/tmp/cosmo_builtin_sequence";
+  std::string noise_models, config_dir;
+  double rate = 1.0, max_seconds = 0.0, ack_timeout = 30.0, connect_timeout = 120.0, end_linger = -1.0;
+  int seed = -1;
+  bool wait_for_broker = true;
+  bool lockstep() const { return mode == "lockstep"; }
+};
 
-struct Acks {
-  std::mutex mutex;
-  std::map<char, StampNs> last_scan;         ///< latest scan stamp acknowledged, per robot
-  std::map<char, cosmo::FrontendAck> latest;  ///< latest ack, per robot
-  std::uint64_t broker_delivered = 0;         ///< /comm/stats
-  bool step_done = false;                     ///< /comm/step_done of the latest request seen
-  std::uint32_t step_done_seq = 0;
-  std::map<char, std::uint32_t> delivered;    ///< from /comm/step_done, per receiver
-  StampNs next_radio_step = 0;                ///< from /comm/step_done: scans before it need no radio step
-  bool recorder_seen = false;                 ///< /recorder/progress received
-  std::map<char, std::pair<std::uint32_t, std::uint32_t>> recorded;  ///< recorder intake: keyframes, loop closures
+Options readOptions(const ros::NodeHandle& pnh) {
+  Options o;
+  pnh.param("sequence", o.sequence, o.sequence);
+  pnh.param("data_root", o.data_root, o.data_root);
+  pnh.param("mode", o.mode, o.mode);
+  pnh.param("rate", o.rate, o.rate);
+  pnh.param("seed", o.seed, o.seed);
+  pnh.param("max_seconds", o.max_seconds, o.max_seconds);
+  pnh.param("ack_timeout", o.ack_timeout, o.ack_timeout);
+  pnh.param("connect_timeout", o.connect_timeout, o.connect_timeout);
+  pnh.param("wait_for_broker", o.wait_for_broker, o.wait_for_broker);
+  pnh.param("end_linger", o.end_linger, o.end_linger);
+  pnh.param("world_frame", o.world_frame, o.world_frame);
+  pnh.param("simulate_config", o.simulate_config, o.simulate_config);
+  pnh.param("simulate_out", o.simulate_out, o.simulate_out);
+  pnh.param("noise_models", o.noise_models, o.noise_models);
+  pnh.param("config_dir", o.config_dir, pipeline::defaultConfigDir());
+  if (o.mode != "lockstep" && o.mode != "realtime")
+    throw std::runtime_error("~mode must be lockstep or realtime, got '" + o.mode + "'");
+  if (!(o.rate > 0)) o.rate = 1.0;
+  if (o.end_linger < 0) o.end_linger = o.lockstep() ? 0.0 : 3.0;
+  return o;
+}
+
+/// The built-in synthetic sequence: cosmo_simulate (beside this program) writes it once, cached by its parameters.
+std::string builtInSequence(const Options& o) {
+  const std::string config = o.simulate_config.empty() ? std::string(COSMO_SOURCE_DIR) + "/config/sim/default.yaml"
+                                                        : o.simulate_config;
+  const std::string name = sim::SimulationParams::load(config).name;
+  char exe[4096] = {0};
+  const ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+  const std::string dir = n > 0 ? std::filesystem::path(std::string(exe, n)).parent_path().string() : ".";
+  const std::string cmd = "'" + dir + "/cosmo_simulate' --config '" + config + "' --out '" + o.simulate_out + "'";
+  ROS_INFO("player: built-in sequence: %s (generated on the first run; several minutes)", cmd.c_str());
+  if (std::system(cmd.c_str()) != 0) throw std::runtime_error("cosmo_simulate failed: " + cmd);
+  return o.simulate_out + "/" + name + ".yaml";
+}
+
+/// The sequence as played: config (effective seed), time synchronization, references, the end of the replay.
+struct Sequence {
+  pipeline::SequenceConfig config;
+  pipeline::SequenceTiming timing;
+  std::map<char, Trajectory> references;
+  StampNs end = 0;
+  std::vector<char> robots() const {
+    std::vector<char> r;
+    for (const auto& t : config.trials) r.push_back(t.robot);
+    return r;
+  }
+};
+
+/// Loads and checks the sequence; the robots are announced first (the launch starts their front-ends meanwhile).
+Sequence resolveSequence(const Options& o) {
+  const std::string path = o.sequence.empty() ? builtInSequence(o) : o.sequence;
+  Sequence s;
+  s.config = pipeline::SequenceConfig::load(path, o.data_root);
+  ros_glue::publishTeamRobots(s.robots());
+  ROS_INFO("player: noise models %s",
+           pipeline::loadSequenceNoiseModels(s.config, o.config_dir, o.noise_models).describe().c_str());
+  if (o.seed >= 0) s.config.seed = static_cast<unsigned long long>(o.seed);
+  std::string check;
+  const bool ok = ros_glue::checkSequence(s.config, pipeline::chooseNoiseModels(s.config, pipeline::defaultConfigDir()), check);
+  ROS_INFO("player: pre-flight check:\n%s", check.c_str());
+  if (!ok) throw std::runtime_error("the pre-flight check failed (above)");
+  s.timing = ros_glue::synchronizeSequence(s.config);
+  s.references = trials::loadSequenceReferences(s.config, s.timing);
+  ros_glue::publishResolvedSequence(std::filesystem::absolute(path).string(), s.config.seed,
+                                    std::filesystem::absolute(s.config.data_root).string());
+  s.end = o.max_seconds > 0 ? std::min(s.timing.end(), s.timing.start() + toStampNs(o.max_seconds)) : s.timing.end();
+  return s;
+}
+
+geometry_msgs::TransformStamped transformMsg(const Pose3& T, StampNs stamp, const std::string& parent,
+                                             const std::string& child) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = ros_glue::stampToRos(stamp);
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  const auto p = ros_glue::poseToMsg(T);
+  t.transform.translation.x = p.position.x;
+  t.transform.translation.y = p.position.y;
+  t.transform.translation.z = p.position.z;
+  t.transform.rotation = p.orientation;
+  return t;
+}
+
+class Player {
+ public:
+  Player(ros::NodeHandle& nh, Options options, Sequence sequence)
+      : o_(std::move(options)), seq_(std::move(sequence)), schedule_(seq_.robots(), false) {
+    advertise(nh);
+    subscribe(nh);
+    publishSequence();
+  }
+
+  /// Waits for the front-ends (and, in lockstep, the broker) to connect; decides whether a radio runs.
+  void connect() {
+    const ros::WallTime start = ros::WallTime::now();
+    auto waitConnected = [&](const std::function<bool()>& connected) {
+      while (ros::ok() && !connected() && (ros::WallTime::now() - start).toSec() < o_.connect_timeout)
+        ros::WallDuration(0.05).sleep();
+    };
+    for (auto& [r, pub] : points_pub_) waitConnected([&] { return pub.getNumSubscribers() > 0; });
+    for (auto& [r, pub] : pose_pub_)
+      if (!seq_.references[r].empty()) waitConnected([&] { return pub.getNumSubscribers() > 0; });
+    if (o_.lockstep()) {  // a message sent before its connection exists is lost, and the lockstep would wait for it
+      for (auto& sub : ack_subs_) waitConnected([&] { return sub.getNumPublishers() > 0; });
+      if (o_.wait_for_broker) {
+        waitConnected([&] { return step_pub_.getNumSubscribers() > 0 && step_done_sub_.getNumPublishers() > 0; });
+        use_broker_ = step_pub_.getNumSubscribers() > 0 && step_done_sub_.getNumPublishers() > 0;
+        if (!use_broker_) ROS_WARN("player: lockstep without a lockstep comm_broker (no /comm/step_request subscriber)");
+      }
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    schedule_.useRadio(use_broker_);
+  }
+
+  /// Publishes every scan up to the end, in the team's order (lockstep) or at wall speed (real time).
+  void play() {
+    pipeline::MergedScanStream stream = ros_glue::openSequenceStream(seq_.config, seq_.timing);
+    publishClock(seq_.timing.start());
+    ros::WallDuration(0.5).sleep();
+    wall_start_ = last_progress_ = ros::WallTime::now();
+    char robot;
+    Scan scan;
+    while (ros::ok() && stream.next(robot, scan) && scan.stamp <= seq_.end) {
+      if (o_.lockstep()) runScheduleBefore(robot, scan.stamp);
+      else waitForWallTime(scan.stamp);
+      publishScan(robot, scan);
+      reportProgress(scan.stamp);
+    }
+  }
+
+  /// The last acks, the radio through the end, the recorder's intake complete; then /player/done.
+  void finish() {
+    if (o_.lockstep()) {
+      waitForScans();
+      stepRadio(seq_.end);
+      waitFor("recorder intake", [&] { return schedule_.recorderComplete(); });
+    }
+    publishClock(seq_.end);
+    const ros::WallTime linger = ros::WallTime::now();
+    while (ros::ok() && (ros::WallTime::now() - linger).toSec() < o_.end_linger) {
+      publishClock(seq_.end + toStampNs((ros::WallTime::now() - linger).toSec() * 1e-3));
+      ros::WallDuration(0.05).sleep();
+    }
+    ROS_INFO("player: done, %zu scans in %.1f s wall for %.1f s of sequence", published_,
+             (ros::WallTime::now() - wall_start_).toSec(), totalSeconds());
+    done_pub_.publish(std_msgs::Empty());
+    ros::WallDuration(0.5).sleep();
+  }
+
+ private:
+  void advertise(ros::NodeHandle& nh) {
+    clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
+    progress_pub_ = nh.advertise<std_msgs::String>("/player/progress", 10);
+    done_pub_ = nh.advertise<std_msgs::Empty>("/player/done", 1, true);
+    sequence_pub_ = nh.advertise<cosmo::TeamSequence>(ros_glue::kTeamSequenceTopic, 1, true);
+    step_pub_ = nh.advertise<cosmo::RadioStepRequest>("/comm/step_request", 10);
+    for (char r : seq_.robots()) {
+      const std::string ns = std::string("/") + r;
+      points_pub_[r] = nh.advertise<sensor_msgs::PointCloud2>(ns + "/points", 5);
+      pose_pub_[r] = nh.advertise<geometry_msgs::PoseStamped>(ns + "/reference_pose", 200);
+      trajectory_pub_[r] = nh.advertise<cosmo::ReferenceTrajectory>(ros_glue::referenceTrajectoryTopic(r), 1, true);
+    }
+  }
+
+  void subscribe(ros::NodeHandle& nh) {
+    for (char r : seq_.robots())
+      ack_subs_.push_back(nh.subscribe<cosmo::FrontendAck>(std::string("/") + r + "/ack", 1000,
+                                                           [this, r](const cosmo::FrontendAck::ConstPtr& m) { onAck(r, *m); }));
+    step_done_sub_ = nh.subscribe<cosmo::RadioStepDone>("/comm/step_done", 100,
+                                                        [this](const cosmo::RadioStepDone::ConstPtr& m) { onStepDone(*m); });
+    subs_.push_back(nh.subscribe<std_msgs::String>("/comm/stats", 100, [this](const std_msgs::String::ConstPtr& m) {
+      try {
+        const auto j = nlohmann::json::parse(m->data);
+        std::lock_guard<std::mutex> lock(mutex_);
+        broker_delivered_ = j.value("delivered", std::uint64_t{0});
+      } catch (const std::exception&) {
+      }
+    }));
+    subs_.push_back(nh.subscribe<cosmo::RecorderProgress>("/recorder/progress", 10,
+                                                          [this](const cosmo::RecorderProgress::ConstPtr& m) { onRecorder(*m); }));
+  }
+
+  void publishSequence() {
+    sequence_pub_.publish(ros_glue::teamSequenceToMsg(seq_.config, seq_.timing));
+    for (char r : seq_.robots())
+      trajectory_pub_[r].publish(ros_glue::trajectoryToMsg(r, seq_.references[r], o_.world_frame));
+  }
+
+  void onAck(char r, const cosmo::FrontendAck& m) {
+    pipeline::FrontendProgress p;
+    p.last_scan = m.header.stamp.toNSec();
+    p.scans = m.scans;
+    p.received = m.received;
+    p.keyframes = m.keyframes;
+    p.loop_closures = m.loop_closures;
+    std::lock_guard<std::mutex> lock(mutex_);
+    schedule_.frontendReported(r, p);
+  }
+
+  void onStepDone(const cosmo::RadioStepDone& m) {
+    std::map<char, std::uint32_t> delivered;
+    for (std::size_t i = 0; i < m.robots.size() && i < m.delivered.size(); ++i) delivered[m.robots[i]] = m.delivered[i];
+    std::lock_guard<std::mutex> lock(mutex_);
+    schedule_.radioStepped(m.next_stamp.toNSec(), delivered);
+    step_done_seq_ = std::max(step_done_seq_, m.seq);
+  }
+
+  void onRecorder(const cosmo::RecorderProgress& m) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (std::size_t i = 0; i < m.robots.size() && i < m.keyframes.size() && i < m.loop_closures.size(); ++i)
+      schedule_.recorderReported(m.robots[i], m.keyframes[i], m.loop_closures[i]);
+  }
+
+  /// Waits (polling; the callbacks run on the spinner thread) until `done` holds under the lock, at most
+  /// ~ack_timeout; false on a timeout (with a warning).
+  bool waitFor(const char* what, const std::function<bool()>& done) {
+    const ros::WallTime start = ros::WallTime::now();
+    while (ros::ok()) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (done()) return true;
+      }
+      if ((ros::WallTime::now() - start).toSec() > o_.ack_timeout) {
+        ROS_WARN("player: no %s within %.0f s; continuing", what, o_.ack_timeout);
+        return false;
+      }
+      ros::WallDuration(0.0005).sleep();
+    }
+    return false;
+  }
+
+  void waitForScans() {
+    if (waitFor("front-end ack", [&] { return schedule_.scansProcessed(); })) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::string behind;
+    for (char r : schedule_.robotsBehind()) behind += r;
+    ROS_WARN("player: front-ends %s did not acknowledge their last scan; going on without", behind.c_str());
+    schedule_.stopWaitingForScans();
+  }
+
+  /// The broker runs every radio step <= t once the keyframes offered so far reached it; the scans it delivered
+  /// are processed by their receivers before anything else happens.
+  void stepRadio(StampNs t) {
+    if (!use_broker_) return;
+    cosmo::RadioStepRequest req;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      const pipeline::RadioStepOrder order = schedule_.radioStepOrder(t);
+      req.robots.assign(order.robots.begin(), order.robots.end());
+      req.on.assign(order.on.begin(), order.on.end());
+      req.keyframes = order.keyframes;
+    }
+    req.seq = ++step_seq_;
+    req.stamp = ros_glue::stampToRos(t);
+    step_pub_.publish(req);
+    const std::uint32_t seq = req.seq;
+    if (!waitFor("comm_broker step", [&] { return step_done_seq_ >= seq; })) return;
+    waitFor("delivered scans processed", [&] { return schedule_.deliveriesProcessed(); });
+  }
+
+  void runScheduleBefore(char robot, StampNs stamp) {
+    pipeline::LockstepSchedule::BeforeScan before;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      before = schedule_.beforeScan(robot, stamp);
+    }
+    if (before.wait_for_scans) waitForScans();
+    if (before.step_radio) stepRadio(stamp);
+  }
+
+  void waitForWallTime(StampNs stamp) {
+    const ros::WallTime due = wall_start_ + ros::WallDuration(toSeconds(stamp - seq_.timing.start()) / o_.rate);
+    const ros::WallTime now = ros::WallTime::now();
+    if (due > now) (due - now).sleep();
+  }
+
+  void publishClock(StampNs t) {
+    rosgraph_msgs::Clock c;
+    c.clock = ros_glue::stampToRos(t);
+    clock_pub_.publish(c);
+  }
+
+  /// The reference poses up to the scan (about every 20 ms) and its TF, then the scan.
+  void publishScan(char robot, const Scan& scan) {
+    publishClock(scan.stamp);
+    publishReferenceUpTo(robot, scan.stamp);
+    points_pub_[robot].publish(ros_glue::toPointCloud2(
+        scan, std::string(1, robot) + "/base_link",
+        o_.lockstep() ? ros_glue::PointTimeEncoding::RelativeSeconds : ros_glue::PointTimeEncoding::OusterNs));
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      schedule_.scanHandedOver(robot, scan.stamp);
+    }
+    ++published_;
+  }
+
+  void publishReferenceUpTo(char robot, StampNs stamp) {
+    const Trajectory& ref = seq_.references[robot];
+    if (ref.empty()) return;
+    const auto last = last_pose_sent_.find(robot);
+    const StampNs from = last != last_pose_sent_.end() ? last->second : stamp - std::min<StampNs>(stamp, 200000000ULL);
+    std::vector<StampNs> stamps;
+    for (const auto& p : ref.poses())
+      if (p.stamp > from && p.stamp < stamp && (stamps.empty() || p.stamp - stamps.back() >= 20000000ULL))
+        stamps.push_back(p.stamp);
+    stamps.push_back(stamp);
+    for (StampNs s : stamps) {
+      geometry_msgs::PoseStamped ps;
+      ps.header.stamp = ros_glue::stampToRos(s);
+      ps.header.frame_id = o_.world_frame;
+      ps.pose = ros_glue::poseToMsg(ref.atClamped(s));
+      pose_pub_[robot].publish(ps);
+    }
+    last_pose_sent_[robot] = stamp;
+    tf_.sendTransform(transformMsg(ref.atClamped(stamp), stamp, o_.world_frame, std::string(1, robot) + "/reference"));
+  }
+
+  double totalSeconds() const { return toSeconds(seq_.end - seq_.timing.start()); }
+
+  void reportProgress(StampNs stamp) {
+    const ros::WallTime now = ros::WallTime::now();
+    if ((now - last_progress_).toSec() < 1.0) return;
+    last_progress_ = now;
+    std::uint64_t delivered = 0;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      delivered = broker_delivered_;
+    }
+    char line[200];
+    std::snprintf(line, sizeof line, "sequence time %.1f / %.1f s, %zu scans, %llu transfers delivered, %.1f s wall",
+                  toSeconds(stamp - seq_.timing.start()), totalSeconds(), published_,
+                  static_cast<unsigned long long>(delivered), (now - wall_start_).toSec());
+    std_msgs::String s;
+    s.data = line;
+    progress_pub_.publish(s);
+    ROS_INFO("player: %s", line);
+  }
+
+  Options o_;
+  Sequence seq_;
+  std::mutex mutex_;                    ///< guards what the callbacks update: the schedule and the counters below
+  pipeline::LockstepSchedule schedule_;
+  std::uint32_t step_done_seq_ = 0;
+  std::uint64_t broker_delivered_ = 0;  ///< /comm/stats, for the progress line
+  bool use_broker_ = false;
+  std::uint32_t step_seq_ = 0;
+  std::size_t published_ = 0;
+  std::map<char, StampNs> last_pose_sent_;
+  ros::WallTime wall_start_, last_progress_;
+  ros::Publisher clock_pub_, progress_pub_, done_pub_, sequence_pub_, step_pub_;
+  std::map<char, ros::Publisher> points_pub_, pose_pub_, trajectory_pub_;
+  std::vector<ros::Subscriber> ack_subs_, subs_;
+  ros::Subscriber step_done_sub_;
+  tf2_ros::TransformBroadcaster tf_;
 };
 
 }  // namespace
@@ -86,326 +439,20 @@ int main(int argc, char** argv) {
   cosmo::keepScanBuffersInProcess();
   ros::init(argc, argv, "player");
   ros::NodeHandle nh, pnh("~");
-  std::string sequence_path, mode, world_frame;
-  double rate, max_seconds, ack_timeout, end_linger;
-  int seed;
-  bool wait_for_broker;
-  pnh.param<std::string>("sequence", sequence_path, "");
-  pnh.param<std::string>("mode", mode, "lockstep");
-  pnh.param("rate", rate, 1.0);
-  pnh.param("seed", seed, -1);
-  pnh.param("max_seconds", max_seconds, 0.0);
-  pnh.param("ack_timeout", ack_timeout, 30.0);
-  pnh.param("wait_for_broker", wait_for_broker, true);
-  pnh.param("end_linger", end_linger, -1.0);
-  pnh.param<std::string>("world_frame", world_frame, "world");
-  std::string data_root;
-  pnh.param<std::string>("data_root", data_root, "");
-  std::string simulate_config, simulate_out;
-  pnh.param<std::string>("simulate_config", simulate_config, "");
-  pnh.param<std::string>("simulate_out", simulate_out, "/tmp/cosmo_builtin_sequence");
-  std::string noise_models, config_dir;
-  pnh.param<std::string>("noise_models", noise_models, "");
-  pnh.param<std::string>("config_dir", config_dir, pipeline::defaultConfigDir());
-  if (sequence_path.empty()) {
-    try {
-      if (simulate_config.empty()) simulate_config = std::string(COSMO_SOURCE_DIR) + "/config/sim/default.yaml";
-      const std::string name = sim::SimulationParams::load(simulate_config).name;
-      char exe[4096] = {0};
-      const ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-      const std::string dir = n > 0 ? std::filesystem::path(std::string(exe, n)).parent_path().string() : ".";
-      const std::string cmd = "'" + dir + "/cosmo_simulate' --config '" + simulate_config + "' --out '" + simulate_out + "'";
-      ROS_INFO("player: built-in sequence: %s (generated on the first run; several minutes)", cmd.c_str());
-      if (std::system(cmd.c_str()) != 0) throw std::runtime_error("cosmo_simulate failed: " + cmd);
-      sequence_path = simulate_out + "/" + name + ".yaml";
-    } catch (const std::exception& e) {
-      ROS_FATAL("player: %s", e.what());
-      return 1;
-    }
-  }
-  if (mode != "lockstep" && mode != "realtime") {
-    ROS_FATAL("player: ~mode must be lockstep or realtime, got '%s'", mode.c_str());
-    return 1;
-  }
-  const bool lockstep = mode == "lockstep";
-  if (!(rate > 0)) rate = 1.0;
-  if (end_linger < 0) end_linger = lockstep ? 0.0 : 3.0;
-
-  pipeline::SequenceConfig config;
-  pipeline::SequenceTiming timing;
-  std::map<char, Trajectory> refs;
   try {
-    config = pipeline::SequenceConfig::load(sequence_path, data_root);
-    // The run's noise models must exist before anything is played (the recorder labels with them).
-    ROS_INFO("player: noise models %s",
-             pipeline::loadSequenceNoiseModels(config, config_dir, noise_models).describe().c_str());
-    if (seed >= 0) config.seed = static_cast<unsigned long long>(seed);
-    std::string check;  // the pre-flight check (cosmo_check): a run that cannot be labelled does not start
-    const bool check_ok = ros_glue::checkSequence(config, pipeline::chooseNoiseModels(config, pipeline::defaultConfigDir()), check);
-    ROS_INFO("player: pre-flight check:\n%s", check.c_str());
-    if (!check_ok) throw std::runtime_error("the pre-flight check failed (above)");
-    timing = ros_glue::synchronizeSequence(config);
-    refs = trials::loadSequenceReferences(config, timing);
-    ros_glue::publishResolvedSequence(std::filesystem::absolute(sequence_path).string(), config.seed,
-                                      std::filesystem::absolute(config.data_root).string());
+    const Options options = readOptions(pnh);
+    Sequence sequence = resolveSequence(options);
+    ROS_INFO("player: sequence %s, %zu robots, %.1f s, mode %s", sequence.config.name.c_str(),
+             sequence.config.trials.size(), toSeconds(sequence.end - sequence.timing.start()), options.mode.c_str());
+    Player player(nh, options, std::move(sequence));
+    ros::AsyncSpinner spinner(1);
+    spinner.start();
+    player.connect();
+    player.play();
+    player.finish();
   } catch (const std::exception& e) {
     ROS_FATAL("player: %s", e.what());
     return 1;
   }
-  const StampNs end =
-      max_seconds > 0 ? std::min(timing.end(), timing.start() + toStampNs(max_seconds)) : timing.end();
-  const double total = toSeconds(end - timing.start());
-  ROS_INFO("player: sequence %s, %zu robots, %.1f s, mode %s%s", config.name.c_str(), config.trials.size(), total,
-           mode.c_str(), lockstep ? "" : (" x" + std::to_string(rate)).c_str());
-
-  ros::Publisher clock_pub = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
-  ros::Publisher progress_pub = nh.advertise<std_msgs::String>("/player/progress", 10);
-  ros::Publisher done_pub = nh.advertise<std_msgs::Empty>("/player/done", 1, true);
-  std::map<char, ros::Publisher> points_pub, pose_pub;
-  std::vector<ros::Subscriber> subs, ack_subs;
-  Acks acks;
-  for (const auto& t : config.trials) {
-    const char r = t.robot;
-    const std::string ns = std::string("/") + r;
-    points_pub[r] = nh.advertise<sensor_msgs::PointCloud2>(ns + "/points", 5);
-    pose_pub[r] = nh.advertise<geometry_msgs::PoseStamped>(ns + "/reference_pose", 200);
-    ack_subs.push_back(nh.subscribe<cosmo::FrontendAck>(ns + "/ack", 1000, [&acks, r](const cosmo::FrontendAck::ConstPtr& m) {
-      std::lock_guard<std::mutex> lock(acks.mutex);
-      acks.last_scan[r] = std::max(acks.last_scan[r], static_cast<StampNs>(m->header.stamp.toNSec()));
-      acks.latest[r] = *m;
-    }));
-  }
-  ros::Publisher step_pub = nh.advertise<cosmo::RadioStepRequest>("/comm/step_request", 10);
-  ros::Subscriber step_done_sub =
-      nh.subscribe<cosmo::RadioStepDone>("/comm/step_done", 100, [&acks](const cosmo::RadioStepDone::ConstPtr& m) {
-        std::lock_guard<std::mutex> lock(acks.mutex);
-        acks.step_done = true;
-        acks.step_done_seq = m->seq;
-        acks.next_radio_step = m->next_stamp.toNSec();
-        for (std::size_t i = 0; i < m->robots.size() && i < m->delivered.size(); ++i)
-          acks.delivered[m->robots[i]] = m->delivered[i];
-      });
-  subs.push_back(nh.subscribe<std_msgs::String>("/comm/stats", 100, [&acks](const std_msgs::String::ConstPtr& m) {
-    try {
-      const auto j = nlohmann::json::parse(m->data);
-      std::lock_guard<std::mutex> lock(acks.mutex);
-      acks.broker_delivered = j.value("delivered", std::uint64_t{0});
-    } catch (const std::exception&) {
-    }
-  }));
-  subs.push_back(nh.subscribe<cosmo::RecorderProgress>("/recorder/progress", 10, [&acks](const cosmo::RecorderProgress::ConstPtr& m) {
-    std::lock_guard<std::mutex> lock(acks.mutex);
-    acks.recorder_seen = true;
-    for (std::size_t i = 0; i < m->robots.size() && i < m->keyframes.size() && i < m->loop_closures.size(); ++i)
-      acks.recorded[m->robots[i]] = {m->keyframes[i], m->loop_closures[i]};
-  }));
-  tf2_ros::TransformBroadcaster tf;
-  ros::AsyncSpinner spinner(1);
-  spinner.start();
-
-  // Wait for the front-ends to subscribe (lockstep needs every robot's ack).
-  const ros::WallTime wait_start = ros::WallTime::now();
-  auto waitConnected = [&](const std::function<bool()>& connected) {  // at most ~ack_timeout from wait_start
-    while (ros::ok() && !connected() && (ros::WallTime::now() - wait_start).toSec() < ack_timeout)
-      ros::WallDuration(0.05).sleep();
-  };
-  auto waitSubscribers = [&](ros::Publisher& pub) { waitConnected([&] { return pub.getNumSubscribers() > 0; }); };
-  for (auto& [r, pub] : points_pub) waitSubscribers(pub);
-  for (auto& [r, pub] : pose_pub)
-    if (!refs[r].empty()) waitSubscribers(pub);
-  // Lockstep: every front-end's ack and the broker's step topics connected (a message sent before its
-  // connection exists is lost, and the lockstep would wait for it).
-  bool use_broker = false;
-  if (lockstep) {
-    for (auto& sub : ack_subs) waitConnected([&] { return sub.getNumPublishers() > 0; });
-    if (wait_for_broker) {
-      waitSubscribers(step_pub);
-      waitConnected([&] { return step_done_sub.getNumPublishers() > 0; });
-      use_broker = step_pub.getNumSubscribers() > 0 && step_done_sub.getNumPublishers() > 0;
-      if (!use_broker) ROS_WARN("player: lockstep without a lockstep comm_broker (no /comm/step_request subscriber)");
-    }
-  }
-  auto publishClock = [&](StampNs t) {
-    rosgraph_msgs::Clock c;
-    c.clock = ros_glue::stampToRos(t);
-    clock_pub.publish(c);
-  };
-  publishClock(timing.start());
-  ros::WallDuration(0.5).sleep();
-
-  std::map<char, StampNs> last_pose_sent;
-  std::map<char, StampNs> expected_ack;
-  std::uint32_t step_seq = 0;
-  auto waitFor = [&](const char* what, const std::function<bool()>& done) {
-    const ros::WallTime start = ros::WallTime::now();
-    while (ros::ok() && !done()) {
-      if ((ros::WallTime::now() - start).toSec() > ack_timeout) {
-        ROS_WARN("player: no %s within %.0f s; continuing", what, ack_timeout);
-        return false;
-      }
-      ros::WallDuration(0.0005).sleep();
-    }
-    return true;
-  };
-  // Lockstep: every published scan acknowledged (a robot silent for ~ack_timeout is skipped with a warning).
-  auto waitAcks = [&] {
-    for (auto it = expected_ack.begin(); it != expected_ack.end();) {
-      const char r = it->first;
-      const StampNs want = it->second;
-      const bool ok = waitFor("front-end ack", [&] {
-        std::lock_guard<std::mutex> lock(acks.mutex);
-        return acks.last_scan.count(r) && acks.last_scan[r] >= want;
-      });
-      it = ok ? std::next(it) : expected_ack.erase(it);
-    }
-  };
-  // Lockstep: the broker runs every radio step <= t once the offered keyframes reached it; its deliveries are
-  // processed by their receivers before anything else happens.
-  auto stepRadio = [&](StampNs t) {
-    if (!use_broker) return;
-    cosmo::RadioStepRequest req;
-    req.seq = ++step_seq;
-    req.stamp = ros_glue::stampToRos(t);
-    {
-      std::lock_guard<std::mutex> lock(acks.mutex);
-      for (const auto& trial : config.trials) {
-        const char r = trial.robot;
-        const auto it = acks.latest.find(r);
-        req.robots.push_back(r);
-        req.on.push_back(it != acks.latest.end() && it->second.scans > 0);
-        req.keyframes.push_back(it != acks.latest.end() ? it->second.keyframes : 0);
-      }
-    }
-    step_pub.publish(req);
-    const std::uint32_t seq = req.seq;
-    if (!waitFor("comm_broker step", [&] {
-          std::lock_guard<std::mutex> lock(acks.mutex);
-          return acks.step_done && acks.step_done_seq >= seq;
-        }))
-      return;
-    waitFor("delivered scans processed", [&] {
-      std::lock_guard<std::mutex> lock(acks.mutex);
-      for (const auto& [r, n] : acks.delivered) {
-        const auto it = acks.latest.find(r);
-        if (n > 0 && (it == acks.latest.end() || it->second.received < n)) return false;
-      }
-      return true;
-    });
-  };
-
-  try {
-    pipeline::MergedScanStream stream = ros_glue::openSequenceStream(config, timing);
-    char robot;
-    Scan scan;
-    const ros::WallTime wall_start = ros::WallTime::now();
-    ros::WallTime last_progress = wall_start;
-    std::size_t published = 0;
-    while (ros::ok() && stream.next(robot, scan)) {
-      if (scan.stamp > end) break;
-      const double t_rel = toSeconds(scan.stamp - timing.start());
-      if (!lockstep) {
-        const ros::WallTime due = wall_start + ros::WallDuration(t_rel / rate);
-        const ros::WallTime now = ros::WallTime::now();
-        if (due > now) (due - now).sleep();
-      } else {
-        // Every scan published so far processed, then the radio stepped through this scan's time: that is
-        // TeamRun's order. Between two radio steps the robots' scans are independent (deliveries and the radio's
-        // robot states change only at steps), so a scan that needs no step first is published at once unless its
-        // own robot's previous scan is still being processed: the front-ends then work in parallel.
-        StampNs next_step = 0;
-        {
-          std::lock_guard<std::mutex> lock(acks.mutex);
-          next_step = acks.next_radio_step;
-        }
-        const bool needs_step = use_broker && (next_step == 0 || scan.stamp >= next_step);
-        if (needs_step || expected_ack.count(robot)) {
-          waitAcks();
-          expected_ack.clear();
-          if (use_broker) stepRadio(scan.stamp);
-        }
-      }
-      publishClock(scan.stamp);
-      // reference poses up to the scan (about every 20 ms), then the scan
-      const Trajectory& ref = refs[robot];
-      if (!ref.empty()) {
-        const StampNs from = last_pose_sent.count(robot) ? last_pose_sent[robot] : scan.stamp - std::min<StampNs>(scan.stamp, 200000000ULL);
-        std::vector<StampNs> stamps;
-        for (const auto& p : ref.poses())
-          if (p.stamp > from && p.stamp < scan.stamp && (stamps.empty() || p.stamp - stamps.back() >= 20000000ULL))
-            stamps.push_back(p.stamp);
-        stamps.push_back(scan.stamp);
-        for (StampNs s : stamps) {
-          geometry_msgs::PoseStamped ps;
-          ps.header.stamp = ros_glue::stampToRos(s);
-          ps.header.frame_id = world_frame;
-          ps.pose = ros_glue::poseToMsg(ref.atClamped(s));
-          pose_pub[robot].publish(ps);
-        }
-        last_pose_sent[robot] = scan.stamp;
-        geometry_msgs::TransformStamped tfm;
-        tfm.header.stamp = ros_glue::stampToRos(scan.stamp);
-        tfm.header.frame_id = world_frame;
-        tfm.child_frame_id = std::string(1, robot) + "/reference";
-        const Pose3 T = ref.atClamped(scan.stamp);
-        const auto p = ros_glue::poseToMsg(T);
-        tfm.transform.translation.x = p.position.x;
-        tfm.transform.translation.y = p.position.y;
-        tfm.transform.translation.z = p.position.z;
-        tfm.transform.rotation = p.orientation;
-        tf.sendTransform(tfm);
-      }
-      sensor_msgs::PointCloud2 msg = ros_glue::toPointCloud2(
-          scan, std::string(1, robot) + "/base_link",
-          lockstep ? ros_glue::PointTimeEncoding::RelativeSeconds : ros_glue::PointTimeEncoding::OusterNs);
-      points_pub[robot].publish(msg);
-      expected_ack[robot] = scan.stamp;
-      ++published;
-      const ros::WallTime now = ros::WallTime::now();
-      if ((now - last_progress).toSec() >= 1.0) {
-        last_progress = now;
-        std::uint64_t delivered = 0;
-        {
-          std::lock_guard<std::mutex> lock(acks.mutex);
-          delivered = acks.broker_delivered;
-        }
-        char line[200];
-        std::snprintf(line, sizeof line, "sequence time %.1f / %.1f s, %zu scans, %llu transfers delivered, %.1f s wall",
-                      t_rel, total, published, static_cast<unsigned long long>(delivered), (now - wall_start).toSec());
-        std_msgs::String s;
-        s.data = line;
-        progress_pub.publish(s);
-        ROS_INFO("player: %s", line);
-      }
-    }
-    // last acks, then let the radio run to the end of the sequence
-    waitAcks();
-    if (lockstep) {
-      stepRadio(end);
-      // everything the front-ends published has reached the recorder (when one runs)
-      waitFor("recorder intake", [&] {
-        std::lock_guard<std::mutex> lock(acks.mutex);
-        if (!acks.recorder_seen) return true;
-        for (const auto& [r, a] : acks.latest) {
-          const auto it = acks.recorded.find(r);
-          if (it == acks.recorded.end() || it->second.first < a.keyframes || it->second.second < a.loop_closures)
-            return false;
-        }
-        return true;
-      });
-    }
-    publishClock(end);
-    const ros::WallTime linger = ros::WallTime::now();
-    while (ros::ok() && (ros::WallTime::now() - linger).toSec() < end_linger) {
-      publishClock(end + toStampNs((ros::WallTime::now() - linger).toSec() * 1e-3));
-      ros::WallDuration(0.05).sleep();
-    }
-    ROS_INFO("player: done, %zu scans in %.1f s wall for %.1f s of sequence", published,
-             (ros::WallTime::now() - wall_start).toSec(), total);
-  } catch (const std::exception& e) {
-    ROS_FATAL("player: %s", e.what());
-    return 1;
-  }
-  done_pub.publish(std_msgs::Empty());
-  ros::WallDuration(0.5).sleep();
   return 0;
 }

@@ -6,7 +6,7 @@
 // Subscribes, per robot r of ~robots: /<r>/keyframes_meas (cosmo/RecorderKeyframe) and /<r>/loop_closures
 // (cosmo/RecorderLoopClosure). Publishes /recorder/progress (cosmo/RecorderProgress, latched): what it received
 // per robot, whenever that changes; the player's lockstep mode waits on it before it ends the run.
-// Parameters: ~robots ("a,b,c" or a list), ~name (dataset name), ~output_dir, the noise models: ~noise_models
+// Parameters: ~robots ("a,b,c" or a list; absent: the player's sequence, /player/robots), ~name (dataset name), ~output_dir, the noise models: ~noise_models
 // (YAML path), else those of ~sequence (a sequence config: its environment / noise_models), else those of the
 // built-in sequence of ~simulate_config (sequence_noise_models.hpp; none of them, or a missing file: the node
 // stops with a message that says how to make them), ~config_dir (config/noise_models/ lives there),
@@ -41,7 +41,7 @@ void onSignal(int) { g_stop = 1; }
 class RecorderNode {
  public:
   RecorderNode(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
-    const std::vector<char> robots = cosmo::ros_glue::readRobotsParam(pnh, "a,b,c");
+    const std::vector<char> robots = cosmo::ros_glue::readTeamRobots(pnh);
     std::string name = "cosmo", output_dir = ".", noise_path, rule_name = "fidelity";
     pnh.param("name", name, name);
     pnh.param("output_dir", output_dir, output_dir);

@@ -17,6 +17,11 @@ Eigen::Vector3d radioPosition(const Trajectory& reference, StampNs step_stamp, c
   return reference.empty() ? odometry_position : Eigen::Vector3d(reference.atClamped(step_stamp).translation());
 }
 
+StampNs nextRadioStepStamp(const RadioSimulator& radio, StampNs origin) {
+  const StampNs next = radioStepStamp(origin, radio.nextStepTime());
+  return next > 10 ? next - 10 : 0;
+}
+
 std::size_t advanceRadio(RadioSimulator& radio, StampNs origin, StampNs t, const RadioStateFn& state,
                          const RadioTransferFn& on_transfer) {
   if (t < origin) return 0;

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "cosmo/comm/scan_compression.hpp"
 #include "cosmo/jrl/dataset.hpp"
 #include "cosmo/pipeline/team_radio.hpp"
 
@@ -21,7 +20,9 @@ TeamRun::TeamRun(std::string dataset_name, std::map<char, Trajectory> references
                  std::uint64_t radio_seed, StampNs time_origin)
     : params_(params),
       radio_(params.radio, keysOf(references), radio_seed),
+      schedule_(keysOf(references), true),
       recorder_(std::move(dataset_name), keysOf(references), params.noise, params.outlier_rule),
+      payloads_(params.radio.size_model == RadioParams::SizeModel::RealCompressed),
       origin_(time_origin) {
   // One feature cache for the team: a delivered scan is the sender's own object, so its features are computed
   // once, not once per robot that registers against it (same results).
@@ -80,17 +81,15 @@ void TeamRun::advanceRadioTo(StampNs t) {
       return;
     }
     ++counts_.transfers_delivered;
-    std::shared_ptr<const KeptScan> kept = frontends_.at(tr.sender)->keptScan(tr.keyframe);
-    if (!kept) return;
     RobotFrontend& receiver = *frontends_.at(tr.receiver);
     std::vector<PendingLoopClosure> pending;
-    if (params_.radio.size_model == RadioParams::SizeModel::RealCompressed) {
-      const std::shared_ptr<const Scan> scan = kept->get();
-      Scan received = decompressScan(compressScan(*scan));
-      received.stamp = scan->stamp;
-      pending = receiver.receiveTeammateScanPending(tr.sender, tr.keyframe, std::make_shared<const Scan>(std::move(received)),
-                                                    step_stamp);
-    } else {
+    if (payloads_.compresses()) {  // the real size model: the decompressed payload
+      const std::shared_ptr<const Scan> scan = payloads_.deliver(tr.sender, tr.keyframe);
+      if (!scan) return;
+      pending = receiver.receiveTeammateScanPending(tr.sender, tr.keyframe, scan, step_stamp);
+    } else {  // the paper's: the sender's own kept scan (one copy, on disk, its features shared)
+      std::shared_ptr<const KeptScan> kept = frontends_.at(tr.sender)->keptScan(tr.keyframe);
+      if (!kept) return;
       pending = receiver.receiveTeammateScanPending(tr.sender, tr.keyframe, std::move(kept), step_stamp);
     }
     for (auto& p : pending) {
@@ -100,6 +99,11 @@ void TeamRun::advanceRadioTo(StampNs t) {
     flush(false);
   };
   advanceRadio(radio_, origin_, t, state, deliver);
+  schedule_.radioStepped(nextRadioStepStamp(radio_, origin_), {});
+}
+
+void TeamRun::beforeScan(char robot, StampNs stamp) {
+  if (schedule_.beforeScan(robot, stamp).step_radio) advanceRadioTo(stamp);
 }
 
 void TeamRun::addScan(char robot, const Scan& scan) { addScan(robot, scan, nullptr); }
@@ -114,7 +118,7 @@ RobotFrontend& TeamRun::frontendFor(char robot) {
 
 void TeamRun::addScan(char robot, const Scan& scan, const OdometryResult* loam_result) {
   RobotFrontend& fe = frontendFor(robot);
-  advanceRadioTo(scan.stamp);
+  beforeScan(robot, scan.stamp);
   ++counts_.scans;
   const ScanOutcome out = params_.reference_odometry && fe.hasReference()
                               ? fe.processScan(scan, fe.reference().atClamped(scan.stamp))
@@ -128,7 +132,7 @@ void TeamRun::addPrepared(char robot, StampNs stamp, const OdometryResult& loam_
   RobotFrontend& fe = frontendFor(robot);
   if (params_.reference_odometry && fe.hasReference())
     throw std::logic_error("team run: prepared scans carry LOAM odometry, but the run uses the reference odometry");
-  advanceRadioTo(stamp);
+  beforeScan(robot, stamp);
   ++counts_.scans;
   take(fe, fe.processPrepared(stamp, loam_result, std::move(keyframe_scan)));
 }
@@ -140,10 +144,9 @@ void TeamRun::take(const RobotFrontend& fe, const ScanOutcome& out) {
     ++counts_.keyframes;
     pending_.push_back(PendingRecord{kf, {}});
     const std::shared_ptr<const Scan> kf_scan = fe.keyframeScan(kf.index);
-    const std::size_t raw = rawPayloadBytes(*kf_scan);
-    std::size_t payload = raw;
-    if (params_.radio.size_model == RadioParams::SizeModel::RealCompressed) payload = compressScan(*kf_scan).size();
-    radio_.offerKeyframe(robot, kf.index, payload, raw);
+    PayloadStore::Sizes sizes{rawPayloadBytes(*kf_scan), rawPayloadBytes(*kf_scan)};
+    if (payloads_.compresses()) sizes = payloads_.offer(robot, kf.index, kf_scan);
+    radio_.offerKeyframe(robot, kf.index, sizes.payload, sizes.raw);
   }
   for (const auto& a : out.loop_closures) {  // registered inline: ready
     PendingRecord r;

@@ -1,5 +1,9 @@
 #include "cosmo/ros/robot_list.hpp"
 
+#include <ros/console.h>
+#include <ros/param.h>
+#include <ros/this_node.h>
+
 #include <sstream>
 #include <stdexcept>
 
@@ -41,6 +45,22 @@ std::vector<char> readRobotsParam(const ros::NodeHandle& pnh, const std::string&
     ids.push_back(n[0]);
   }
   return ids;
+}
+
+void publishTeamRobots(const std::vector<char>& robots) {
+  std::vector<std::string> ids;
+  for (char r : robots) ids.emplace_back(1, r);
+  ros::param::set(kTeamRobotsParam, ids);
+}
+
+std::vector<char> readTeamRobots(const ros::NodeHandle& pnh) {
+  if (pnh.hasParam("robots")) return readRobotsParam(pnh);
+  ROS_INFO("%s: robots from the player's sequence (%s)", ros::this_node::getName().c_str(), kTeamRobotsParam);
+  while (ros::ok()) {
+    if (ros::param::has(kTeamRobotsParam)) return readRobotsParam(ros::NodeHandle("/player"));
+    ros::WallDuration(0.1).sleep();
+  }
+  throw std::runtime_error(std::string("shut down before the player set ") + kTeamRobotsParam);
 }
 
 }  // namespace cosmo::ros_glue

@@ -32,6 +32,9 @@ StampNs radioStepStamp(StampNs origin, double radio_time);
 /// Position of a robot for the radio at `step_stamp`: its reference there (held at the ends), or
 /// `odometry_position` without a reference.
 Eigen::Vector3d radioPosition(const Trajectory& reference, StampNs step_stamp, const Eigen::Vector3d& odometry_position);
+/// The earliest sequence stamp at which advanceRadio runs the radio's next step: a scan stamped before it needs
+/// no radio step first (LockstepSchedule). 10 ns early, under advanceRadio's 1 ns tolerance on radio time.
+StampNs nextRadioStepStamp(const RadioSimulator& radio, StampNs origin);
 /// Runs every radio step at a time <= t (nothing before `origin`); returns the number of steps run.
 std::size_t advanceRadio(RadioSimulator& radio, StampNs origin, StampNs t, const RadioStateFn& state,
                          const RadioTransferFn& on_transfer);

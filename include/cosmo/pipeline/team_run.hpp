@@ -3,8 +3,8 @@
 // one RobotFrontend per robot, the RadioSimulator (comm) between them and the DatasetRecorder (dataset)
 // gathering every measurement. Deterministic: one order of events (below), all randomness from the seed.
 //
-// Event order (what the lockstep ROS launch reproduces): radio steps lie on the grid origin + k * delta. Before
-// a scan stamped s is processed, every radio step at a time <= s runs (advanceRadio, team_radio.hpp, which the
+// Event order (LockstepSchedule, which the lockstep player drives the ROS nodes through): radio steps lie on the
+// grid origin + k * delta. Before a scan stamped s is processed, every radio step at a time <= s runs (advanceRadio, team_radio.hpp, which the
 // comm_broker node shares): robot states are set (on once the robot processed its first scan, position from its
 // reference trajectory held at the ends, or its odometry position without one), the step runs, and each
 // delivered scan is handed to its receiver at the step time (the time its loop closures are computed at). Then the scan goes through its robot's front-end; a new keyframe is
@@ -18,8 +18,9 @@
 // behind until finish(), which waits for every registration.
 //
 // Payload: with the paper's size model the delivered scan is the sender's own KeptScan (xz is lossless, so
-// decompress(compress(scan)) is the same points), so the team keeps each scan and its features once; with the
-// real size model the scan is compressed for its size and the receiver gets the decompressed copy.
+// decompress(compress(scan)) is the same points), so the team keeps each scan and its features once, on disk;
+// with the real size model the radio's PayloadStore (comm/payload_store.hpp, as in the comm_broker node) keeps
+// the xz payload when offered and the receiver gets its decompressed copy.
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -29,12 +30,14 @@
 #include <string>
 #include <vector>
 
+#include "cosmo/comm/payload_store.hpp"
 #include "cosmo/comm/radio_params.hpp"
 #include "cosmo/comm/radio_simulator.hpp"
 #include "cosmo/dataset/dataset_recorder.hpp"
 #include "cosmo/dataset/noise_models.hpp"
 #include "cosmo/dataset/outlier_rule.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/pipeline/lockstep_schedule.hpp"
 #include "cosmo/pipeline/robot_frontend.hpp"
 
 namespace cosmo::pipeline {
@@ -99,6 +102,8 @@ class TeamRun {
 
  private:
   void advanceRadioTo(StampNs t);
+  /// What the team's event order (LockstepSchedule) runs before `robot`'s scan at `stamp`: the due radio steps.
+  void beforeScan(char robot, StampNs stamp);
   void addScan(char robot, const Scan& scan, const OdometryResult* loam_result);
   RobotFrontend& frontendFor(char robot);
   /// Bookkeeping of a scan's outcome: the keyframe recorded and offered to the radio, loop closures recorded.
@@ -120,7 +125,9 @@ class TeamRun {
   TeamRunParams params_;
   std::map<char, std::unique_ptr<RobotFrontend>> frontends_;
   RadioSimulator radio_;
+  LockstepSchedule schedule_;
   DatasetRecorder recorder_;
+  PayloadStore payloads_;
   StampNs origin_;
   TeamCounts counts_;
   std::vector<std::string> warnings_;

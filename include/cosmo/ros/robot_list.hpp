@@ -11,4 +11,12 @@ namespace cosmo::ros_glue {
 /// throws. Throws std::runtime_error naming ~robots on a malformed entry or an empty list.
 std::vector<char> readRobotsParam(const ros::NodeHandle& pnh, const std::string& fallback = "");
 
+/// The team's robots set by the player once it loaded the sequence config (a list of one-character strings).
+inline constexpr const char* kTeamRobotsParam = "/player/robots";
+/// Sets kTeamRobotsParam (the player).
+void publishTeamRobots(const std::vector<char>& robots);
+/// `~robots` of `pnh` when set; else the player's kTeamRobotsParam, waited for (as long as ROS runs: a built-in
+/// sequence is generated first). Throws when ROS shuts down first or on a malformed list.
+std::vector<char> readTeamRobots(const ros::NodeHandle& pnh);
+
 }  // namespace cosmo::ros_glue

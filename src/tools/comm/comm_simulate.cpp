@@ -23,11 +23,13 @@
 using namespace cosmo;
 
 namespace {
+constexpr const char* kUsage =
+    "usage: comm_simulate [--comm wifi|proradio|file.yaml] [--seed N] [--kf-distance m] [--scan-points n] "
+    "[--size-model paper|real] [--timeout-mode no_progress|total_duration] [--tail s] --out transfers.csv "
+    "a=traj[@offset_s] b=traj ...\n";
+
 int usage(const char* msg) {
-  std::fprintf(stderr, "comm_simulate: %s\nusage: comm_simulate [--comm wifi|proradio|file.yaml] [--seed N] "
-                       "[--kf-distance m] [--scan-points n] [--size-model paper|real] [--timeout-mode "
-                       "no_progress|total_duration] [--tail s] --out transfers.csv a=traj[@offset_s] b=traj ...\n",
-               msg);
+  std::fprintf(stderr, "comm_simulate: %s\n%s", msg, kUsage);
   return 2;
 }
 }  // namespace
@@ -45,6 +47,10 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
         return argv[++i];
       };
+      if (a == "-h" || a == "--help") {
+        std::fputs(kUsage, stdout);
+        return 0;
+      }
       if (a == "--comm") comm = next();
       else if (a == "--seed") seed = std::stoull(next());
       else if (a == "--kf-distance") kf_distance = std::stod(next());
