@@ -30,6 +30,7 @@ done
 [ -n "$cmd" ] || { echo "usage: $0 test|run [--keep] [--root DIR]"; exit 2; }
 [ "$(id -u)" -eq 0 ] || { echo "fresh_machine_check: needs root (debootstrap, chroot)"; exit 2; }
 root=${root:-/var/tmp/cosmo-fresh-$cmd}
+port=$([ "$cmd" = test ] && echo 11712 || echo 11711)  # its own ROS master port: a run and a test check can run side by side
 base_tar=/var/tmp/cosmo-fresh-base.tar
 shared="$here/../shared"
 [ -d "$shared" ] || echo "fresh_machine_check: no $shared: the tests that need it will skip"
@@ -88,7 +89,7 @@ echo "[fresh] running scripts/$cmd.sh in $root as user cosmo (log: $log)"
 start=$(date +%s)
 set +e
 # Its own ROS master port, so that a master running on this machine does not answer.
-chroot "$root" su - cosmo -c "cd ~/cosmo && export ROS_MASTER_URI=http://localhost:11711 && scripts/$cmd.sh" \
+chroot "$root" su - cosmo -c "cd ~/cosmo && export ROS_MASTER_URI=http://localhost:$port && scripts/$cmd.sh" \
   < /dev/null > "$log" 2>&1
 rc=$?
 set -e

@@ -7,10 +7,10 @@
 
 namespace cosmo {
 
-RegistrationResult refineContinuousRotation(const LoamFeatures& features, RegistrationResult previous,
+FeatureRegistrationResult refineContinuousRotation(const LoamFeatures& features, FeatureRegistrationResult previous,
                                             const LoamParams& params, const Pose3& previous_pose,
                                             const Pose3& predicted_delta, double period, double tie, int max_steps) {
-  RegistrationResult res = std::move(previous);
+  FeatureRegistrationResult res = std::move(previous);
   if (res.constraints.empty() || !(period > 0.0)) return res;
   using Matrix9 = Eigen::Matrix<double, 9, 9>;
   using Vector9 = Eigen::Matrix<double, 9, 1>;

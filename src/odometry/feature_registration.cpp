@@ -68,9 +68,9 @@ std::vector<T> subsample(const std::vector<T>& v, std::size_t stride) {
 }
 }  // namespace
 
-RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFeatureMap& map, const Pose3& guess,
+FeatureRegistrationResult registerFeatures(const LoamFeatures& features, const LocalFeatureMap& map, const Pose3& guess,
                                     const LoamParams& params, const std::optional<DeskewReference>& deskew) {
-  RegistrationResult res;
+  FeatureRegistrationResult res;
   res.pose = guess;
   const bool do_deskew = deskew && params.deskew && deskew->period > 0.0 &&
                          (!features.edge_time.empty() || !features.planar_time.empty());
@@ -174,9 +174,9 @@ void deskewFeatures(const LoamFeatures& features, const Pose3& delta, double per
   deskewConstantVelocity(features.planar_points, features.planar_time, delta, period, planes);
 }
 
-RegistrationResult refineRedeskewed(const LoamFeatures& features, RegistrationResult previous,
+FeatureRegistrationResult refineRedeskewed(const LoamFeatures& features, FeatureRegistrationResult previous,
                                     const LoamParams& params, const DeskewReference& deskew, int max_steps) {
-  RegistrationResult res = std::move(previous);
+  FeatureRegistrationResult res = std::move(previous);
   std::vector<Eigen::Vector3d> edges, planes;
   deskewFeatures(features, deskew.delta, deskew.period, edges, planes);
   for (auto& c : res.constraints) c.point = c.edge ? edges[c.feature] : planes[c.feature];

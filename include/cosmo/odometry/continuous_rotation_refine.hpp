@@ -19,7 +19,7 @@ namespace cosmo {
 /// translation from `predicted_delta` (the motion over `period` the registration was deskewed with). At most
 /// `max_steps` steps; directions with too little information keep their value (solution remapping). Sets the
 /// result's sweep_rotation; `previous` is returned unchanged when it has no constraints.
-RegistrationResult refineContinuousRotation(const LoamFeatures& features, RegistrationResult previous,
+FeatureRegistrationResult refineContinuousRotation(const LoamFeatures& features, FeatureRegistrationResult previous,
                                             const LoamParams& params, const Pose3& previous_pose,
                                             const Pose3& predicted_delta, double period, double tie, int max_steps);
 

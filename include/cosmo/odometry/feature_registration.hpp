@@ -14,7 +14,7 @@
 
 namespace cosmo {
 
-struct RegistrationResult {
+struct FeatureRegistrationResult {
   Pose3 pose = Pose3::Identity();  ///< sensor pose at the scan stamp in the map (odometry) frame
   int iterations = 0;
   bool converged = false;
@@ -58,14 +58,14 @@ double inlierFraction(const std::vector<FeatureConstraint>& constraints, const P
 Pose3 applyCentredUpdate(const Vector6& dx, const Pose3& T);
 
 /// Registers `features` (sensor frame) to `map` starting at `guess`.
-RegistrationResult registerFeatures(const LoamFeatures& features, const LocalFeatureMap& map, const Pose3& guess,
+FeatureRegistrationResult registerFeatures(const LoamFeatures& features, const LocalFeatureMap& map, const Pose3& guess,
                                     const LoamParams& params, const std::optional<DeskewReference>& deskew);
 
 /// Re-registration after the features were deskewed again with a corrected motion `deskew`: the map is the
 /// same and each feature moved by at most the deskew change (centimetres), so `previous`' lines and planes are
 /// kept (each constraint's point re-deskewed, no k-NN search or fit) and up to `max_steps` robust Gauss-Newton
 /// steps start from previous.pose. The edge constraints keep their normal (first order in the point's shift).
-RegistrationResult refineRedeskewed(const LoamFeatures& features, RegistrationResult previous,
+FeatureRegistrationResult refineRedeskewed(const LoamFeatures& features, FeatureRegistrationResult previous,
                                     const LoamParams& params, const DeskewReference& deskew, int max_steps);
 
 /// Fraction of (every `stride`-th) features that find a map constraint with |r| < inlier_dist at pose T.

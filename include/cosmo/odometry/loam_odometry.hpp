@@ -4,11 +4,13 @@
 // (constant velocity, zero motion, and a coarse yaw search when both fit poorly). Degenerate scans (empty,
 // NaN, < 100 points, too few constraints, unconstrained directions) never throw: the result carries a
 // warning and the motion model fills in.
+#include <optional>
 #include <string>
 
 #include "cosmo/common/pose.hpp"
 #include "cosmo/common/scan.hpp"
 #include "cosmo/odometry/feature_extraction.hpp"
+#include "cosmo/odometry/feature_registration.hpp"
 #include "cosmo/odometry/local_feature_map.hpp"
 #include "cosmo/odometry/loam_params.hpp"
 
@@ -39,6 +41,28 @@ class LoamOdometry {
   std::size_t numScans() const { return num_scans_; }
 
  private:
+  struct ScanMotion;
+  /// Seconds since the previous scan (0 when unknown); remembers this stamp.
+  double advanceClock(StampNs stamp, bool first);
+  /// Scan lines and features of `scan` into last_features_ (counts into r).
+  void takeFeatures(const Scan& scan, OdometryResult& r);
+  /// The first scan: its features start the local map.
+  OdometryResult startMap(const Scan& scan, OdometryResult r);
+  /// The motion-model result when the scan cannot be registered (too few points or features, empty map).
+  std::optional<OdometryResult> fallbackIfUnusable(const Scan& scan, const OdometryResult& r, double period);
+  /// The motion as it deskews (x / y / yaw only with deskew_planar_only).
+  Pose3 deskewMotion(const Pose3& delta) const;
+  ScanMotion predictScanMotion(double period) const;
+  /// The better of the constant-velocity and zero-motion guesses.
+  Pose3 initialGuess(const ScanMotion& m, OdometryResult& r) const;
+  /// On the second scan: the first scan's features deskewed once the motion is known.
+  void deskewFirstScanOnce(ScanMotion& m, Pose3& guess);
+  FeatureRegistrationResult registerFrom(const ScanMotion& m, const Pose3& start) const;
+  /// A coarse yaw search when the registration fits poorly or turned unexpectedly; keeps a clearly better one.
+  void searchYawIfPoorFit(ScanMotion& m, const Pose3& guess, FeatureRegistrationResult& reg, OdometryResult& r) const;
+  /// The registration becomes the pose (or the motion model, with too few constraints); the map takes the scan.
+  OdometryResult accept(const ScanMotion& m, const FeatureRegistrationResult& reg, OdometryResult r);
+  void insertIntoMap(const ScanMotion& m, const FeatureRegistrationResult& reg, const Pose3& delta);
   OdometryResult fallback(OdometryResult r, double period, const std::string& why);
 
   LoamParams params_;

@@ -11,7 +11,7 @@
 #include "cosmo/common/scan_io.hpp"
 #include "cosmo/registration/global_registration.hpp"
 #include "cosmo/registration/neighbour_pairs.hpp"
-#include "cosmo/registration/stage_timer.hpp"
+#include "cosmo/bench/stage_timer.hpp"
 #include "cosmo/registration/voxel_downsample.hpp"
 
 using namespace cosmo;

@@ -23,7 +23,7 @@
 #include "cosmo/registration/global_registration.hpp"
 #include "cosmo/bench/snippet_pairs.hpp"
 #include "cosmo/registration/pair_evaluation.hpp"
-#include "cosmo/registration/stage_timer.hpp"
+#include "cosmo/bench/stage_timer.hpp"
 
 using namespace cosmo;
 

@@ -27,7 +27,7 @@
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/registration/global_registration.hpp"
 #include "cosmo/registration/pair_evaluation.hpp"
-#include "cosmo/registration/stage_timer.hpp"
+#include "cosmo/bench/stage_timer.hpp"
 #include "cosmo/ros/bag_io.hpp"
 
 namespace fs = std::filesystem;

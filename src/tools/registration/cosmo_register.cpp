@@ -16,7 +16,7 @@
 #include "cosmo/common/scan_io.hpp"
 #include "cosmo/registration/global_registration.hpp"
 #include "cosmo/registration/pair_evaluation.hpp"
-#include "cosmo/registration/stage_timer.hpp"
+#include "cosmo/bench/stage_timer.hpp"
 
 using namespace cosmo;
 
