@@ -252,7 +252,7 @@ class FrontendNode {
         km.reference_exact = ros_glue::poseToExact(*kf.reference);
       }
       kf_pub_.publish(km);
-      const Scan* s = frontend_->keyframeScan(kf.index);
+      const std::shared_ptr<const Scan> s = frontend_->keyframeScan(kf.index);
       cosmo::Keyframe offer;
       offer.header.stamp = ros_glue::stampToRos(kf.stamp);
       offer.header.frame_id = base_frame_;

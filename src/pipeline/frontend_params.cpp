@@ -13,6 +13,8 @@ FrontendParams FrontendParams::fromConfig(const ConfigNode& node) {
   n.read("keyframe_min_range", p.keyframe_min_range);
   n.read("reference_tolerance_s", p.reference_tolerance_s);
   n.read("cache_features", p.cache_features);
+  n.read("spill_keyframes", p.spill_keyframes);
+  n.read("spill_dir", p.spill_dir);
   if (!(p.keyframe_distance > 0.0)) throw std::runtime_error(n["keyframe_distance"].where + ": must be > 0");
   if (!(p.keyframe_min_range >= 0.0)) throw std::runtime_error(n["keyframe_min_range"].where + ": must be >= 0");
   if (!(p.reference_tolerance_s >= 0.0)) throw std::runtime_error(n["reference_tolerance_s"].where + ": must be >= 0");

@@ -13,7 +13,9 @@ RobotFrontend::RobotFrontend(char robot, const FrontendParams& params, Trajector
       odometry_(params.loam),
       taker_(params),
       recognizer_(robot, params.place),
-      registration_(params.registration) {}
+      registration_(params.registration),
+      spill_(params.spill_keyframes ? std::make_shared<SpillFile>(params.spill_dir) : nullptr),
+      feature_cache_(std::make_shared<FeatureCache>(spill_)) {}
 
 std::optional<Pose3> RobotFrontend::referenceAt(StampNs stamp) const {
   if (reference_.empty()) return std::nullopt;
@@ -96,7 +98,8 @@ ScanOutcome RobotFrontend::afterOdometry(StampNs stamp, OdometryResult odometry,
 
   std::shared_ptr<const Scan> kf_scan = take_keyframe();
   const std::vector<LoopCandidate> candidates = recognizer_.addOwnKeyframe(kd.index, *kf_scan);
-  own_scans_[kd.index] = std::move(kf_scan);
+  own_scans_[kd.index] = std::make_shared<const KeptScan>(kf_scan, spill_);
+  latest_scan_ = std::move(kf_scan);
   for (const auto& c : candidates) {
     PendingLoopClosure p = registerPair(c, stamp);
     if (pool_) {
@@ -128,28 +131,32 @@ std::vector<LoopClosureAttempt> RobotFrontend::receiveTeammateScan(char teammate
 std::vector<PendingLoopClosure> RobotFrontend::receiveTeammateScanPending(char teammate, std::size_t index,
                                                                           std::shared_ptr<const Scan> scan,
                                                                           StampNs received_at) {
+  if (!scan) throw std::invalid_argument(std::string("robot ") + robot_ + ": received a null scan");
+  auto kept = std::make_shared<const KeptScan>(scan, spill_);  // `scan` stays in use meanwhile: not read back
+  return receiveTeammateScanPending(teammate, index, std::move(kept), received_at);
+}
+
+std::vector<PendingLoopClosure> RobotFrontend::receiveTeammateScanPending(char teammate, std::size_t index,
+                                                                          std::shared_ptr<const KeptScan> scan,
+                                                                          StampNs received_at) {
   if (teammate == robot_) throw std::invalid_argument(std::string("robot ") + robot_ + ": received its own scan");
   if (!scan) throw std::invalid_argument(std::string("robot ") + robot_ + ": received a null scan");
   ++received_;
-  const std::vector<LoopCandidate> candidates = recognizer_.addTeammateScan(teammate, index, *scan);
+  const std::vector<LoopCandidate> candidates = recognizer_.addTeammateScan(teammate, index, *scan->get());
   teammate_scans_[teammate][index] = std::move(scan);
   std::vector<PendingLoopClosure> out;
   for (const auto& c : candidates) out.push_back(registerPair(c, received_at));
   return out;
 }
 
-const Scan* RobotFrontend::keyframeScan(std::size_t index) const { return storedScan(robot_, index); }
-
-std::shared_ptr<const Scan> RobotFrontend::keyframeScanShared(std::size_t index) const {
-  auto it = own_scans_.find(index);
-  return it == own_scans_.end() ? nullptr : it->second;
+std::shared_ptr<const Scan> RobotFrontend::keyframeScan(std::size_t index) const {
+  const std::shared_ptr<const KeptScan> kept = keptScan(index);
+  return kept ? kept->get() : nullptr;
 }
 
-const Scan* RobotFrontend::storedScan(char robot, std::size_t index) const {
-  return storedScanShared(robot, index).get();
-}
+std::shared_ptr<const KeptScan> RobotFrontend::keptScan(std::size_t index) const { return storedScan(robot_, index); }
 
-std::shared_ptr<const Scan> RobotFrontend::storedScanShared(char robot, std::size_t index) const {
+std::shared_ptr<const KeptScan> RobotFrontend::storedScan(char robot, std::size_t index) const {
   if (robot == robot_) {
     auto it = own_scans_.find(index);
     return it == own_scans_.end() ? nullptr : it->second;
@@ -188,18 +195,18 @@ PendingLoopClosure RobotFrontend::registerPair(const LoopCandidate& c, StampNs c
     a.index2 = c.query_index;
   }
   // target = own keyframe scan (key1), source = the other scan (key2): T_target_source = T_key1^-1 T_key2.
-  std::shared_ptr<const Scan> target = storedScanShared(a.robot1, a.index1);
-  std::shared_ptr<const Scan> source = storedScanShared(a.robot2, a.index2);
+  std::shared_ptr<const KeptScan> target = storedScan(a.robot1, a.index1);
+  std::shared_ptr<const KeptScan> source = storedScan(a.robot2, a.index2);
   if (!target || !source) throw std::logic_error("robot frontend: no stored scan for a place-recognition candidate");
   // The job holds copies of all it reads, so it runs the same on any thread (and after this front-end is gone).
   std::shared_ptr<FeatureCache> cache = params_.cache_features ? feature_cache_ : nullptr;
   auto job = [registration = registration_, cache = std::move(cache), target = std::move(target),
               source = std::move(source)]() -> RegistrationResult {
-    if (!cache) return registration.align(*source, *target);
+    if (!cache) return registration.align(*source->get(), *target->get());
     const auto prepare = [&registration](const Scan& s) { return registration.prepare(s); };
-    const FeatureCloud& target_features = cache->get(target, prepare);
-    const FeatureCloud& source_features = cache->get(source, prepare);
-    return registration.align(source_features, target_features);
+    const std::shared_ptr<const FeatureCloud> target_features = cache->get(target, prepare);
+    const std::shared_ptr<const FeatureCloud> source_features = cache->get(source, prepare);
+    return registration.align(*source_features, *target_features);
   };
   if (pool_) {
     p.result = pool_->submit(std::move(job));
@@ -226,6 +233,49 @@ LoopClosureAttempt RobotFrontend::completeLoopClosure(const PendingLoopClosure& 
     ++rejected_;
   }
   return a;
+}
+
+}  // namespace cosmo::pipeline
+
+namespace cosmo::pipeline {
+
+namespace {
+std::size_t descriptorBytes(const ScanContextDatabase& db) {
+  std::size_t bytes = 0;
+  for (std::size_t i = 0; i < db.size(); ++i) {
+    const ScanContext& d = db.entry(i).descriptor;
+    bytes += sizeof(float) * static_cast<std::size_t>(d.descriptor.size() + d.ring_key.size() + d.sector_key.size());
+  }
+  return bytes;
+}
+}  // namespace
+
+FrontendFootprint& FrontendFootprint::operator+=(const FrontendFootprint& o) {
+  keyframes += o.keyframes;
+  own_scans += o.own_scans;
+  teammate_scans += o.teammate_scans;
+  scan_bytes_in_memory += o.scan_bytes_in_memory;
+  scan_bytes_spilled += o.scan_bytes_spilled;
+  descriptor_bytes += o.descriptor_bytes;
+  return *this;
+}
+
+FrontendFootprint RobotFrontend::footprint(std::set<const void*>& seen) const {
+  FrontendFootprint f;
+  f.keyframes = keyframes_.size();
+  const auto count = [&](const std::shared_ptr<const KeptScan>& s, std::size_t& n) {
+    if (!s || !seen.insert(s.get()).second) return;
+    ++n;
+    f.scan_bytes_in_memory += s->bytesInMemory();
+    if (s->spilled()) f.scan_bytes_spilled += s->bytes();
+  };
+  for (const auto& [i, s] : own_scans_) count(s, f.own_scans);
+  for (const auto& [r, scans] : teammate_scans_)
+    for (const auto& [i, s] : scans) count(s, f.teammate_scans);
+  f.descriptor_bytes = descriptorBytes(recognizer_.ownDatabase());
+  for (const auto& [r, scans] : teammate_scans_)
+    if (const ScanContextDatabase* db = recognizer_.teammateDatabase(r)) f.descriptor_bytes += descriptorBytes(*db);
+  return f;
 }
 
 }  // namespace cosmo::pipeline

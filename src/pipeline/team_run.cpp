@@ -26,7 +26,8 @@ TeamRun::TeamRun(std::string dataset_name, std::map<char, Trajectory> references
   // One feature cache for the team: a delivered scan is the sender's own object, so its features are computed
   // once, not once per robot that registers against it (same results).
   recorder_.setMetadata(params.metadata);
-  auto features = std::make_shared<FeatureCache>();
+  auto features = std::make_shared<FeatureCache>(
+      params.frontend.spill_keyframes ? std::make_shared<SpillFile>(params.frontend.spill_dir) : nullptr);
   if (params.registration_threads > 0) pool_ = std::make_shared<RegistrationPool>(params.registration_threads);
   for (auto& [robot, ref] : references) {
     frontends_[robot] = std::make_unique<RobotFrontend>(robot, params.frontend, std::move(ref));
@@ -79,14 +80,20 @@ void TeamRun::advanceRadioTo(StampNs t) {
       return;
     }
     ++counts_.transfers_delivered;
-    std::shared_ptr<const Scan> scan = frontends_.at(tr.sender)->keyframeScanShared(tr.keyframe);
-    if (!scan) return;
+    std::shared_ptr<const KeptScan> kept = frontends_.at(tr.sender)->keptScan(tr.keyframe);
+    if (!kept) return;
+    RobotFrontend& receiver = *frontends_.at(tr.receiver);
+    std::vector<PendingLoopClosure> pending;
     if (params_.radio.size_model == RadioParams::SizeModel::RealCompressed) {
+      const std::shared_ptr<const Scan> scan = kept->get();
       Scan received = decompressScan(compressScan(*scan));
       received.stamp = scan->stamp;
-      scan = std::make_shared<const Scan>(std::move(received));
+      pending = receiver.receiveTeammateScanPending(tr.sender, tr.keyframe, std::make_shared<const Scan>(std::move(received)),
+                                                    step_stamp);
+    } else {
+      pending = receiver.receiveTeammateScanPending(tr.sender, tr.keyframe, std::move(kept), step_stamp);
     }
-    for (auto& p : frontends_.at(tr.receiver)->receiveTeammateScanPending(tr.sender, tr.keyframe, scan, step_stamp)) {
+    for (auto& p : pending) {
       pending_.push_back(PendingRecord{std::nullopt, std::move(p)});
       ++pending_loop_closures_;
     }
@@ -132,7 +139,7 @@ void TeamRun::take(const RobotFrontend& fe, const ScanOutcome& out) {
     const KeyframeRecord& kf = *out.keyframe;
     ++counts_.keyframes;
     pending_.push_back(PendingRecord{kf, {}});
-    const Scan* kf_scan = fe.keyframeScan(kf.index);
+    const std::shared_ptr<const Scan> kf_scan = fe.keyframeScan(kf.index);
     const std::size_t raw = rawPayloadBytes(*kf_scan);
     std::size_t payload = raw;
     if (params_.radio.size_model == RadioParams::SizeModel::RealCompressed) payload = compressScan(*kf_scan).size();

@@ -24,8 +24,8 @@ const std::vector<test::SyntheticTrial>& team() {
   return t;
 }
 
-std::shared_ptr<const Scan> scanOf(char robot, std::size_t i) {
-  return std::make_shared<const Scan>(team()[robot == 'a' ? 0 : 1].scans[i]);
+std::shared_ptr<const KeptScan> scanOf(char robot, std::size_t i) {
+  return std::make_shared<const KeptScan>(std::make_shared<const Scan>(team()[robot == 'a' ? 0 : 1].scans[i]), nullptr);
 }
 
 }  // namespace
@@ -39,10 +39,10 @@ TEST(FeatureCache, ComputesAScanOnceWhenManyThreadsAskAtOnce) {
   std::vector<std::thread> threads;
   for (std::size_t i = 0; i < got.size(); ++i)
     threads.emplace_back([&, i] {
-      got[i] = &cache.get(scan, [&](const Scan& s) {
+      got[i] = cache.get(scan, [&](const Scan& s) {
         ++computed;
         return registration.prepare(s);
-      });
+      }).get();
     });
   for (auto& t : threads) t.join();
   EXPECT_EQ(computed.load(), 1);
@@ -53,16 +53,16 @@ TEST(FeatureCache, ComputesAScanOnceWhenManyThreadsAskAtOnce) {
   const auto fail = [](const Scan&) -> FeatureCloud { throw std::runtime_error("no features"); };
   EXPECT_THROW(cache.get(bad, fail), std::runtime_error);
   EXPECT_THROW(cache.get(bad, fail), std::runtime_error);
-  EXPECT_EQ(&cache.get(scan, fail), got.front());  // cached: not recomputed
+  EXPECT_EQ(cache.get(scan, fail).get(), got.front());  // cached: not recomputed
 }
 
 TEST(RegistrationPool, ResultsAreTheInlineResultsBitForBitAndErrorsReachTheCaller) {
   const GlobalRegistration registration(FrontendParams::loadDir(defaultConfigDir()).registration);
   // pairs of scans of the two robots at their shared start (some register, some not)
-  std::vector<std::pair<std::shared_ptr<const Scan>, std::shared_ptr<const Scan>>> pairs;
+  std::vector<std::pair<std::shared_ptr<const KeptScan>, std::shared_ptr<const KeptScan>>> pairs;
   for (std::size_t i = 0; i < 4; ++i) pairs.emplace_back(scanOf('a', i), scanOf('b', 3 - i));
   std::vector<RegistrationResult> inline_results;
-  for (const auto& [s, t] : pairs) inline_results.push_back(registration.align(*s, *t));
+  for (const auto& [s, t] : pairs) inline_results.push_back(registration.align(*s->get(), *t->get()));
   for (unsigned threads : {1u, 2u, 3u}) {
     auto cache = std::make_shared<FeatureCache>();
     RegistrationPool pool(threads);
@@ -71,9 +71,9 @@ TEST(RegistrationPool, ResultsAreTheInlineResultsBitForBitAndErrorsReachTheCalle
     for (const auto& [s, t] : pairs)
       futures.push_back(pool.submit([&registration, cache, s = s, t = t] {
         const auto prepare = [&](const Scan& x) { return registration.prepare(x); };
-        const FeatureCloud& target = cache->get(t, prepare);
-        const FeatureCloud& source = cache->get(s, prepare);
-        return registration.align(source, target);
+        const auto target = cache->get(t, prepare);
+        const auto source = cache->get(s, prepare);
+        return registration.align(*source, *target);
       }));
     auto failing = pool.submit([]() -> RegistrationResult { throw std::runtime_error("job failed"); });
     for (std::size_t i = 0; i < futures.size(); ++i) {

@@ -60,7 +60,7 @@ TEST(RobotFrontend, KeyframesEveryTwoMetresWithReferenceAndOdometryChain) {
       EXPECT_GT(step, 1.5);
       EXPECT_LT(step, 3.5);
     }
-    const Scan* s = fe.keyframeScan(i);
+    const std::shared_ptr<const Scan> s = fe.keyframeScan(i);
     ASSERT_NE(s, nullptr);
     EXPECT_EQ(s->stamp, kfs[i].stamp);
     EXPECT_GT(s->size(), 1000u);
@@ -150,12 +150,17 @@ TEST(RobotFrontend, SharedFeatureCacheComputesADeliveredScanOnceWithTheSameResul
     for (RobotFrontend* f : {&fa, &sa}) f->processScan(a.scans[i], f->reference().atClamped(a.scans[i].stamp));
     for (RobotFrontend* f : {&fb, &sb}) f->processScan(b.scans[i], f->reference().atClamped(b.scans[i].stamp));
   }
-  // b registers a's keyframe 0 (the sender's own object), then a registers b's keyframe 0
-  const auto own_ab = fb.receiveTeammateScan('a', 0, fa.keyframeScanShared(0), 1000);
-  const auto own_ba = fa.receiveTeammateScan('b', 0, fb.keyframeScanShared(0), 2000);
-  const auto sh_ab = sb.receiveTeammateScan('a', 0, sa.keyframeScanShared(0), 1000);
+  // b registers a's keyframe 0 (the sender's own KeptScan, as TeamRun delivers it), then a registers b's keyframe 0
+  const auto complete = [](RobotFrontend& f, std::vector<PendingLoopClosure> pending) {
+    std::vector<LoopClosureAttempt> out;
+    for (const auto& p : pending) out.push_back(f.completeLoopClosure(p));
+    return out;
+  };
+  const auto own_ab = complete(fb, fb.receiveTeammateScanPending('a', 0, fa.keptScan(0), 1000));
+  const auto own_ba = complete(fa, fa.receiveTeammateScanPending('b', 0, fb.keptScan(0), 2000));
+  const auto sh_ab = complete(sb, sb.receiveTeammateScanPending('a', 0, sa.keptScan(0), 1000));
   const std::size_t after_first = shared->size();
-  const auto sh_ba = sa.receiveTeammateScan('b', 0, sb.keyframeScanShared(0), 2000);
+  const auto sh_ba = complete(sa, sa.receiveTeammateScanPending('b', 0, sb.keptScan(0), 2000));
   ASSERT_FALSE(own_ab.empty());
   ASSERT_EQ(own_ab.size(), sh_ab.size());
   ASSERT_EQ(own_ba.size(), sh_ba.size());

@@ -5,6 +5,7 @@
 #include "cosmo/common/scan_io.hpp"
 #include "cosmo/common/shared_data.hpp"
 #include "cosmo/registration/global_registration.hpp"
+#include "cosmo/bench/snippet_pairs.hpp"
 #include "cosmo/registration/pair_evaluation.hpp"
 
 using namespace cosmo;
@@ -26,7 +27,7 @@ void expectRegistered(const ScanPair& p, double yaw_deg) {
 std::optional<std::vector<ScanPair>> pairs() {
   const auto root = sharedPath("data/scan_snippets");
   if (!root) return std::nullopt;
-  return snippetPairs(*root, false);
+  return bench::snippetPairs(*root, false);
 }
 const ScanPair& named(const std::vector<ScanPair>& all, const std::string& name) {
   for (const auto& p : all)

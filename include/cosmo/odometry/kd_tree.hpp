@@ -5,17 +5,12 @@
 // and the search starts with the distance bound, so most branches are pruned at once; it runs without
 // recursion (a stack of pending far cells). A leaf's points are also stored coordinate-wise in 64-byte blocks
 // of four (padded with NaN points, never found): with SSE2 four distances take six instructions and one mask
-// says which points can enter the result, so the leaf scan no longer branches per point; a far cell is
+// says which points can enter the result, so the leaf scan does not branch per point; a far cell is
 // written to the stack unconditionally and kept by incrementing the top only when it is within the bound.
-// Both are exact (the same neighbours, in the same order, bit for bit). Measured in one process, alternating
-// with the per-point scan, on 1.14 M LOAM queries of two demo trials: search 7 % faster, build 6 % slower (the
-// blocks are filled after the build), search + build 3-4 % faster.
-// Tried without gain: a branch-free partition through a scratch buffer, spatially sorted queries; a search bound
-// seeded with the previous query's neighbours (exact, but the leaves visited are the same: 3.6 leaves, 30
-// points, 19 nodes per query on the demo); a branch-free in-place partition; a branch-free sorted insertion
-// in KnnResult, both scalar and with SSE2 masks (fewer mispredicted branches, the same time); a branch-free
-// near / far child choice. Much of the search's remaining cost is mispredicted branches (the insertions while
-// the result fills, the leaf / inner node test, the pending cells' bound test).
+// Both are exact (the same neighbours, in the same order, bit for bit). Why a tree of its own: LOAM asks for
+// the k nearest points within a bound, from a tree rebuilt every scan. On that workload (bench_kd_trees: 30k
+// map points, 7.5k queries) this tree answers in 1.1 us per query against nanoflann's 3.1 us and 54 us for
+// registration/kdtree.hpp's radius search (which has no k-nearest query), with the same build time.
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>

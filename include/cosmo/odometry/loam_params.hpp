@@ -32,22 +32,17 @@ struct LoamParams {
   /// Voxel thinning (m, 0 = off) of the local map's edge / planar points (newest scan's point kept per voxel)
   /// and of each scan's planar features before registration (LOAM's "less flat" downsampling). Fewer, better
   /// spread points: faster k-NN and tree builds, and plane neighbours that are not copies of one point. The map
-  /// thinning is off by default: 0.1 m fixed the standing-start yaw-search jump of ci_c (a standing sensor puts
-  /// three copies of each point in the map, plane fits fail, the inlier fraction drops below 0.5) but hid the
-  /// featureless-corridor degeneracy (test LoamDegenerate.FeaturelessCorridor...); 0.4 m cost ~0.7 % of drift.
+  /// thinning is off by default because it hides the featureless-corridor degeneracy flag (test
+  /// LoamDegenerate.FeaturelessCorridor...).
   double map_edge_voxel_size = 0.0;
   double map_planar_voxel_size = 0.0;
-  /// 0.3 m for the scans' planar features: 9 % fewer LOAM instructions, but the six simulator trials' ATE 2-43 %
-  /// higher and ci a's 25 m rotation drift 0.0040 -> 0.0067 deg/m.
+  /// Coarser values trade accuracy for speed (docs/design.md).
   double planar_feature_voxel_size = 0.2;
   /// A registered scan enters the local map only when the sensor moved at least this far (m) or turned at
   /// least this much (deg) since the newest scan in the map (0 / 0: every scan, the default). A standing
-  /// sensor fills the map with copies of one scan, whose duplicate neighbours fail the plane fits: 0.02 m /
-  /// 0.2 deg removed the standing-start jump of ci_c (30 cm / 4.35 deg -> 1.8 cm / 0.56 deg). Off by default
-  /// because it hides the featureless-corridor degeneracy (test LoamDegenerate.FeaturelessCorridor...): that
-  /// test's flag comes from the duplicates (k-NN neighbours = copies of 2 points, plane fits rejected); with
-  /// one copy, floor points near the wall fit "planes" through a floor ring arc plus one wall point, whose
-  /// normals have an x component (smallest Gauss-Newton eigenvalue 51 vs threshold 1.6).
+  /// sensor fills the map with copies of one scan whose duplicate neighbours fail the plane fits; keeping them
+  /// out helps a standing start but hides the featureless-corridor degeneracy flag, which comes from those
+  /// failed fits (test LoamDegenerate.FeaturelessCorridor...), so it is off by default.
   double map_insert_min_translation = 0.0;
   double map_insert_min_rotation_deg = 0.0;
 
@@ -70,23 +65,16 @@ struct LoamParams {
   double min_plane_spread_ratio = 0.05;
   /// Plane fits whose neighbours are not flat, smallest / middle eigenvalue of their scatter above this, are
   /// rejected (0 = off, the default). Neighbours that straddle two surfaces (a wall's foot, a car's side) fit a
-  /// tilted plane; presumably, as the map holds only the last scans (a feature ahead of a moving sensor lies
-  /// beyond its neighbours, one behind short of them), those tilts add up to a pitch bias per scan. A sensor at a
-  /// constant height (a ground robot) samples the same corners every scan: the built-in street at 1.4 m/s
-  /// without sway drifts 0.0158 deg/m over 25 m, 0.0049 with 0.01 (0.0015 dewarped with the true motion;
-  /// bench_odometry --only d). Off by default: with
-  /// 0.01 the walker's sway gives 0.029 instead of 0.013 deg/m, and on the simulator trials (2 cm range noise) the
-  /// rotation drift improves but the translation drift of ci_a / ci_c grows (0.35 -> 0.56 %, 0.40 -> 0.86 %).
+  /// tilted plane, and for a sensor at a constant height those tilts add up to a pitch bias. Off by default
+  /// because it also rejects good fits of a swaying sensor and costs translation at 2 cm range noise;
+  /// plane_off_surface_min_dist below is the default remedy (docs/design.md).
   double max_plane_planarity = 0.0;
   /// (m) Off-surface neighbour test (0 = off). A plane neighbour set (of at least 5) that is not flat
   /// (smallest / middle scatter eigenvalue above 0.01) and spreads more than this along its normal (square root of
   /// the smallest eigenvalue) is rejected when one neighbour alone makes it so: without that neighbour the
   /// smallest eigenvalue drops at least tenfold (a wall-foot or kerb point among ground points). Unlike
   /// max_plane_planarity it keeps sets that are uneven as a whole (a swaying sensor's scans registered slightly
-  /// apart). With 0.02 (the default since the continuous-time rotation, deskew_rotation_tie): the street at 1.4 m/s
-  /// without sway 0.0158 -> 0.0086 deg/m at 25 m, the six simulator trials' rotation drift lower; alone (with the
-  /// earlier re-deskew) it cost the walker with sway 0.0129 / 0.0090 -> 0.0139 / 0.0105 deg/m at 25 / 50 m, with the
-  /// continuous-time rotation the walk gains from it too (0.0087 -> 0.0082). bench_odometry --only cd; README.
+  /// apart). Figures: docs/benchmarks.md (bench_odometry --only cd).
   double plane_off_surface_min_dist = 0.02;
   double huber_delta = 0.1;  ///< (m) Huber kernel width on the point-line / point-plane distances
   /// An initial guess whose inlier fraction (features with a correspondence closer than `inlier_dist`) is
@@ -107,10 +95,9 @@ struct LoamParams {
   bool deskew = true;
   /// The features are deskewed with the predicted (previous) motion; only when the registered motion differs
   /// from it by more than these (m, deg) are they deskewed again with the estimate and re-registered.
-  /// Rotation 0.05 deg (was 1, then 0.2): a walker's roll / pitch sway (~1 deg per sweep, reversing every few
-  /// scans) is not predicted by the previous scan's motion; re-deskewing it took the walking trial from 0.032 to
-  /// 0.0152 (0.2) and 0.0129 deg/m (0.05) over 25 m, at the same CPU. 0 (always re-deskew) feeds the estimate
-  /// back every scan and degraded simulator trial ci_a (1.03 %, 0.0132 deg/m): the threshold is a dead band.
+  /// A walker's roll / pitch sway is not predicted by the previous scan's motion, hence the small rotation
+  /// threshold; 0 (always re-deskew) feeds the estimate back every scan and oscillates: the threshold is a
+  /// dead band (docs/design.md).
   double deskew_reestimate_translation = 0.1;
   double deskew_reestimate_rotation_deg = 0.05;
   /// The re-deskewed features are registered by this many robust Gauss-Newton steps (at most) on the first
@@ -119,16 +106,13 @@ struct LoamParams {
   int deskew_refine_steps = 4;
   /// > 0: the refinement above estimates the rotation over the sweep with the pose (refineContinuousRotation: the
   /// sweep's start rotation is a third unknown, tied to the previous scan's rotation with this weight relative to
-  /// the scan's rotational information) instead of re-deskewing once with the estimate; 0: the re-deskew. The
-  /// swaying walk: 0.0129 -> 0.0087 deg/m over 25 m (0.03 / 0.3 / 1: 0.0089 / 0.0086 / 0.0085; measured without
-  /// the off-surface test); the simulator trials stay within target, mostly better. A stiffer tie oscillates: 1 on
-  /// synthetic_ci b's standing start, a rigid tie on four of the six vehicle trials (README). Not used with
-  /// deskew_planar_only, nor in fast turns (a correction above 2 degrees, or a sweep predicted to turn by more
-  /// than 5: loam_odometry.cpp).
+  /// the scan's rotational information) instead of re-deskewing once with the estimate; 0: the re-deskew. 0.1 is
+  /// the middle of the range that holds on the swaying walk and the vehicle trials; a stiffer tie oscillates
+  /// (docs/design.md). Not used with deskew_planar_only, nor in fast turns (a correction above 2 degrees, or a
+  /// sweep predicted to turn by more than 5: loam_odometry.cpp).
   double deskew_rotation_tie = 0.1;
-  /// Deskew with the x / y / yaw part of the motion only. Off by default: with the prediction-first deskew
-  /// above, the full 6-DoF deskew no longer oscillates on the hilly ATV trials (synthetic_ci a/b/c: equal or
-  /// better), and the walking sway (roll / pitch) needs it (planar only: 0.037 deg/m over 25 m).
+  /// Deskew with the x / y / yaw part of the motion only. Off by default: the walking sway (roll / pitch) needs
+  /// the full 6-DoF deskew.
   bool deskew_planar_only = false;
 
   /// Reads the keys above (same names) from `cfg` (its `odometry` child when present).

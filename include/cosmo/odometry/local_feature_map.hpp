@@ -1,8 +1,7 @@
 #pragma once
 // LOAM's local map: the edge and planar features of the last K registered scans, in the odometry frame,
-// with one k-d tree over each kind (rebuilt per scan; KdTree3 builds ~25k points in a few ms). Per-scan trees
-// built once each were tried: the build got 6x cheaper but every neighbour query had to search K trees and
-// cost ~1.8x more, a net loss at ~12k queries per scan.
+// with one k-d tree over each kind, rebuilt per scan (KdTree3 builds ~25k points in a few ms): one tree over
+// the K scans is searched once per query, where K per-scan trees would each be searched.
 #include <deque>
 #include <vector>
 

@@ -22,6 +22,12 @@ struct FrontendParams {
   double reference_tolerance_s = 1.0;
   /// Keep the registration features of every keyframe / received scan once computed (faster, more memory).
   bool cache_features = true;
+  /// Keep the keyframe scans (own and received) and their features in a spill file instead of memory; only what is
+  /// in use stays in memory (kept_scan.hpp). The results are the same bit for bit; the memory no longer grows with
+  /// the keyframes (about 1.5 MB per keyframe at 64 beams otherwise), the disk does while the process runs.
+  bool spill_keyframes = true;
+  /// Folder of the spill file (empty: the system's temp folder, TMPDIR).
+  std::string spill_dir;
 
   LoamParams loam;
   PlaceRecognitionParams place;

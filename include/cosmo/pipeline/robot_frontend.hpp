@@ -5,7 +5,9 @@
 //   (reference trajectory when given, else odometry) -> PlaceRecognizer (own + per-teammate databases) ->
 //   GlobalRegistration of every candidate -> loop-closure measurements stamped with the time they were computed.
 // It keeps its dewarped keyframe scans (points only, the radio payload) to offer to teammates, and takes
-// teammates' scans with receiveTeammateScan().
+// teammates' scans with receiveTeammateScan(). Kept scans and their registration features go to a spill file
+// (FrontendParams::spill_keyframes, kept_scan.hpp) and are in memory only while in use, so that its memory does not
+// grow with the keyframes; the most recent own keyframe scan stays in memory (it is offered to the radio next).
 //
 // Measurement convention (what the recorder expects): key1 is always this robot's pose and
 // measurement = T_key1^-1 * T_key2, i.e. GlobalRegistration's T_target_source with target = own keyframe scan
@@ -16,6 +18,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -26,6 +29,7 @@
 #include "cosmo/pipeline/feature_cache.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/pipeline/keyframe_taker.hpp"
+#include "cosmo/pipeline/kept_scan.hpp"
 #include "cosmo/pipeline/registration_pool.hpp"
 #include "cosmo/place_recognition/place_recognizer.hpp"
 #include "cosmo/registration/global_registration.hpp"
@@ -40,6 +44,16 @@ struct KeyframeRecord {
   Pose3 odom_pose = Pose3::Identity();  ///< sensor pose in this robot's odometry frame
   Pose3 relative = Pose3::Identity();   ///< odometry from the previous keyframe (identity for index 0)
   std::optional<Pose3> reference;       ///< sensor pose in the world frame (reference trajectory)
+};
+
+/// What a front-end's stores hold (benchmarks, tests): keyframe scans and ScanContext descriptors.
+struct FrontendFootprint {
+  std::size_t keyframes = 0;
+  std::size_t own_scans = 0, teammate_scans = 0;  ///< stored keyframe scans (each counted once, see footprint())
+  std::size_t scan_bytes_in_memory = 0;           ///< points of stored scans held in memory
+  std::size_t scan_bytes_spilled = 0;             ///< points of stored scans written to the spill file
+  std::size_t descriptor_bytes = 0;               ///< ScanContext descriptors and keys of every database
+  FrontendFootprint& operator+=(const FrontendFootprint& o);
 };
 
 /// One registered loop-closure candidate (accepted or not).
@@ -103,6 +117,9 @@ class RobotFrontend {
   /// already); complete each with completeLoopClosure(), in order.
   std::vector<PendingLoopClosure> receiveTeammateScanPending(char teammate, std::size_t index,
                                                              std::shared_ptr<const Scan> scan, StampNs received_at);
+  /// The same keeping the sender's own KeptScan (TeamRun: the team keeps the scan and its features once).
+  std::vector<PendingLoopClosure> receiveTeammateScanPending(char teammate, std::size_t index,
+                                                             std::shared_ptr<const KeptScan> scan, StampNs received_at);
   /// Waits for a pending registration and returns the finished attempt (counted as accepted or rejected).
   /// The same attempt, bit for bit, as the inline registration gives.
   LoopClosureAttempt completeLoopClosure(const PendingLoopClosure& pending);
@@ -113,7 +130,8 @@ class RobotFrontend {
   void setRegistrationPool(std::shared_ptr<RegistrationPool> pool) { pool_ = std::move(pool); }
 
   /// Registration features cached in `cache` from now on, shared with other front-ends of this process that use
-  /// the same registration parameters (TeamRun); the results are the same as with the own cache.
+  /// the same registration parameters (TeamRun); the results are the same as with the own cache. (Give it a
+  /// spill file, e.g. spillFile(), to keep the features out of memory.)
   void shareFeatureCache(std::shared_ptr<FeatureCache> cache);
 
   /// Appends a reference (world) sensor pose as it arrives (live use); stamps not after the last are ignored.
@@ -121,9 +139,14 @@ class RobotFrontend {
 
   char robot() const { return robot_; }
   const FrontendParams& params() const { return params_; }
-  /// Dewarped keyframe scan (points only, stamp = keyframe stamp); nullptr for an unknown index.
-  const Scan* keyframeScan(std::size_t index) const;
-  std::shared_ptr<const Scan> keyframeScanShared(std::size_t index) const;
+  /// Dewarped keyframe scan (points only, stamp = keyframe stamp); nullptr for an unknown index. Read back from the
+  /// spill file unless in use (the most recent keyframe's always is).
+  std::shared_ptr<const Scan> keyframeScan(std::size_t index) const;
+  std::shared_ptr<const Scan> keyframeScanShared(std::size_t index) const { return keyframeScan(index); }
+  /// The kept keyframe scan (what TeamRun delivers to teammates); nullptr for an unknown index.
+  std::shared_ptr<const KeptScan> keptScan(std::size_t index) const;
+  /// The spill file of this front-end's kept scans and (unless shared) features; nullptr when not spilling.
+  const std::shared_ptr<SpillFile>& spillFile() const { return spill_; }
   const std::vector<KeyframeRecord>& keyframes() const { return keyframes_; }
   std::size_t scansProcessed() const { return scans_; }
   const Pose3& lastOdomPose() const { return last_pose_; }
@@ -136,6 +159,10 @@ class RobotFrontend {
   std::size_t loopClosuresAccepted() const { return accepted_; }
   std::size_t loopClosuresRejected() const { return rejected_; }
   std::size_t teammateScansReceived() const { return received_; }
+  /// What the stores hold; a stored scan already in `seen` (shared with another front-end) is not counted again.
+  FrontendFootprint footprint(std::set<const void*>& seen) const;
+  /// The registration features' cache (shared with the team's other front-ends in TeamRun).
+  const FeatureCache& featureCache() const { return *feature_cache_; }
 
  private:
   /// `take_keyframe`: the keyframe scan of this scan when it becomes one.
@@ -144,8 +171,7 @@ class RobotFrontend {
   ScanOutcome afterOdometry(const Scan& scan, OdometryResult odometry);
   /// Starts the registration of candidate `c` (on the pool, else inline).
   PendingLoopClosure registerPair(const LoopCandidate& c, StampNs computed_at);
-  const Scan* storedScan(char robot, std::size_t index) const;
-  std::shared_ptr<const Scan> storedScanShared(char robot, std::size_t index) const;
+  std::shared_ptr<const KeptScan> storedScan(char robot, std::size_t index) const;
 
   char robot_;
   FrontendParams params_;
@@ -156,9 +182,11 @@ class RobotFrontend {
   GlobalRegistration registration_;
 
   std::vector<KeyframeRecord> keyframes_;
-  std::map<std::size_t, std::shared_ptr<const Scan>> own_scans_;
-  std::map<char, std::map<std::size_t, std::shared_ptr<const Scan>>> teammate_scans_;
-  std::shared_ptr<FeatureCache> feature_cache_ = std::make_shared<FeatureCache>();
+  std::shared_ptr<SpillFile> spill_;  ///< nullptr: kept scans and features stay in memory
+  std::map<std::size_t, std::shared_ptr<const KeptScan>> own_scans_;
+  std::map<char, std::map<std::size_t, std::shared_ptr<const KeptScan>>> teammate_scans_;
+  std::shared_ptr<const Scan> latest_scan_;  ///< the most recent own keyframe scan, kept in memory
+  std::shared_ptr<FeatureCache> feature_cache_;
   std::shared_ptr<RegistrationPool> pool_;
 
   Pose3 last_pose_ = Pose3::Identity();

@@ -17,9 +17,9 @@
 // as the registrations before them are done: the same JRL, byte for byte. counts() and on_loop_closure lag
 // behind until finish(), which waits for every registration.
 //
-// Payload: with the paper's size model the delivered scan is the sender's own keyframe scan (xz is lossless,
-// so decompress(compress(scan)) is the same points); with the real size model the scan is compressed for its
-// size and the receiver gets the decompressed copy.
+// Payload: with the paper's size model the delivered scan is the sender's own KeptScan (xz is lossless, so
+// decompress(compress(scan)) is the same points), so the team keeps each scan and its features once; with the
+// real size model the scan is compressed for its size and the receiver gets the decompressed copy.
 #include <cstdint>
 #include <deque>
 #include <functional>

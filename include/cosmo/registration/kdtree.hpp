@@ -6,7 +6,9 @@
 // answers bit for bit (test_kdtree checks this against nanoflann). Differences, for speed only: the rows are
 // copied in leaf order (a leaf is one contiguous block, feature rows padded to 16-byte aligned 36-float rows),
 // the nodes live in one array in depth-first order (first child = next node), and the search loops are written
-// for a single nearest neighbour. The data is copied: it need not outlive the tree.
+// for a single nearest neighbour. The data is copied: it need not outlive the tree. Measured against nanoflann
+// itself on 33-D FPFH-like rows (bench_kd_trees: 5k rows, 5k (1+10)-approximate queries): build 0.9 ms against
+// 9.9 ms, queries 2.4 us against 6.3 us, identical answers.
 #include <Eigen/Core>
 
 #include <algorithm>

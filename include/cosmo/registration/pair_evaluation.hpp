@@ -1,6 +1,6 @@
 #pragma once
 // Helpers for tools, benchmarks and tests that evaluate registrations against a known answer: errors of an
-// estimate, rotating a scan in yaw, and the known relative poses of the real snippets in ../shared.
+// estimate, rotating a scan in yaw, and pair lists with known answers.
 #include <string>
 #include <vector>
 
@@ -28,11 +28,6 @@ struct ScanPair {
   Pose3 T_target_source = Pose3::Identity();
   double distance_m = 0.0;   ///< |translation|
 };
-
-/// The real pairs of ../shared/data/scan_snippets named in issue 6 (KITTI 00 0-1, 0-2, 94-95, 198-199, 0-20,
-/// 20-40, the hdl32 pair, consecutive MulRan KAIST03 keyframes 0..20 when `all_mulran`, else 0-1 and 5-6),
-/// for the snippets folder `root`. Missing files throw naming the file.
-std::vector<ScanPair> snippetPairs(const std::string& root, bool all_mulran = true);
 
 /// Read a pair list: lines "source target x y z qx qy qz qw" (or 12/16 matrix numbers, or a path to a 4x4
 /// file); '#' starts a comment; relative paths are relative to the list's folder.

@@ -21,6 +21,7 @@
 #include "cosmo/common/scan_io.hpp"
 #include "cosmo/common/shared_data.hpp"
 #include "cosmo/registration/global_registration.hpp"
+#include "cosmo/bench/snippet_pairs.hpp"
 #include "cosmo/registration/pair_evaluation.hpp"
 #include "cosmo/registration/stage_timer.hpp"
 
@@ -157,7 +158,7 @@ int main(int argc, char** argv) {
   const RegistrationParams params =
       config_path.empty() ? RegistrationParams{} : RegistrationParams::fromConfig(ConfigNode::load(config_path));
   const GlobalRegistration reg(params);
-  const auto pairs = snippetPairs(*root, true);
+  const auto pairs = bench::snippetPairs(*root, true);
   if (!write_pairs.empty()) {
     writePairList(write_pairs, pairs);
     std::printf("wrote %zu pairs to %s\n", pairs.size(), write_pairs.c_str());

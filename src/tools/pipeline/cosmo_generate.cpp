@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "cosmo/common/allocator_tuning.hpp"
+#include "cosmo/pipeline/kept_scan.hpp"
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/comm/transfer_log.hpp"
 #include "cosmo/jrl/stats.hpp"
@@ -279,7 +280,11 @@ int main(int argc, char** argv) {
     const StampNs end = max_seconds > 0 ? std::min(timing.end(), timing.start() + toStampNs(max_seconds)) : timing.end();
     // The robots' own results (odometry, keyframe scans) do not depend on the comm model: with several models they
     // are computed once and replayed for the others.
+    // Their keyframe scans wait in a spill file (KeptScan), not in memory.
     std::vector<AheadScan> computed;
+    std::vector<std::shared_ptr<const KeptScan>> computed_keyframes;  // one per keyframe of `computed`, in order
+    const auto computed_spill = params.frontend.spill_keyframes
+                                    ? std::make_shared<SpillFile>(params.frontend.spill_dir) : nullptr;
     std::map<char, std::size_t> computed_dropped;
     bool replay = false;
     for (const std::string& comm : comms) {
@@ -305,8 +310,10 @@ int main(int argc, char** argv) {
       std::map<char, std::size_t> dropped;
       double wait_odometry_s = 0.0, team_work_s = 0.0;  // the team thread's wall time (run-ahead path)
       if (replay) {
+        std::size_t next_keyframe = 0;
         for (const AheadScan& s : computed) {
-          run.addPrepared(s.robot, s.stamp, s.odometry, s.keyframe_scan);
+          run.addPrepared(s.robot, s.stamp, s.odometry,
+                          s.keyframe_scan ? computed_keyframes.at(next_keyframe++)->get() : nullptr);
           progress(s.stamp);
         }
         dropped = computed_dropped;
@@ -320,7 +327,13 @@ int main(int argc, char** argv) {
           const bool more = ahead.next(s);
           wait_odometry_s += waited.elapsedMs() * 1e-3;
           if (!more || s.stamp > end) break;
-          if (keep) computed.push_back(s);
+          if (keep) {
+            computed.push_back(s);
+            if (s.keyframe_scan) {
+              computed_keyframes.push_back(std::make_shared<const KeptScan>(s.keyframe_scan, computed_spill));
+              computed.back().keyframe_scan = std::make_shared<const Scan>();  // a marker: the scan is kept above
+            }
+          }
           bench::Stopwatch worked;
           run.addPrepared(s.robot, s.stamp, s.odometry, std::move(s.keyframe_scan));
           team_work_s += worked.elapsedMs() * 1e-3;
