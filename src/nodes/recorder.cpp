@@ -11,6 +11,10 @@
 // built-in sequence of ~simulate_config (sequence_noise_models.hpp; none of them, or a missing file: the node
 // stops with a message that says how to make them), ~config_dir (config/noise_models/ lives there),
 // ~outlier_rule (fidelity | squared), ~autosave_period (s, 0 = off), ~progress_period (s, 0 = off).
+// The sequence's lines of <name>.recorder.yaml (its name, source, reference_offset, trials:
+// trials::sequenceMetadata, as cosmo_generate writes them) come from the sequence the player resolved
+// (/player/resolved_sequence and /player/resolved_data_root), else from ~sequence below ~data_root (empty: the
+// config's own precedence); without either (live robots) there are none.
 #include <ros/ros.h>
 #include <std_msgs/Empty.h>
 #include <std_srvs/Trigger.h>
@@ -32,6 +36,8 @@
 #include "cosmo/report/figures.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/pipeline/sequence_noise_models.hpp"
+#include "cosmo/ros/resolved_sequence.hpp"
+#include "cosmo/trials/sequence_metadata.hpp"
 
 namespace {
 
@@ -48,6 +54,8 @@ class RecorderNode {
     std::string sequence_path, simulate_config, config_dir = cosmo::pipeline::defaultConfigDir();
     pnh.param("noise_models", noise_path, noise_path);
     pnh.param("sequence", sequence_path, sequence_path);
+    pnh.param("data_root", data_root_, data_root_);
+    sequence_path_ = sequence_path;
     pnh.param("simulate_config", simulate_config, simulate_config);
     pnh.param("config_dir", config_dir, config_dir);
     pnh.param("outlier_rule", rule_name, rule_name);
@@ -147,7 +155,28 @@ class RecorderNode {
     return true;
   }
 
+  /// The sequence's metadata lines, once its config can be read (see the file's header).
+  void setSequenceMetadata() {
+    if (metadata_set_) return;
+    std::string path = sequence_path_, data_root = data_root_;
+    std::string resolved;
+    if (ros::param::get(cosmo::ros_glue::kResolvedSequenceParam, resolved) && !resolved.empty()) {
+      path = resolved;
+      data_root.clear();
+      ros::param::get(cosmo::ros_glue::kResolvedDataRootParam, data_root);
+    }
+    if (path.empty()) return;
+    try {
+      recorder_->setMetadata(cosmo::trials::sequenceMetadata(cosmo::pipeline::SequenceConfig::load(path, data_root)));
+      metadata_set_ = true;
+    } catch (const std::exception& e) {
+      ROS_WARN_ONCE("recorder: the sequence's metadata (reference offset) of %s is not written: %s", path.c_str(),
+                    e.what());
+    }
+  }
+
   bool write(const char* why, bool print_stats = true, std::string* message = nullptr) {
+    setSequenceMetadata();
     try {
       cosmo::jrl::Dataset ds;
       const cosmo::BuildReport report = recorder_->write(path_, &ds);
@@ -189,7 +218,8 @@ class RecorderNode {
   bool progress_changed_ = false;
   ros::Publisher progress_pub_;
   std::optional<cosmo::DatasetRecorder> recorder_;
-  std::string path_;
+  std::string path_, sequence_path_, data_root_;
+  bool metadata_set_ = false;
   double autosave_period_ = 30.0, progress_period_ = 5.0;
   bool changed_ = false;
   std::vector<ros::Subscriber> subs_;

@@ -67,8 +67,8 @@ TrialSpan TrialCoverage::clip(const TrialSpan& scans) const {
   return out;
 }
 
-CoveredScanSource::CoveredScanSource(std::unique_ptr<ScanSource> scans, TrialCoverage coverage)
-    : scans_(std::move(scans)), coverage_(std::move(coverage)) {}
+CoveredScanSource::CoveredScanSource(std::unique_ptr<ScanSource> scans, TrialCoverage coverage, bool read_to_end)
+    : scans_(std::move(scans)), coverage_(std::move(coverage)), read_to_end_(read_to_end) {}
 
 bool CoveredScanSource::next(Scan& scan) {
   while (!ended_ && scans_->next(scan)) {
@@ -76,7 +76,12 @@ bool CoveredScanSource::next(Scan& scan) {
       started_ = true;
       return true;
     }
-    if (coverage_.after(scan)) break;
+    if (coverage_.after(scan)) {
+      if (read_to_end_)
+        while (scans_->next(scan)) {
+        }
+      break;
+    }
     if (started_)
       throw std::runtime_error("trial " + coverage_.trial() + ": the reference does not cover the scan at " +
                                formatStamp(scan.stamp) + " (reference poses more than " + formatStamp(toStampNs(kMaxReferenceGap)) +

@@ -6,6 +6,8 @@
 #include <sensor_msgs/PointCloud2.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <mutex>
 #include <stdexcept>
 
 #include "cosmo/pipeline/trial_coverage.hpp"
@@ -73,9 +75,35 @@ std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const pipeline::Tri
 }
 
 pipeline::TrialSpan readTrialSpan(const pipeline::TrialConfig& trial) {
-  if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1)
-    return readRos1TrialSpan(trial.bag, trial.topic, trial.robot);
-  return trials::readRos2TrialSpan(trial.bag, trial.topic, trial.robot);
+  // A run asks for each trial's span more than once (the pre-flight check, the synchronization): it is read once
+  // per process, and for a ROS 1 bag with compressed chunks kept beside its scan cache, so that a later run
+  // decompresses none of it.
+  static std::mutex mutex;
+  static std::map<std::string, std::pair<StampNs, StampNs>> known;
+  namespace fs = std::filesystem;
+  const std::string key = fs::absolute(trial.bag).string() + "\n" + trial.topic + "\n" +
+                          std::to_string(fs::last_write_time(trial.bag).time_since_epoch().count()) + "\n" +
+                          std::to_string(fs::is_regular_file(trial.bag) ? fs::file_size(trial.bag) : 0);
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (auto it = known.find(key); it != known.end()) return {trial.robot, it->second.first, it->second.second};
+  }
+  pipeline::TrialSpan span;
+  if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1) {
+    const std::string cache_dir = trials::scanCacheDir();
+    const bool cached = !cache_dir.empty() && trials::ros1ChunksCompressed(trial.bag);
+    const std::string path = cached ? trials::scanSpanPath(cache_dir, trial.bag, trial.topic) : "";
+    span.robot = trial.robot;
+    if (!cached || !trials::readCachedSpan(path, span.first, span.last)) {
+      span = readRos1TrialSpan(trial.bag, trial.topic, trial.robot);
+      if (cached) trials::writeCachedSpan(path, span.first, span.last);
+    }
+  } else {
+    span = trials::readRos2TrialSpan(trial.bag, trial.topic, trial.robot);
+  }
+  std::lock_guard<std::mutex> lock(mutex);
+  known[key] = {span.first, span.last};
+  return span;
 }
 
 pipeline::TrialSpan readSweepEndSpan(const pipeline::TrialConfig& trial) {
@@ -99,9 +127,12 @@ pipeline::SequenceTiming synchronizeSequence(const pipeline::SequenceConfig& con
 
 std::map<char, std::unique_ptr<pipeline::ScanSource>> openTrialSources(const pipeline::SequenceConfig& config) {
   std::map<char, std::unique_ptr<pipeline::ScanSource>> sources;
-  for (const auto& t : config.trials)
+  for (const auto& t : config.trials) {
+    std::unique_ptr<trials::TrialScanSource> scans = openTrialScanSource(t);
+    const bool caching = dynamic_cast<trials::CachingScanSource*>(scans.get()) != nullptr;  // complete the cache
     sources[t.robot] =
-        std::make_unique<pipeline::CoveredScanSource>(openTrialScanSource(t), trials::trialCoverage(t));
+        std::make_unique<pipeline::CoveredScanSource>(std::move(scans), trials::trialCoverage(t), caching);
+  }
   return sources;
 }
 

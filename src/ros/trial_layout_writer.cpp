@@ -108,7 +108,8 @@ class CuMultiWriter : public TrialLayoutWriter {
   }
   WrittenTrial finish(const Trajectory& body, const Pose3& T_body_lidar) override {
     bag_.close();
-    const std::string gt = "robot" + std::to_string(info_.robot_number) + "_" + info_.name + "_gt_utm.csv";
+    // CU-Multi's name for a site's robot: <site>_robotN_ref.csv beside robotN_<site>_lidar/ (evalio's files).
+    const std::string gt = info_.name + "_robot" + std::to_string(info_.robot_number) + "_ref.csv";
     trials::writeCuMultiGroundTruth(
         (dir_ / gt).string(), writtenBody(body, T_body_lidar, trials::cuMultiImuTLidar(), stamps_, kSimulatedUtmOffset));
     WrittenTrial w;

@@ -50,17 +50,61 @@ std::string scanCacheDir() {
   return (fs::temp_directory_path() / "cosmo_scan_cache").string();
 }
 
-std::string scanCachePath(const std::string& dir, const std::string& bag_path, const std::string& topic,
-                          bool stamp_at_end) {
+namespace {
+
+/// The identity of a bag's topic: absolute path, size, modification time and the topic without its slash.
+std::string bagKey(const std::string& bag_path, const std::string& topic) {
   const fs::path bag = fs::absolute(bag_path);
   const auto mtime = fs::last_write_time(bag).time_since_epoch().count();
   const std::string bare_topic = !topic.empty() && topic[0] == '/' ? topic.substr(1) : topic;
-  const std::string key = bag.string() + "\n" + std::to_string(fs::file_size(bag)) + "\n" + std::to_string(mtime) +
-                          "\n" + bare_topic + "\n" + (stamp_at_end ? "end" : "start") + "\n" +
-                          std::to_string(kScanCacheVersion);
+  return bag.string() + "\n" + std::to_string(fs::file_size(bag)) + "\n" + std::to_string(mtime) + "\n" + bare_topic;
+}
+
+std::string keyedPath(const std::string& dir, const std::string& bag_path, const std::string& key,
+                      const char* extension) {
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a(key)));
-  return (fs::path(dir) / (bag.filename().string() + "-" + hex + ".scans")).string();
+  return (fs::path(dir) / (fs::path(bag_path).filename().string() + "-" + hex + extension)).string();
+}
+
+}  // namespace
+
+std::string scanCachePath(const std::string& dir, const std::string& bag_path, const std::string& topic,
+                          bool stamp_at_end) {
+  const std::string key = bagKey(bag_path, topic) + "\n" + (stamp_at_end ? "end" : "start") + "\n" +
+                          std::to_string(kScanCacheVersion);
+  return keyedPath(dir, bag_path, key, ".scans");
+}
+
+std::string scanSpanPath(const std::string& dir, const std::string& bag_path, const std::string& topic) {
+  return keyedPath(dir, bag_path, bagKey(bag_path, topic) + "\nspan", ".span");
+}
+
+bool readCachedSpan(const std::string& path, StampNs& first, StampNs& last) {
+  std::ifstream in(path);
+  std::string magic;
+  unsigned long long a = 0, b = 0;
+  if (!(in >> magic >> a >> b) || magic != "cosmo-span-1" || b < a) return false;
+  first = static_cast<StampNs>(a);
+  last = static_cast<StampNs>(b);
+  return true;
+}
+
+void writeCachedSpan(const std::string& path, StampNs first, StampNs last) {
+  std::error_code ec;
+  fs::create_directories(fs::path(path).parent_path(), ec);
+  const std::string tmp = temporaryName(path);
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    out << "cosmo-span-1 " << static_cast<unsigned long long>(first) << " " << static_cast<unsigned long long>(last)
+        << "\n";
+    if (!out) {
+      fs::remove(tmp, ec);
+      return;  // a cache that cannot be written is only not there next time
+    }
+  }
+  fs::rename(tmp, path, ec);
+  if (ec) fs::remove(tmp, ec);
 }
 
 CachedScanSource::CachedScanSource(const std::string& path) : path_(path), in_(path, std::ios::binary) {

@@ -137,6 +137,30 @@ TEST(ReferenceSpan, RobotIsOffUntilItsFirstCoveredScanAndStopsAfterTheLast) {
   EXPECT_GE(clipped.last, used.back().stamp);
 }
 
+TEST(ReferenceSpan, ReadToEndReadsTheScansAfterTheReferenceWithoutUsingThem) {
+  // a source that keeps what it reads (the scan cache) must see the whole trial, also after the reference ends
+  struct Counting : ScanSource {
+    explicit Counting(std::vector<Scan> s) : scans(std::move(s)) {}
+    bool next(Scan& scan) override {
+      if (read >= scans.size()) return false;
+      scan = scans[read++];
+      return true;
+    }
+    std::vector<Scan> scans;
+    std::size_t read = 0;
+  };
+  const auto scans = endStamped(40);
+  for (const bool to_end : {false, true}) {
+    auto counting = std::make_unique<Counting>(scans);
+    const Counting* seen = counting.get();
+    CoveredScanSource source(std::move(counting), TrialCoverage("ntu_day_01", reference(1.0, 3.4)), to_end);
+    const auto used = drain(source);
+    EXPECT_EQ(used.size(), 24u);
+    EXPECT_EQ(used.back().stamp, scans[34].stamp);
+    EXPECT_EQ(seen->read, to_end ? 40u : 36u);  // without: it stops at the first scan after the reference
+  }
+}
+
 TEST(ReferenceSpan, WithoutReferenceEveryScanIsUsed) {
   const auto scans = endStamped(3);
   CoveredScanSource source(std::make_unique<VectorScanSource>(scans), TrialCoverage{});

@@ -6,7 +6,9 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <cstdlib>
 #include <fstream>
+#include <optional>
 
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/pipeline/team_run.hpp"
@@ -64,7 +66,9 @@ struct LayoutTrial {
   Pose3 T_body_lidar;
   std::string config;
 
-  LayoutTrial(ros_glue::TrialLayout layout, double rate_hz, const fs::path& dir)
+  /// `reference_span` (cosmo layout only): write the reference over [first, last] only, both included.
+  LayoutTrial(ros_glue::TrialLayout layout, double rate_hz, const fs::path& dir,
+              std::optional<std::pair<StampNs, StampNs>> reference_span = std::nullopt)
       : plan(tinyPlan(smallLidar(rate_hz))) {
     const auto& t = plan.trials.at(0);
     T_body_lidar = t.params.extrinsicPose();
@@ -75,7 +79,15 @@ struct LayoutTrial {
     if (layout == ros_glue::TrialLayout::Cosmo) {
       own = std::make_unique<ros_glue::ScanBagWriter>((dir / "walk_a.bag").string());
       w = {"walk_a.bag", "/os_cloud_node/points", "walk_a_pose_inW.csv", T_body_lidar, true};
-      writeMcdPoseCsv((dir / w.reference).string(), t.body);
+      Trajectory reference = t.body;
+      if (reference_span) {
+        std::vector<StampedPose> inside{{reference_span->first, t.body.atClamped(reference_span->first)}};
+        for (const auto& p : t.body.poses())
+          if (p.stamp > reference_span->first && p.stamp < reference_span->second) inside.push_back(p);
+        inside.push_back({reference_span->second, t.body.atClamped(reference_span->second)});
+        reference = Trajectory(std::move(inside));
+      }
+      writeMcdPoseCsv((dir / w.reference).string(), reference);
     } else {
       ros_glue::LayoutTrialInfo info;
       info.name = t.params.name;
@@ -171,4 +183,35 @@ TEST(LayoutsEndToEnd, CosmoLayoutKeyframesCarryTheTrueLidarPose) {
   TempDir d;
   const LayoutTrial trial(ros_glue::TrialLayout::Cosmo, 10.0, d.path);
   expectTrueGroundtruth(trial, runSequence(trial.config), Eigen::Vector3d::Zero());
+}
+
+// The same trial in MCD's layout and in cosmo's own gives the same keyframes, once both references cover the same
+// scans: MCD's pose_inW.csv starts 1 s after the first scan (so that robot is off for its first 10 scans), so the
+// cosmo-layout trial gets its reference over MCD's span. The MCD bag's organised clouds with invalid returns, its
+// body-frame 10 Hz ground truth and its 180-degree extrinsic must then give the keyframes of the same scans (stamps
+// within one column: MCD's is the sweep end) and the same groundtruth to 1 mm / 0.01 deg.
+TEST(LayoutsEndToEnd, McdAndCosmoLayoutsOfOneTrialGiveTheSameKeyframes) {
+  TempDir d;
+  fs::create_directories(d.path / "mcd");
+  fs::create_directories(d.path / "cosmo");
+  const LayoutTrial mcd(ros_glue::TrialLayout::Mcd, 10.0, d.path / "mcd");
+  const Trajectory mcd_body = readMcdPoseCsv((d.path / "mcd" / "walk_a" / "pose_inW.csv").string());
+  const LayoutTrial own(ros_glue::TrialLayout::Cosmo, 10.0, d.path / "cosmo",
+                        std::make_pair(mcd_body.startStamp(), mcd_body.endStamp()));
+  const SequenceRun a = runSequence(mcd.config), b = runSequence(own.config);
+  ASSERT_GE(a.keyframes.size(), 3u);
+  ASSERT_EQ(a.keyframes.size(), b.keyframes.size());
+  EXPECT_EQ(a.timing.of('a').first, b.timing.of('a').first);  // the same first covered scan
+  for (std::size_t i = 0; i < a.keyframes.size(); ++i) {
+    const auto& ka = a.keyframes[i];
+    const auto& kb = b.keyframes[i];
+    // the same scan: MCD's header stamp is the sweep end, one column after the simulator's last column's stamp
+    const double column_ns = 1e9 / (10.0 * kColumns);
+    const auto apart = static_cast<long long>(a.timing.of('a').toRecorded(ka.stamp) - b.timing.of('a').toRecorded(kb.stamp));
+    EXPECT_LE(std::llabs(apart), static_cast<long long>(column_ns) + 1) << "keyframe " << i;
+    ASSERT_TRUE(ka.reference && kb.reference) << "keyframe " << i;
+    EXPECT_LT((ka.reference->translation() - kb.reference->translation()).norm(), 1e-3) << "keyframe " << i;
+    const double deg = Eigen::AngleAxisd(ka.reference->linear().transpose() * kb.reference->linear()).angle() * 180.0 / M_PI;
+    EXPECT_LT(deg, 0.01) << "keyframe " << i;
+  }
 }

@@ -51,17 +51,19 @@ class TrialCoverage {
   Trajectory reference_;
 };
 
-/// A trial's scans in recorded time, only the covered ones (see the file comment).
+/// A trial's scans in recorded time, only the covered ones (see the file comment). With `read_to_end`, the scans
+/// after the reference's span are still read (and dropped) when the first of them is met, so that a source that
+/// keeps what it reads (the scan cache of a compressed bag, trials/scan_cache.hpp) sees the whole trial.
 class CoveredScanSource : public ScanSource {
  public:
-  CoveredScanSource(std::unique_ptr<ScanSource> scans, TrialCoverage coverage);
+  CoveredScanSource(std::unique_ptr<ScanSource> scans, TrialCoverage coverage, bool read_to_end = false);
   bool next(Scan& scan) override;
   std::size_t skippedBefore() const { return skipped_before_; }
 
  private:
   std::unique_ptr<ScanSource> scans_;
   TrialCoverage coverage_;
-  bool started_ = false, ended_ = false;
+  bool read_to_end_ = false, started_ = false, ended_ = false;
   std::size_t skipped_before_ = 0;
 };
 

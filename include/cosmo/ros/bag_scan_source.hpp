@@ -35,7 +35,8 @@ class BagScanSource : public trials::TrialScanSource {
 std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const pipeline::TrialConfig& trial);
 
 /// Header stamps of the trial's first and last PointCloud2 (reads only the first message and the messages of
-/// the bag's last few seconds), from a ROS 1 or ROS 2 bag.
+/// the bag's last few seconds), from a ROS 1 or ROS 2 bag. Read once per process and bag; a ROS 1 bag with
+/// compressed chunks keeps them beside its scan cache (trials::scanSpanPath), so later runs read none of the bag.
 pipeline::TrialSpan readTrialSpan(const pipeline::TrialConfig& trial);
 
 /// readTrialSpan as stamps of the sweep ends (the stamps of the decoded scans, whatever the trial's convention).

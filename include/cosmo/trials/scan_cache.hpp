@@ -27,6 +27,16 @@ std::string scanCacheDir();
 std::string scanCachePath(const std::string& dir, const std::string& bag_path, const std::string& topic,
                           bool stamp_at_end);
 
+/// The header stamps of a topic's first and last message as the bag's span reader found them
+/// (ros_glue::readTrialSpan), kept beside the scans in `<dir>/<bag file name>-<16 hex digits>.span`: reading
+/// them again costs the decompression of the first chunk and of every chunk of the bag's last seconds.
+/// The key covers the bag (absolute path, size, modification time) and the topic.
+std::string scanSpanPath(const std::string& dir, const std::string& bag_path, const std::string& topic);
+/// False when `path` holds no complete span (missing, damaged).
+bool readCachedSpan(const std::string& path, StampNs& first, StampNs& last);
+/// Written through a temporary file; a failed write leaves no file.
+void writeCachedSpan(const std::string& path, StampNs first, StampNs last);
+
 /// Reads a complete cache file.
 class CachedScanSource : public TrialScanSource {
  public:

@@ -38,6 +38,7 @@
 #include "cosmo/pipeline/odometry_run_ahead.hpp"
 #include "cosmo/pipeline/seed_streams.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
+#include "cosmo/trials/sequence_metadata.hpp"
 #include "cosmo/trials/trial_reference.hpp"
 #include "cosmo/pipeline/sequence_noise_models.hpp"
 #include "cosmo/pipeline/sequence_references.hpp"
@@ -178,20 +179,6 @@ NoiseModels estimateFirst(const SequenceConfig& config, const std::string& which
   return NoiseModels::load(out_path);
 }
 
-/// The sequence's own lines of the dataset metadata: where the trials came from and the one reference offset.
-std::vector<std::pair<std::string, std::string>> sequenceMetadata(const SequenceConfig& config) {
-  const Eigen::Vector3d o = trials::sequenceReferenceOffset(config);
-  char offset[160];
-  std::snprintf(offset, sizeof offset, "[%.3f, %.3f, %.3f]  # m, subtracted from every reference position", o.x(),
-                o.y(), o.z());
-  std::vector<std::pair<std::string, std::string>> lines{{"sequence", config.name}, {"source", config.source},
-                                                         {"reference_offset", offset}};
-  for (const auto& t : config.trials)
-    lines.push_back({std::string("trial_") + t.robot,
-                     t.name + "  # stamp " + (t.stamp_at_end ? "end" : "start")});
-  return lines;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -267,7 +254,7 @@ int main(int argc, char** argv) {
     TeamRunParams params;
     params.frontend = FrontendParams::loadDir(config_dir);
     params.outlier_rule = *rule;
-    params.metadata = sequenceMetadata(config);
+    params.metadata = trials::sequenceMetadata(config);
     params.reference_odometry = reference_odometry;
     params.registration_threads = registration_threads >= 0 ? static_cast<unsigned>(registration_threads)
                                   : serial_odometry           ? 0u

@@ -42,7 +42,7 @@ void usage() {
                "                   sweep end), <trial>/pose_inW.csv (body, 10 Hz, from 1 s after the first scan),\n"
                "                   calibration.yaml;\n"
                "                   cu-multi: robotN_<trial>_lidar/ (ROS 2 sqlite3 bag, clouds stamped at the sweep\n"
-               "                   start; the LiDAR runs at 20 Hz), robotN_<trial>_gt_utm.csv (UTM-offset body poses)\n"
+               "                   start; the LiDAR runs at 20 Hz), <trial>_robotN_ref.csv (UTM-offset body poses)\n"
                "  --out DIR        put the sequence here (symlinks into the cache, or real files with --no-cache)\n"
                "  --cache-dir DIR  cache root (default: $COSMO_SIM_CACHE, else ~/.cache/cosmo/sim)\n"
                "  --no-cache       generate straight into --out, do not read or fill the cache\n"
