@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Geometry>  // cross()
+
 namespace cosmo {
 
 Eigen::Vector3d symmetricEigenvalues3(const Eigen::Matrix3d& a) {

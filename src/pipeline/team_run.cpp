@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "cosmo/comm/scan_compression.hpp"
 #include "cosmo/jrl/dataset.hpp"
 #include "cosmo/pipeline/team_radio.hpp"
 
