@@ -10,6 +10,8 @@
 #include <set>
 #include <utility>
 
+#include <Eigen/Geometry>  // cross()
+
 #include "cosmo/registration/fast_features.hpp"
 #include "cosmo/registration/neighbour_pairs.hpp"
 
