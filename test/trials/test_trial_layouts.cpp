@@ -171,7 +171,7 @@ TEST(TrialLayouts, McdLayoutReadsBackAsSimulated) {
   const auto sweep = trials::mcdSweep(kBeams, kColumns, 10.0);
   // The first read decodes the bz2 bag and fills the scan cache; the second (other topic spelling) reads it.
   expectScansAsWritten(f, trialOf(f.written, d.path, "/os_cloud_node/points"), sweep, "uint8");
-  EXPECT_EQ(d.cacheFiles().size(), 1u);
+  EXPECT_EQ(d.cacheFiles().size(), 2u);  // the decoded scans and the trial's span beside them
   expectScansAsWritten(f, trialOf(f.written, d.path, "os_cloud_node/points"), sweep, "uint8");
 
   // pose_inW.csv: body poses at the cloud stamps, row `num` 11 = cloud 10, ending 0.5 s before the last cloud.
