@@ -21,6 +21,20 @@ struct SyntheticTrial {
   Pose3 extrinsic = Pose3::Identity();
 };
 
+/// The one trial of `params` (robot a) planned and ray-cast: its scans, body trajectory and extrinsic.
+inline SyntheticTrial simulateSingleTrial(const sim::SimulationParams& params) {
+  const auto seq = sim::planSequence(params);
+  const auto& planned = seq.trials.front();
+  const sim::ScanSimulator simulator(*planned.world, params.lidar);
+  SyntheticTrial out;
+  out.robot = 'a';
+  out.body = planned.body;
+  out.extrinsic = planned.params.extrinsicPose();
+  for (const StampNs stamp : planned.scan_stamps)
+    out.scans.push_back(simulator.simulate(planned.body, out.extrinsic, stamp, planned.noise_seed));
+  return out;
+}
+
 /// `robots` trials starting at junction `start_node` (so they see the same place), each cut to its first
 /// `max_scans` scans; a light 32 x 512 LiDAR keeps the tests fast.
 inline std::vector<SyntheticTrial> makeSyntheticTeam(int robots, std::size_t max_scans, int start_node = 0) {

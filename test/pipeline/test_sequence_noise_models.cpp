@@ -69,16 +69,7 @@ test::SyntheticTrial loopTrial() {
   t.motion.start_still = 0.5;
   t.motion.end_still = 0.5;
   params.trials = {t};
-  const auto seq = sim::planSequence(params);
-  const auto& planned = seq.trials.front();
-  const sim::ScanSimulator simulator(*planned.world, params.lidar);
-  test::SyntheticTrial out;
-  out.robot = 'a';
-  out.body = planned.body;
-  out.extrinsic = planned.params.extrinsicPose();
-  for (const StampNs stamp : planned.scan_stamps)
-    out.scans.push_back(simulator.simulate(planned.body, out.extrinsic, stamp, planned.noise_seed));
-  return out;
+  return test::simulateSingleTrial(params);
 }
 
 }  // namespace
