@@ -26,7 +26,6 @@
 //         scan; default 3 realtime, 0 lockstep), ~world_frame, ~noise_models / ~config_dir (checked before anything
 //         is played: a run that cannot be labelled does not start).
 #include <geometry_msgs/PoseStamped.h>
-#include <geometry_msgs/TransformStamped.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 #include <std_msgs/Empty.h>
@@ -48,9 +47,11 @@
 #include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/pipeline/lockstep_schedule.hpp"
+#include "cosmo/pipeline/reference_stream.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/pipeline/sequence_noise_models.hpp"
 #include "cosmo/ros/bag_scan_source.hpp"
+#include "cosmo/ros/node_main.hpp"
 #include "cosmo/ros/point_cloud.hpp"
 #include "cosmo/ros/pose_msg.hpp"
 #include "cosmo/ros/resolved_sequence.hpp"
@@ -146,20 +147,6 @@ Sequence resolveSequence(const Options& o) {
   return s;
 }
 
-geometry_msgs::TransformStamped transformMsg(const Pose3& T, StampNs stamp, const std::string& parent,
-                                             const std::string& child) {
-  geometry_msgs::TransformStamped t;
-  t.header.stamp = ros_glue::stampToRos(stamp);
-  t.header.frame_id = parent;
-  t.child_frame_id = child;
-  const auto p = ros_glue::poseToMsg(T);
-  t.transform.translation.x = p.position.x;
-  t.transform.translation.y = p.position.y;
-  t.transform.translation.z = p.position.z;
-  t.transform.rotation = p.orientation;
-  return t;
-}
-
 class Player {
  public:
   Player(ros::NodeHandle& nh, Options options, Sequence sequence)
@@ -171,11 +158,8 @@ class Player {
 
   /// Waits for the front-ends (and, in lockstep, the broker) to connect; decides whether a radio runs.
   void connect() {
-    const ros::WallTime start = ros::WallTime::now();
-    auto waitConnected = [&](const std::function<bool()>& connected) {
-      while (ros::ok() && !connected() && (ros::WallTime::now() - start).toSec() < o_.connect_timeout)
-        ros::WallDuration(0.05).sleep();
-    };
+    const ros::WallTime deadline = ros_glue::wallDeadline(o_.connect_timeout);
+    auto waitConnected = [&](const std::function<bool()>& connected) { ros_glue::waitUntil(connected, deadline); };
     for (auto& [r, pub] : points_pub_) waitConnected([&] { return pub.getNumSubscribers() > 0; });
     for (auto& [r, pub] : pose_pub_)
       if (!seq_.references[r].empty()) waitConnected([&] { return pub.getNumSubscribers() > 0; });
@@ -293,18 +277,12 @@ class Player {
   /// Waits (polling; the callbacks run on the spinner thread) until `done` holds under the lock, at most
   /// ~ack_timeout; false on a timeout (with a warning).
   bool waitFor(const char* what, const std::function<bool()>& done) {
-    const ros::WallTime start = ros::WallTime::now();
-    while (ros::ok()) {
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (done()) return true;
-      }
-      if ((ros::WallTime::now() - start).toSec() > o_.ack_timeout) {
-        ROS_WARN("player: no %s within %.0f s; continuing", what, o_.ack_timeout);
-        return false;
-      }
-      ros::WallDuration(0.0005).sleep();
-    }
+    const auto locked = [&] {
+      std::lock_guard<std::mutex> lock(mutex_);
+      return done();
+    };
+    if (ros_glue::waitUntil(locked, ros_glue::wallDeadline(o_.ack_timeout), 0.0005)) return true;
+    if (ros::ok()) ROS_WARN("player: no %s within %.0f s; continuing", what, o_.ack_timeout);
     return false;
   }
 
@@ -376,22 +354,15 @@ class Player {
   void publishReferenceUpTo(char robot, StampNs stamp) {
     const Trajectory& ref = seq_.references[robot];
     if (ref.empty()) return;
-    const auto last = last_pose_sent_.find(robot);
-    const StampNs from = last != last_pose_sent_.end() ? last->second : stamp - std::min<StampNs>(stamp, 200000000ULL);
-    std::vector<StampNs> stamps;
-    for (const auto& p : ref.poses())
-      if (p.stamp > from && p.stamp < stamp && (stamps.empty() || p.stamp - stamps.back() >= 20000000ULL))
-        stamps.push_back(p.stamp);
-    stamps.push_back(stamp);
-    for (StampNs s : stamps) {
+    for (StampNs s : reference_stream_.beforeScan(robot, ref, stamp)) {
       geometry_msgs::PoseStamped ps;
       ps.header.stamp = ros_glue::stampToRos(s);
       ps.header.frame_id = o_.world_frame;
       ps.pose = ros_glue::poseToMsg(ref.atClamped(s));
       pose_pub_[robot].publish(ps);
     }
-    last_pose_sent_[robot] = stamp;
-    tf_.sendTransform(transformMsg(ref.atClamped(stamp), stamp, o_.world_frame, std::string(1, robot) + "/reference"));
+    tf_.sendTransform(ros_glue::transformMsg(ref.atClamped(stamp), ros_glue::stampToRos(stamp), o_.world_frame,
+                                             std::string(1, robot) + "/reference"));
   }
 
   double totalSeconds() const { return toSeconds(seq_.end - seq_.timing.start()); }
@@ -424,7 +395,7 @@ class Player {
   bool use_broker_ = false;
   std::uint32_t step_seq_ = 0;
   std::size_t published_ = 0;
-  std::map<char, StampNs> last_pose_sent_;
+  pipeline::ReferenceStream reference_stream_;  ///< the reference poses sent beside the scans
   ros::WallTime wall_start_, last_progress_;
   ros::Publisher clock_pub_, progress_pub_, done_pub_, sequence_pub_, step_pub_;
   std::map<char, ros::Publisher> points_pub_, pose_pub_, trajectory_pub_;
@@ -438,8 +409,8 @@ class Player {
 int main(int argc, char** argv) {
   cosmo::keepScanBuffersInProcess();
   ros::init(argc, argv, "player");
-  ros::NodeHandle nh, pnh("~");
-  try {
+  return ros_glue::runNode("player", [] {
+    ros::NodeHandle nh, pnh("~");
     const Options options = readOptions(pnh);
     Sequence sequence = resolveSequence(options);
     ROS_INFO("player: sequence %s, %zu robots, %.1f s, mode %s", sequence.config.name.c_str(),
@@ -450,9 +421,5 @@ int main(int argc, char** argv) {
     player.connect();
     player.play();
     player.finish();
-  } catch (const std::exception& e) {
-    ROS_FATAL("player: %s", e.what());
-    return 1;
-  }
-  return 0;
+  });
 }

@@ -1,10 +1,12 @@
 #pragma once
-// geometry_msgs <-> cosmo::Pose3 and ROS time <-> StampNs, shared by the nodes. Poses go out through tf2_eigen;
-// incoming quaternions are normalised (a real robot's odometry is not always unit-norm).
+// geometry_msgs <-> cosmo::Pose3 (poses and TF transforms) and ROS time <-> StampNs, shared by the nodes. Poses go
+// out through tf2_eigen; incoming quaternions are normalised (a real robot's odometry is not always unit-norm).
 #include <geometry_msgs/Pose.h>
+#include <geometry_msgs/TransformStamped.h>
 #include <ros/time.h>
 #include <tf2_eigen/tf2_eigen.h>
 
+#include <string>
 #include <vector>
 
 #include "cosmo/common/pose.hpp"
@@ -44,6 +46,21 @@ inline ros::Time stampToRos(StampNs t) {
   ros::Time r;
   r.fromNSec(t);
   return r;
+}
+
+/// The TF transform `parent` -> `child` that places `child` at `T` in `parent`.
+inline geometry_msgs::TransformStamped transformMsg(const Pose3& T, const ros::Time& stamp, const std::string& parent,
+                                                    const std::string& child) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = stamp;
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  const geometry_msgs::Pose p = poseToMsg(T);
+  t.transform.translation.x = p.position.x;
+  t.transform.translation.y = p.position.y;
+  t.transform.translation.z = p.position.z;
+  t.transform.rotation = p.orientation;
+  return t;
 }
 
 }  // namespace cosmo::ros_glue

@@ -1,0 +1,16 @@
+#pragma once
+// A front-end's results as the messages the recorder takes (cosmo/RecorderKeyframe, cosmo/RecorderLoopClosure),
+// with the bit-exact pose fields that keep the launch's JRL byte-identical to the offline driver's.
+#include <string>
+
+#include "cosmo/RecorderKeyframe.h"
+#include "cosmo/RecorderLoopClosure.h"
+#include "cosmo/pipeline/robot_frontend.hpp"
+
+namespace cosmo::ros_glue {
+
+/// `frame`: the frame of the reference pose (the world).
+cosmo::RecorderKeyframe recorderKeyframeMsg(const pipeline::KeyframeRecord& keyframe, const std::string& frame);
+cosmo::RecorderLoopClosure recorderLoopClosureMsg(const pipeline::LoopClosureAttempt& closure, const std::string& frame);
+
+}  // namespace cosmo::ros_glue

@@ -1,0 +1,37 @@
+#include "cosmo/ros/frontend_msgs.hpp"
+
+#include "cosmo/ros/pose_msg.hpp"
+
+namespace cosmo::ros_glue {
+
+cosmo::RecorderKeyframe recorderKeyframeMsg(const pipeline::KeyframeRecord& kf, const std::string& frame) {
+  cosmo::RecorderKeyframe m;
+  m.header.stamp = stampToRos(kf.stamp);
+  m.header.frame_id = frame;
+  m.robot = std::string(1, kf.robot);
+  m.index = static_cast<std::uint32_t>(kf.index);
+  m.odometry_from_previous = poseToMsg(kf.relative);
+  m.odometry_from_previous_exact = poseToExact(kf.relative);
+  m.has_reference = kf.reference.has_value();
+  if (kf.reference) {
+    m.reference = poseToMsg(*kf.reference);
+    m.reference_exact = poseToExact(*kf.reference);
+  }
+  return m;
+}
+
+cosmo::RecorderLoopClosure recorderLoopClosureMsg(const pipeline::LoopClosureAttempt& a, const std::string& frame) {
+  cosmo::RecorderLoopClosure m;
+  m.header.stamp = stampToRos(a.computed_at);
+  m.header.frame_id = frame;
+  m.owner = std::string(1, a.owner);
+  m.robot1 = std::string(1, a.robot1);
+  m.index1 = static_cast<std::uint32_t>(a.index1);
+  m.robot2 = std::string(1, a.robot2);
+  m.index2 = static_cast<std::uint32_t>(a.index2);
+  m.measurement = poseToMsg(a.measurement);
+  m.measurement_exact = poseToExact(a.measurement);
+  return m;
+}
+
+}  // namespace cosmo::ros_glue
