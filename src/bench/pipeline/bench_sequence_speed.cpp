@@ -26,7 +26,10 @@
 #include <string>
 #include <vector>
 
+#include "cosmo/common/text_list.hpp"
+
 namespace fs = std::filesystem;
+using cosmo::splitList;
 
 namespace {
 
@@ -34,15 +37,6 @@ fs::path programDir() {
   std::error_code ec;
   const fs::path self = fs::read_symlink("/proc/self/exe", ec);
   return ec ? fs::path(".") : self.parent_path();
-}
-
-std::vector<std::string> splitComma(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
 }
 
 std::string loadAverage() {
@@ -156,8 +150,8 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--beams" && i + 1 < argc) {
       beam_counts.clear();
-      for (const auto& b : splitComma(argv[++i])) beam_counts.push_back(std::stoi(b));
-    } else if (a == "--runs" && i + 1 < argc) runs = splitComma(argv[++i]);
+      for (const auto& b : splitList(argv[++i])) beam_counts.push_back(std::stoi(b));
+    } else if (a == "--runs" && i + 1 < argc) runs = splitList(argv[++i]);
     else if (a == "--dir" && i + 1 < argc) dir = argv[++i];
     else if (a == "--sim-cache" && i + 1 < argc) sim_cache = argv[++i];
     else if (a == "--comm" && i + 1 < argc) comm = argv[++i];

@@ -20,6 +20,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <optional>
 #include <algorithm>
 #include <iostream>
 #include <sstream>
@@ -28,6 +30,7 @@
 #include <vector>
 
 #include "cosmo/common/allocator_tuning.hpp"
+#include "cosmo/common/text_list.hpp"
 #include "cosmo/pipeline/kept_scan.hpp"
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/comm/transfer_log.hpp"
@@ -85,15 +88,6 @@ void usage() {
                "                       on (0: on the team's thread; default: the machine's cores; 0 with --serial-odometry);\n"
                "                       the output is the same byte for byte\n"
                "  --max-seconds S      stop after S seconds of sequence time (quick looks)\n";
-}
-
-std::vector<std::string> splitComma(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
 }
 
 RadioParams radioFor(const std::string& comm, const std::string& config_dir, std::string& label) {
@@ -179,19 +173,42 @@ NoiseModels estimateFirst(const SequenceConfig& config, const std::string& which
   return NoiseModels::load(out_path);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  cosmo::keepScanBuffersInProcess();
+struct Options {
   std::string sequence_path, out_dir = ".", config_dir = defaultConfigDir(), noise_path, rule_name = "fidelity";
-  std::string estimate_trial, noise_out;
+  std::string estimate_trial, noise_out, data_root;
   NoiseModelEstimationParams estimation;
   std::vector<std::string> comms{"wifi"};
   bool seed_given = false, reference_odometry = false, quiet = false, serial_odometry = false, skip_check = false;
-  std::string data_root;
   unsigned long long seed = 0;
   double max_seconds = 0.0;
   int registration_threads = -1;  // -1: the default
+};
+
+/// Reads one option (and its value) at argv[i]; false when it is not one.
+bool readOption(const std::string& a, const std::function<std::string()>& value, Options& o) {
+  if (a == "--comm") o.comms = splitList(value());
+  else if (a == "--seed") { o.seed = std::stoull(value()); o.seed_given = true; }
+  else if (a == "--out") o.out_dir = value();
+  else if (a == "--config-dir") o.config_dir = value();
+  else if (a == "--data-root") o.data_root = value();
+  else if (a == "--no-check") o.skip_check = true;
+  else if (a == "--noise-models") o.noise_path = value();
+  else if (a == "--outlier-rule") o.rule_name = value();
+  else if (a == "--estimate-noise-models") o.estimate_trial = value();
+  else if (a == "--noise-models-out") o.noise_out = value();
+  else if (a == "--good-translation") o.estimation.max_translation_error = std::stod(value());
+  else if (a == "--good-rotation") o.estimation.max_rotation_error = std::stod(value());
+  else if (a == "--reference-odometry") o.reference_odometry = true;
+  else if (a == "--serial-odometry") o.serial_odometry = true;
+  else if (a == "--registration-threads") o.registration_threads = std::stoi(value());
+  else if (a == "--max-seconds") o.max_seconds = std::stod(value());
+  else if (a == "--quiet") o.quiet = true;
+  else return false;
+  return true;
+}
+
+/// The command line; an exit code when the program ends here (help, a usage error).
+std::optional<int> parseArgs(int argc, char** argv, Options& o) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -203,191 +220,291 @@ int main(int argc, char** argv) {
       return argv[++i];
     };
     try {
-      if (a == "--comm") comms = splitComma(value());
-      else if (a == "--seed") { seed = std::stoull(value()); seed_given = true; }
-      else if (a == "--out") out_dir = value();
-      else if (a == "--config-dir") config_dir = value();
-      else if (a == "--data-root") data_root = value();
-      else if (a == "--no-check") skip_check = true;
-      else if (a == "--noise-models") noise_path = value();
-      else if (a == "--outlier-rule") rule_name = value();
-      else if (a == "--estimate-noise-models") estimate_trial = value();
-      else if (a == "--noise-models-out") noise_out = value();
-      else if (a == "--good-translation") estimation.max_translation_error = std::stod(value());
-      else if (a == "--good-rotation") estimation.max_rotation_error = std::stod(value());
-      else if (a == "--reference-odometry") reference_odometry = true;
-      else if (a == "--serial-odometry") serial_odometry = true;
-      else if (a == "--registration-threads") registration_threads = std::stoi(value());
-      else if (a == "--max-seconds") max_seconds = std::stod(value());
-      else if (a == "--quiet") quiet = true;
-      else if (a == "-h" || a == "--help") { usage(); return 0; }
-      else if (!a.empty() && a[0] == '-') { std::cerr << "unknown option " << a << "\n"; usage(); return 2; }
-      else if (sequence_path.empty()) sequence_path = a;
-      else { std::cerr << "unexpected argument " << a << "\n"; usage(); return 2; }
+      if (readOption(a, value, o)) continue;
+      if (a == "-h" || a == "--help") { usage(); return 0; }
+      if (!a.empty() && a[0] == '-') { std::cerr << "unknown option " << a << "\n"; usage(); return 2; }
+      if (!o.sequence_path.empty()) { std::cerr << "unexpected argument " << a << "\n"; usage(); return 2; }
+      o.sequence_path = a;
     } catch (const std::exception&) {
       std::cerr << "bad value for " << a << "\n";
       return 2;
     }
   }
-  if (sequence_path.empty() || comms.empty()) {
+  if (o.sequence_path.empty() || o.comms.empty()) {
     usage();
     return 2;
   }
+  return std::nullopt;
+}
+
+/// The options that need each other or a range.
+void checkOptions(const Options& o) {
+  if (!(o.estimation.max_translation_error > 0) || !(o.estimation.max_rotation_error > 0))
+    throw std::runtime_error("--good-translation / --good-rotation: expected positive numbers");
+  if (!o.estimate_trial.empty() && !o.noise_path.empty())
+    throw std::runtime_error("--estimate-noise-models and --noise-models: give one of them");
+}
+
+/// The pre-flight check (cosmo_check): stop before hours of work that give no labels.
+void preflightCheck(const SequenceConfig& config, const Options& o) {
+  if (o.skip_check) return;
+  std::string check;
+  const bool ok = ros_glue::checkSequence(
+      config, o.estimate_trial.empty() ? chooseNoiseModels(config, o.config_dir, o.noise_path)
+                                       : "estimated first from trial " + o.estimate_trial, check);
+  if (!o.quiet || !ok) std::printf("%s", check.c_str());
+  if (!ok) throw std::runtime_error("the pre-flight check failed (above); --no-check runs anyway");
+}
+
+/// The team's parameters; the noise models are the sequence's, or estimated first (--estimate-noise-models).
+TeamRunParams teamRunParams(const SequenceConfig& config, const Options& o) {
+  const auto rule = parseOutlierRule(o.rule_name);
+  if (!rule) throw std::runtime_error("--outlier-rule: expected fidelity or squared, got '" + o.rule_name + "'");
+  checkOptions(o);
+  preflightCheck(config, o);
+  TeamRunParams params;
+  params.frontend = FrontendParams::loadDir(o.config_dir);
+  params.outlier_rule = *rule;
+  params.metadata = trials::sequenceMetadata(config);
+  params.reference_odometry = o.reference_odometry;
+  params.registration_threads = o.registration_threads >= 0 ? static_cast<unsigned>(o.registration_threads)
+                                : o.serial_odometry           ? 0u
+                                                              : std::max(1u, std::thread::hardware_concurrency());
+  std::string first_label;  // the single-trial run of the estimate uses the first comm model (no transfers alone)
+  params.radio = radioFor(o.comms.front(), o.config_dir, first_label);
+  params.noise = o.estimate_trial.empty()
+                     ? loadSequenceNoiseModels(config, o.config_dir, o.noise_path)
+                     : estimateFirst(config, o.estimate_trial, params, o.estimation, o.noise_out, o.config_dir);
+  return params;
+}
+
+void printSequence(const SequenceConfig& config, const SequenceTiming& timing, const TeamRunParams& params) {
+  std::printf("sequence %s (%s, seed %llu): %zu trials, %.1f s, noise models %s\n", config.name.c_str(),
+              config.source.c_str(), config.seed, config.trials.size(), timing.durationSeconds(),
+              params.noise.describe().c_str());
+  for (const auto& t : timing.trials())
+    std::printf("  robot %c  %-22s starts at +%7.2f s, %7.1f s long (offset %+.3f s)\n", t.robot,
+                config.trial(t.robot).name.c_str(), toSeconds(t.start() - timing.start()),
+                toSeconds(t.end() - t.start()), static_cast<double>(t.offset_ns) * 1e-9);
+}
+
+/// The progress line, about every 5 % of the sequence (at least every 10 s of it).
+class ProgressLine {
+ public:
+  ProgressLine(const TeamRun& run, std::string label, StampNs start, double duration, bool quiet,
+               const bench::Stopwatch& wall)
+      : run_(run), label_(std::move(label)), start_(start), duration_(duration), quiet_(quiet), wall_(wall) {}
+
+  void operator()(StampNs stamp) {
+    const double t = toSeconds(stamp - start_);
+    if (quiet_ || t < next_report_) return;
+    const auto& c = run_.counts();
+    std::printf("[%s] %6.1f / %.1f s  keyframes %zu  loop closures intra %zu (+%zu rejected) inter %zu (+%zu rejected)"
+                "  transfers %zu delivered, %zu timed out  (%.1f s wall)\n",
+                label_.c_str(), t, duration_, c.keyframes, c.intra_accepted, c.intra_rejected, c.inter_accepted,
+                c.inter_rejected, c.transfers_delivered, c.transfers_timed_out, wall_.elapsedMs() * 1e-3);
+    std::fflush(stdout);
+    next_report_ = t + std::max(10.0, duration_ / 20.0);
+  }
+
+ private:
+  const TeamRun& run_;
+  std::string label_;
+  StampNs start_;
+  double duration_, next_report_ = 0.0;
+  bool quiet_;
+  const bench::Stopwatch& wall_;
+};
+
+/// The robots' own results (odometry, keyframe scans) do not depend on the comm model: with several models they
+/// are computed once and replayed for the others. Their keyframe scans wait in a spill file (KeptScan), not in
+/// memory.
+struct ComputedScans {
+  std::vector<AheadScan> scans;
+  std::vector<std::shared_ptr<const KeptScan>> keyframes;  // one per keyframe of `scans`, in order
+  std::shared_ptr<SpillFile> spill;
+  std::map<char, std::size_t> dropped;
+  bool ready = false;
+
+  void keep(const AheadScan& s) {
+    scans.push_back(s);
+    if (!s.keyframe_scan) return;
+    keyframes.push_back(std::make_shared<const KeptScan>(s.keyframe_scan, spill));
+    scans.back().keyframe_scan = std::make_shared<const Scan>();  // a marker: the scan is kept above
+  }
+};
+
+/// How a run fed the team: scans dropped per robot, and where the team's thread spent its time (run-ahead path).
+struct FeedFigures {
+  std::map<char, std::size_t> dropped;
+  double wait_odometry_s = 0.0, team_work_s = 0.0, finish_s = 0.0;
+};
+
+/// The team's scans of `computed` again.
+FeedFigures replayComputed(TeamRun& run, const ComputedScans& computed, ProgressLine& progress) {
+  std::size_t next_keyframe = 0;
+  for (const AheadScan& s : computed.scans) {
+    run.addPrepared(s.robot, s.stamp, s.odometry, s.keyframe_scan ? computed.keyframes.at(next_keyframe++)->get() : nullptr);
+    progress(s.stamp);
+  }
+  FeedFigures f;
+  f.dropped = computed.dropped;
+  return f;
+}
+
+/// The robots' own work (LOAM, keyframes) on worker threads; this thread runs the team. `computed`: kept for the
+/// other comm models when given.
+FeedFigures runAhead(TeamRun& run, const SequenceConfig& config, const SequenceTiming& timing,
+                     const TeamRunParams& params, const std::map<char, Trajectory>& references, StampNs end,
+                     ComputedScans* computed, ProgressLine& progress) {
+  FeedFigures f;
+  OdometryRunAhead ahead(ros_glue::openTrialSources(config), timing, params.frontend, references);
+  AheadScan s;
+  for (;;) {
+    bench::Stopwatch waited;
+    const bool more = ahead.next(s);
+    f.wait_odometry_s += waited.elapsedMs() * 1e-3;
+    if (!more || s.stamp > end) break;
+    if (computed) computed->keep(s);
+    bench::Stopwatch worked;
+    run.addPrepared(s.robot, s.stamp, s.odometry, std::move(s.keyframe_scan));
+    f.team_work_s += worked.elapsedMs() * 1e-3;
+    progress(s.stamp);
+  }
+  ahead.stop();  // the workers may have run past --max-seconds
+  f.dropped = ahead.dropped();
+  if (computed) {
+    computed->dropped = f.dropped;
+    computed->ready = true;
+  }
+  return f;
+}
+
+/// Everything in this thread, scan by scan in the team's order.
+FeedFigures runSerial(TeamRun& run, const SequenceConfig& config, const SequenceTiming& timing, StampNs end,
+                      ProgressLine& progress) {
+  MergedScanStream stream = ros_glue::openSequenceStream(config, timing);
+  char robot;
+  Scan scan;
+  while (stream.next(robot, scan)) {
+    if (scan.stamp > end) break;
+    run.addScan(robot, scan);
+    progress(scan.stamp);
+  }
+  FeedFigures f;
+  f.dropped = stream.dropped();
+  return f;
+}
+
+/// What a run wrote: the JRL and the transfer log.
+struct Written {
+  fs::path jrl, csv;
+  BuildReport report;
+};
+
+Written writeOutputs(const TeamRun& run, const fs::path& out_dir, const std::string& name) {
+  Written w;
+  w.jrl = out_dir / (name + ".jrl");
+  w.report = run.recorder().write(w.jrl.string());
+  w.csv = out_dir / (name + "_transfers.csv");
+  writeTransferLog(w.csv.string(), run.radio().transferLog(), run.radio().stats(), run.radio().params());
+  return w;
+}
+
+/// The dataset's summary on stdout (statistics, validation, the inlier solve) and the figures beside the JRL.
+void printDataset(const TeamRun& run, const Written& w) {
+  const fs::path& jrl = w.jrl;
+  const BuildReport& report = w.report;
+  const fs::path& csv = w.csv;
+  const jrl::Dataset dataset = run.recorder().build();
+  const auto violations = jrl::validate(dataset);
+  std::printf("wrote %s (%zu entries; transfer log %s)\n", jrl.string().c_str(), report.entries, csv.string().c_str());
+  if (!report.labelled) std::printf("  no outlier labels: %s\n", report.labels_note.c_str());
+  std::printf("%s\n", jrl::formatStats(jrl::computeStats(dataset)).c_str());
+  std::printf("  validate: %zu violations\n", violations.size());
+  for (std::size_t i = 0; i < violations.size() && i < 10; ++i) std::printf("    %s\n", violations[i].str().c_str());
+  std::printf("  %s\n  %s\n", backend::inliersSolveLine(dataset).c_str(),
+              report::writeFiguresBesideJrl(dataset, jrl.string()).c_str());
+}
+
+/// Wall time, CPU (the process, the team's thread, the registration threads) and peak memory of one run.
+struct RunClock {
+  bench::Stopwatch wall;
+  double cpu_before = cpuSeconds(), team_cpu_before = cpuSeconds(RUSAGE_THREAD);
+
+  void print(const TeamRun& run, double wall_s, double duration, const FeedFigures& f) const {
+    const double cpu = cpuSeconds() - cpu_before, team_cpu = cpuSeconds(RUSAGE_THREAD) - team_cpu_before;
+    std::printf("  wall %.1f s for %.1f s of sequence (%.2fx real time), CPU %.1f s (%.0f %% of one core; the team's "
+                "thread %.1f s", wall_s, duration, duration / std::max(wall_s, 1e-9), cpu,
+                100.0 * cpu / std::max(wall_s, 1e-9), team_cpu);
+    if (const RegistrationPool* pool = run.registrationPool())
+      std::printf(", %u registration threads %.1f s", pool->threads(), pool->cpuSeconds());
+    std::printf("), peak memory %.0f MB\n", peakRssMb());
+    if (f.wait_odometry_s + f.team_work_s > 0.0)
+      std::printf("  the team's thread: %.1f s waiting for the robots' odometry, %.1f s on the team's work (with "
+                  "waits for registrations), %.1f s finishing (the last transfers and registrations)\n",
+                  f.wait_odometry_s, f.team_work_s, f.finish_s);
+  }
+};
+
+/// The sequence as every comm model's run sees it.
+struct Sequence {
+  SequenceConfig config;
+  SequenceTiming timing;
+  std::map<char, Trajectory> references;
+  StampNs end = 0;  ///< the sequence end, or --max-seconds after its start
+};
+
+/// One comm model's run: the team fed with the robots' scans (computed, or replayed from `computed`), finished
+/// at the end, its outputs written.
+void runComm(const std::string& comm, const Sequence& seq, TeamRunParams params, const Options& o,
+             ComputedScans& computed) {
+  std::string label;
+  params.radio = radioFor(comm, o.config_dir, label);
+  const StampNs origin = radioGridOrigin(seq.timing.start(), params.radio.step);
+  const RunClock clock;
+  TeamRun run(seq.config.name + "_" + label, seq.references, params, deriveSeed(seq.config.seed, "radio"), origin);
+  const double duration = toSeconds(seq.end - seq.timing.start());
+  ProgressLine progress(run, label, seq.timing.start(), duration, o.quiet, clock.wall);
+  FeedFigures f;
+  if (computed.ready) f = replayComputed(run, computed, progress);
+  else if (!o.reference_odometry && !o.serial_odometry)
+    f = runAhead(run, seq.config, seq.timing, params, seq.references, seq.end, o.comms.size() > 1 ? &computed : nullptr,
+                 progress);
+  else f = runSerial(run, seq.config, seq.timing, seq.end, progress);
+  bench::Stopwatch finishing;
+  run.finish(seq.end);
+  f.finish_s = finishing.elapsedMs() * 1e-3;
+  for (const auto& [r, n] : f.dropped)
+    std::fprintf(stderr, "warning: robot %c: %zu scans dropped (stamps not increasing)\n", r, n);
+  for (const auto& w : run.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  const Written written = writeOutputs(run, o.out_dir, seq.config.name + "_" + label);
+  const double wall = clock.wall.elapsedMs() * 1e-3;
+  printDataset(run, written);
+  clock.print(run, wall, duration, f);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  cosmo::keepScanBuffersInProcess();
+  Options o;
+  if (const std::optional<int> exit_code = parseArgs(argc, argv, o)) return *exit_code;
   try {
     bench::Stopwatch total;
-    SequenceConfig config = SequenceConfig::load(sequence_path, data_root);
-    if (seed_given) config.seed = seed;
-    const auto rule = parseOutlierRule(rule_name);
-    if (!rule) throw std::runtime_error("--outlier-rule: expected fidelity or squared, got '" + rule_name + "'");
-    if (!(estimation.max_translation_error > 0) || !(estimation.max_rotation_error > 0))
-      throw std::runtime_error("--good-translation / --good-rotation: expected positive numbers");
-    if (!estimate_trial.empty() && !noise_path.empty())
-      throw std::runtime_error("--estimate-noise-models and --noise-models: give one of them");
-    if (!skip_check) {  // the pre-flight check (cosmo_check): stop before hours of work that give no labels
-      std::string check;
-      const bool ok = ros_glue::checkSequence(
-          config, estimate_trial.empty() ? chooseNoiseModels(config, config_dir, noise_path)
-                                         : "estimated first from trial " + estimate_trial, check);
-      if (!quiet || !ok) std::printf("%s", check.c_str());
-      if (!ok) throw std::runtime_error("the pre-flight check failed (above); --no-check runs anyway");
-    }
-    TeamRunParams params;
-    params.frontend = FrontendParams::loadDir(config_dir);
-    params.outlier_rule = *rule;
-    params.metadata = trials::sequenceMetadata(config);
-    params.reference_odometry = reference_odometry;
-    params.registration_threads = registration_threads >= 0 ? static_cast<unsigned>(registration_threads)
-                                  : serial_odometry           ? 0u
-                                                              : std::max(1u, std::thread::hardware_concurrency());
-    std::string first_label;  // the single-trial run of the estimate uses the first comm model (no transfers alone)
-    params.radio = radioFor(comms.front(), config_dir, first_label);
-    params.noise = estimate_trial.empty()
-                       ? loadSequenceNoiseModels(config, config_dir, noise_path)
-                       : estimateFirst(config, estimate_trial, params, estimation, noise_out, config_dir);
-    fs::create_directories(out_dir);
-
-    const SequenceTiming timing = ros_glue::synchronizeSequence(config);
-    std::printf("sequence %s (%s, seed %llu): %zu trials, %.1f s, noise models %s\n", config.name.c_str(),
-                config.source.c_str(), config.seed, config.trials.size(), timing.durationSeconds(),
-                params.noise.describe().c_str());
-    for (const auto& t : timing.trials())
-      std::printf("  robot %c  %-22s starts at +%7.2f s, %7.1f s long (offset %+.3f s)\n", t.robot,
-                  config.trial(t.robot).name.c_str(), toSeconds(t.start() - timing.start()),
-                  toSeconds(t.end() - t.start()), static_cast<double>(t.offset_ns) * 1e-9);
-    const std::map<char, Trajectory> references = trials::loadSequenceReferences(config, timing);
-
-    // Radio steps on the absolute grid k * delta (as the comm_broker node does on ROS time).
-    const StampNs end = max_seconds > 0 ? std::min(timing.end(), timing.start() + toStampNs(max_seconds)) : timing.end();
-    // The robots' own results (odometry, keyframe scans) do not depend on the comm model: with several models they
-    // are computed once and replayed for the others.
-    // Their keyframe scans wait in a spill file (KeptScan), not in memory.
-    std::vector<AheadScan> computed;
-    std::vector<std::shared_ptr<const KeptScan>> computed_keyframes;  // one per keyframe of `computed`, in order
-    const auto computed_spill = params.frontend.spill_keyframes
-                                    ? std::make_shared<SpillFile>(params.frontend.spill_dir) : nullptr;
-    std::map<char, std::size_t> computed_dropped;
-    bool replay = false;
-    for (const std::string& comm : comms) {
-      std::string label;
-      params.radio = radioFor(comm, config_dir, label);
-      const StampNs origin = radioGridOrigin(timing.start(), params.radio.step);
-      bench::Stopwatch sw;
-      const double cpu_before = cpuSeconds(), team_cpu_before = cpuSeconds(RUSAGE_THREAD);
-      TeamRun run(config.name + "_" + label, references, params, deriveSeed(config.seed, "radio"), origin);
-      double next_report = 0.0;
-      const double duration = toSeconds(end - timing.start());
-      auto progress = [&](StampNs stamp) {
-        const double t = toSeconds(stamp - timing.start());
-        if (quiet || t < next_report) return;
-        const auto& c = run.counts();
-        std::printf("[%s] %6.1f / %.1f s  keyframes %zu  loop closures intra %zu (+%zu rejected) inter %zu (+%zu rejected)"
-                    "  transfers %zu delivered, %zu timed out  (%.1f s wall)\n",
-                    label.c_str(), t, duration, c.keyframes, c.intra_accepted, c.intra_rejected, c.inter_accepted,
-                    c.inter_rejected, c.transfers_delivered, c.transfers_timed_out, sw.elapsedMs() * 1e-3);
-        std::fflush(stdout);
-        next_report = t + std::max(10.0, duration / 20.0);
-      };
-      std::map<char, std::size_t> dropped;
-      double wait_odometry_s = 0.0, team_work_s = 0.0;  // the team thread's wall time (run-ahead path)
-      if (replay) {
-        std::size_t next_keyframe = 0;
-        for (const AheadScan& s : computed) {
-          run.addPrepared(s.robot, s.stamp, s.odometry,
-                          s.keyframe_scan ? computed_keyframes.at(next_keyframe++)->get() : nullptr);
-          progress(s.stamp);
-        }
-        dropped = computed_dropped;
-      } else if (!reference_odometry && !serial_odometry) {
-        // The robots' own work (LOAM, keyframes) on worker threads; this thread runs the team.
-        const bool keep = comms.size() > 1;
-        OdometryRunAhead ahead(ros_glue::openTrialSources(config), timing, params.frontend, references);
-        AheadScan s;
-        for (;;) {
-          bench::Stopwatch waited;
-          const bool more = ahead.next(s);
-          wait_odometry_s += waited.elapsedMs() * 1e-3;
-          if (!more || s.stamp > end) break;
-          if (keep) {
-            computed.push_back(s);
-            if (s.keyframe_scan) {
-              computed_keyframes.push_back(std::make_shared<const KeptScan>(s.keyframe_scan, computed_spill));
-              computed.back().keyframe_scan = std::make_shared<const Scan>();  // a marker: the scan is kept above
-            }
-          }
-          bench::Stopwatch worked;
-          run.addPrepared(s.robot, s.stamp, s.odometry, std::move(s.keyframe_scan));
-          team_work_s += worked.elapsedMs() * 1e-3;
-          progress(s.stamp);
-        }
-        ahead.stop();  // the workers may have run past --max-seconds
-        dropped = ahead.dropped();
-        computed_dropped = dropped;
-        replay = keep;
-      } else {
-        MergedScanStream stream = ros_glue::openSequenceStream(config, timing);
-        char robot;
-        Scan scan;
-        while (stream.next(robot, scan)) {
-          if (scan.stamp > end) break;
-          run.addScan(robot, scan);
-          progress(scan.stamp);
-        }
-        dropped = stream.dropped();
-      }
-      bench::Stopwatch finishing;
-      run.finish(end);
-      const double finish_s = finishing.elapsedMs() * 1e-3;
-      for (const auto& [r, n] : dropped)
-        std::fprintf(stderr, "warning: robot %c: %zu scans dropped (stamps not increasing)\n", r, n);
-      for (const auto& w : run.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
-
-      const fs::path jrl = fs::path(out_dir) / (config.name + "_" + label + ".jrl");
-      const BuildReport report = run.recorder().write(jrl.string());
-      const fs::path csv = fs::path(out_dir) / (config.name + "_" + label + "_transfers.csv");
-      writeTransferLog(csv.string(), run.radio().transferLog(), run.radio().stats(), run.radio().params());
-      const double wall = sw.elapsedMs() * 1e-3;
-      const jrl::Dataset dataset = run.recorder().build();
-      const auto violations = jrl::validate(dataset);
-      std::printf("wrote %s (%zu entries; transfer log %s)\n", jrl.string().c_str(), report.entries, csv.string().c_str());
-      if (!report.labelled) std::printf("  no outlier labels: %s\n", report.labels_note.c_str());
-      std::printf("%s\n", jrl::formatStats(jrl::computeStats(dataset)).c_str());
-      std::printf("  validate: %zu violations\n", violations.size());
-      for (std::size_t i = 0; i < violations.size() && i < 10; ++i)
-        std::printf("    %s\n", violations[i].str().c_str());
-      std::printf("  %s\n  %s\n", backend::inliersSolveLine(dataset).c_str(),
-                  report::writeFiguresBesideJrl(dataset, jrl.string()).c_str());
-      const double cpu = cpuSeconds() - cpu_before, team_cpu = cpuSeconds(RUSAGE_THREAD) - team_cpu_before;
-      std::printf("  wall %.1f s for %.1f s of sequence (%.2fx real time), CPU %.1f s (%.0f %% of one core; the team's "
-                  "thread %.1f s", wall, duration, duration / std::max(wall, 1e-9), cpu,
-                  100.0 * cpu / std::max(wall, 1e-9), team_cpu);
-      if (const RegistrationPool* pool = run.registrationPool())
-        std::printf(", %u registration threads %.1f s", pool->threads(), pool->cpuSeconds());
-      std::printf("), peak memory %.0f MB\n", peakRssMb());
-      if (wait_odometry_s + team_work_s > 0.0)
-        std::printf("  the team's thread: %.1f s waiting for the robots' odometry, %.1f s on the team's work (with "
-                    "waits for registrations), %.1f s finishing (the last transfers and registrations)\n",
-                    wait_odometry_s, team_work_s, finish_s);
-    }
+    Sequence seq;
+    seq.config = SequenceConfig::load(o.sequence_path, o.data_root);
+    if (o.seed_given) seq.config.seed = o.seed;
+    const TeamRunParams params = teamRunParams(seq.config, o);
+    fs::create_directories(o.out_dir);
+    seq.timing = ros_glue::synchronizeSequence(seq.config);
+    printSequence(seq.config, seq.timing, params);
+    seq.references = trials::loadSequenceReferences(seq.config, seq.timing);
+    seq.end = o.max_seconds > 0 ? std::min(seq.timing.end(), seq.timing.start() + toStampNs(o.max_seconds))
+                                : seq.timing.end();
+    ComputedScans computed;
+    computed.spill = params.frontend.spill_keyframes ? std::make_shared<SpillFile>(params.frontend.spill_dir) : nullptr;
+    for (const std::string& comm : o.comms) runComm(comm, seq, params, o, computed);
     std::printf("total wall %.1f s\n", total.elapsedMs() * 1e-3);
   } catch (const std::exception& e) {
     std::cerr << "cosmo_generate: " << e.what() << "\n";
