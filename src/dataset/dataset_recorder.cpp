@@ -15,13 +15,6 @@ namespace {
 
 bool finitePose(const Pose3& T) { return T.matrix().allFinite(); }
 
-// A loop closure placed in an entry of its owner.
-struct Placed {
-  std::size_t entry = 0;  // index into the owner's keyframes, or n + k for the k-th closure after the last
-  const LoopClosureMeasurement* lc = nullptr;
-  std::size_t arrival = 0;
-};
-
 // A YAML double-quoted string.
 std::string quoted(const std::string& text) {
   std::string q = "\"";
@@ -32,12 +25,18 @@ std::string quoted(const std::string& text) {
   return q + "\"";
 }
 
-bool placedBefore(const Placed& a, const Placed& b) {
-  return std::tie(a.entry, a.lc->computed_at, a.lc->key1, a.lc->key2, a.arrival) <
-         std::tie(b.entry, b.lc->computed_at, b.lc->key1, b.lc->key2, b.arrival);
-}
-
 }  // namespace
+
+struct DatasetRecorder::Placed {
+  std::size_t entry = 0;  // index into the owner's keyframes, or n + k for the k-th closure after the last
+  const LoopClosureMeasurement* lc = nullptr;
+  std::size_t arrival = 0;
+
+  bool operator<(const Placed& b) const {
+    return std::tie(entry, lc->computed_at, lc->key1, lc->key2, arrival) <
+           std::tie(b.entry, b.lc->computed_at, b.lc->key1, b.lc->key2, b.arrival);
+  }
+};
 
 Matrix6 priorCovariance() {
   Matrix6 c = Matrix6::Zero();
@@ -115,12 +114,10 @@ void DatasetRecorder::addLoopClosure(const LoopClosureMeasurement& input) {
   ++(own1 && own2 ? counts_.intra : counts_.inter);
 }
 
-jrl::Dataset DatasetRecorder::build(BuildReport* report_out) const {
-  BuildReport report;
-  // Contiguous keyframes 0..n-1 per robot.
-  std::map<char, std::vector<const Keyframe*>> chain;
+DatasetRecorder::Chains DatasetRecorder::keyframeChains(BuildReport& report) const {
+  Chains chains;
   for (const char r : robots_) {
-    auto& c = chain[r];
+    auto& c = chains[r];
     const auto it = keyframes_.find(r);
     if (it == keyframes_.end()) continue;
     for (const auto& [index, frame] : it->second) {
@@ -129,9 +126,15 @@ jrl::Dataset DatasetRecorder::build(BuildReport* report_out) const {
     }
     report.keyframes_pending += it->second.size() - c.size();
   }
-  auto written = [&](std::uint64_t key) { return jrl::indexOf(key) < chain[jrl::robotOf(key)].size(); };
+  return chains;
+}
 
-  // Place each loop closure in an entry of its owner.
+std::map<char, std::vector<DatasetRecorder::Placed>> DatasetRecorder::placeLoopClosures(const Chains& chains,
+                                                                                        BuildReport& report) const {
+  const auto written = [&](std::uint64_t key) {
+    const auto c = chains.find(jrl::robotOf(key));
+    return c != chains.end() && jrl::indexOf(key) < c->second.size();
+  };
   std::map<char, std::vector<Placed>> placed;
   for (std::size_t i = 0; i < loop_closures_.size(); ++i) {
     const LoopClosureMeasurement& lc = loop_closures_[i];
@@ -139,10 +142,10 @@ jrl::Dataset DatasetRecorder::build(BuildReport* report_out) const {
       ++report.loop_closures_pending;
       continue;
     }
-    const auto& own = chain[lc.owner];
+    const auto& own = chains.at(lc.owner);
     Placed p{0, &lc, i};
     if (lc.computed_at > own.back()->stamp) {
-      p.entry = own.size();  // after the last keyframe; split into one entry each below
+      p.entry = own.size();  // after the last keyframe; split into one entry each (addRobot)
     } else {
       // Last keyframe with stamp <= computed_at (keyframe 0 when computed before it).
       const auto after = std::upper_bound(own.begin(), own.end(), lc.computed_at,
@@ -154,10 +157,80 @@ jrl::Dataset DatasetRecorder::build(BuildReport* report_out) const {
     }
     placed[lc.owner].push_back(p);
   }
+  return placed;
+}
+
+void DatasetRecorder::addRobot(char r, const Chains& chains, std::vector<Placed> closures, jrl::Dataset& ds,
+                               BuildReport& report) const {
+  const auto& own = chains.at(r);
+  if (own.empty()) {
+    report.robots_without_keyframes.push_back(r);
+    return;
+  }
+  ds.robots.push_back(r);
+  std::sort(closures.begin(), closures.end());
+
+  std::vector<jrl::Entry> entries(own.size());
+  std::vector<Pose3> init(own.size());
+  init[0] = own[0]->reference.value_or(Pose3::Identity());
+  entries[0].stamp = own[0]->stamp;
+  entries[0].factors.push_back(jrl::Factor::priorPose3(jrl::symbol(r, 0), init[0], priorCovariance()));
+  for (std::size_t i = 1; i < own.size(); ++i) {
+    entries[i].stamp = own[i]->stamp;
+    entries[i].factors.push_back(
+        jrl::Factor::betweenPose3(jrl::symbol(r, i - 1), jrl::symbol(r, i), own[i]->odometry, noise_.odometry));
+    init[i] = init[i - 1] * own[i]->odometry;
+    ++report.odometry;
+  }
+
+  auto& potential = (*ds.potential_outliers)[r];
+  auto& outliers = (*ds.outliers)[r];
+  jrl::Values& gt = (*ds.groundtruth)[r];
+  jrl::Values& in = (*ds.initialization)[r];
+  for (std::size_t i = 0; i < own.size(); ++i) {
+    jrl::insertPose3(in, jrl::symbol(r, i), init[i]);
+    if (report.labelled) jrl::insertPose3(gt, jrl::symbol(r, i), *own[i]->reference);
+  }
+  const auto referenceOf = [&](std::uint64_t key) -> const std::optional<Pose3>& {
+    return chains.at(jrl::robotOf(key))[jrl::indexOf(key)]->reference;
+  };
+  for (const Placed& p : closures) {
+    const LoopClosureMeasurement& lc = *p.lc;
+    if (p.entry >= own.size()) {  // after the last keyframe: an entry of its own
+      jrl::Entry e;
+      e.stamp = std::max(lc.computed_at, entries.back().stamp + 1);
+      entries.push_back(std::move(e));
+    }
+    const std::size_t entry = p.entry >= own.size() ? entries.size() - 1 : p.entry;
+    const jrl::FactorId id{entry, entries[entry].factors.size()};
+    entries[entry].factors.push_back(jrl::Factor::betweenPose3(lc.key1, lc.key2, lc.measurement, noise_.loop_closure));
+    potential.insert(id);
+    const bool intra = jrl::robotOf(lc.key2) == r;
+    ++(intra ? report.intra : report.inter);
+    if (!intra && !in.count(lc.key2)) {
+      jrl::insertPose3(in, lc.key2, init[jrl::indexOf(lc.key1)] * lc.measurement);
+      if (report.labelled) jrl::insertPose3(gt, lc.key2, *referenceOf(lc.key2));
+    }
+    if (report.labelled) {
+      const Pose3 truth = referenceOf(lc.key1)->inverse(Eigen::Isometry) * *referenceOf(lc.key2);
+      if (isOutlier(lc.measurement, truth, noise_.loop_closure, rule_, critical_value_)) {
+        outliers.insert(id);
+        ++report.outliers;
+      }
+    }
+  }
+  report.entries += entries.size();
+  ds.measurements[r] = std::move(entries);
+}
+
+jrl::Dataset DatasetRecorder::build(BuildReport* report_out) const {
+  BuildReport report;
+  const Chains chains = keyframeChains(report);
+  std::map<char, std::vector<Placed>> placed = placeLoopClosures(chains, report);
 
   // Labels need a reference pose for every written keyframe.
   std::size_t without_reference = 0;
-  for (const auto& [r, c] : chain)
+  for (const auto& [r, c] : chains)
     for (const Keyframe* k : c) without_reference += k->reference ? 0 : 1;
   report.labelled = without_reference == 0;
   if (!report.labelled)
@@ -171,69 +244,7 @@ jrl::Dataset DatasetRecorder::build(BuildReport* report_out) const {
   ds.initialization.emplace();
   ds.potential_outliers.emplace();
   ds.outliers.emplace();
-  const Matrix6 prior_cov = priorCovariance();
-  for (const char r : robots_) {
-    const auto& own = chain[r];
-    if (own.empty()) {
-      report.robots_without_keyframes.push_back(r);
-      continue;
-    }
-    ds.robots.push_back(r);
-    auto& closures = placed[r];
-    std::sort(closures.begin(), closures.end(), placedBefore);
-
-    std::vector<jrl::Entry> entries(own.size());
-    std::vector<Pose3> init(own.size());
-    init[0] = own[0]->reference.value_or(Pose3::Identity());
-    entries[0].stamp = own[0]->stamp;
-    entries[0].factors.push_back(jrl::Factor::priorPose3(jrl::symbol(r, 0), init[0], prior_cov));
-    for (std::size_t i = 1; i < own.size(); ++i) {
-      entries[i].stamp = own[i]->stamp;
-      entries[i].factors.push_back(
-          jrl::Factor::betweenPose3(jrl::symbol(r, i - 1), jrl::symbol(r, i), own[i]->odometry, noise_.odometry));
-      init[i] = init[i - 1] * own[i]->odometry;
-      ++report.odometry;
-    }
-
-    auto& potential = (*ds.potential_outliers)[r];
-    auto& outliers = (*ds.outliers)[r];
-    jrl::Values& gt = (*ds.groundtruth)[r];
-    jrl::Values& in = (*ds.initialization)[r];
-    for (std::size_t i = 0; i < own.size(); ++i) {
-      jrl::insertPose3(in, jrl::symbol(r, i), init[i]);
-      if (report.labelled) jrl::insertPose3(gt, jrl::symbol(r, i), *own[i]->reference);
-    }
-    auto referenceOf = [&](std::uint64_t key) -> const std::optional<Pose3>& {
-      return chain[jrl::robotOf(key)][jrl::indexOf(key)]->reference;
-    };
-    for (const Placed& p : closures) {
-      const LoopClosureMeasurement& lc = *p.lc;
-      if (p.entry >= own.size()) {  // after the last keyframe: an entry of its own
-        jrl::Entry e;
-        e.stamp = std::max(lc.computed_at, entries.back().stamp + 1);
-        entries.push_back(std::move(e));
-      }
-      const std::size_t entry = p.entry >= own.size() ? entries.size() - 1 : p.entry;
-      const jrl::FactorId id{entry, entries[entry].factors.size()};
-      entries[entry].factors.push_back(jrl::Factor::betweenPose3(lc.key1, lc.key2, lc.measurement, noise_.loop_closure));
-      potential.insert(id);
-      const bool intra = jrl::robotOf(lc.key2) == r;
-      ++(intra ? report.intra : report.inter);
-      if (!intra && !in.count(lc.key2)) {
-        jrl::insertPose3(in, lc.key2, init[jrl::indexOf(lc.key1)] * lc.measurement);
-        if (report.labelled) jrl::insertPose3(gt, lc.key2, *referenceOf(lc.key2));
-      }
-      if (report.labelled) {
-        const Pose3 truth = referenceOf(lc.key1)->inverse(Eigen::Isometry) * *referenceOf(lc.key2);
-        if (isOutlier(lc.measurement, truth, noise_.loop_closure, rule_, critical_value_)) {
-          outliers.insert(id);
-          ++report.outliers;
-        }
-      }
-    }
-    report.entries += entries.size();
-    ds.measurements[r] = std::move(entries);
-  }
+  for (const char r : robots_) addRobot(r, chains, std::move(placed[r]), ds, report);
   if (!report.labelled) {
     ds.groundtruth.reset();
     ds.outliers.reset();

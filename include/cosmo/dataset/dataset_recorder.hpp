@@ -126,6 +126,17 @@ class DatasetRecorder {
   };
   bool knows(char robot) const;
 
+  // build()'s steps.
+  struct Placed;  ///< a loop closure placed in an entry of its owner
+  using Chains = std::map<char, std::vector<const Keyframe*>>;
+  /// Per robot, its contiguous keyframes 0..n-1 (the ones written).
+  Chains keyframeChains(BuildReport& report) const;
+  /// Per owner, the loop closures between written keyframes, each placed in one of the owner's entries.
+  std::map<char, std::vector<Placed>> placeLoopClosures(const Chains& chains, BuildReport& report) const;
+  /// Robot r's measurements (prior, odometry, its loop closures), initial values, ground truth and labels.
+  void addRobot(char r, const Chains& chains, std::vector<Placed> closures, jrl::Dataset& ds,
+                BuildReport& report) const;
+
   std::string name_;
   std::vector<char> robots_;
   NoiseModels noise_;
