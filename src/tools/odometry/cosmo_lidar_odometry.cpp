@@ -15,6 +15,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -61,12 +62,10 @@ long frameIndexOf(const std::string& path) {
     return -1;
   }
 }
-}  // namespace
+using Args = std::map<std::string, std::string>;
 
-int main(int argc, char** argv) {
-  cosmo::keepScanBuffersInProcess();
-  std::map<std::string, std::string> a;
-  bool quiet = false;
+/// The command line as --key value pairs; an exit code when the program ends here (help, a usage error).
+std::optional<int> parseArgs(int argc, char** argv, Args& a, bool& quiet) {
   for (int i = 1; i < argc; ++i) {
     const std::string k = argv[i];
     if (k == "--quiet") {
@@ -86,140 +85,210 @@ int main(int argc, char** argv) {
     usage();
     return 2;
   }
+  return std::nullopt;
+}
+
+/// The reference poses given: KITTI pose lines (one per frame), or a stamped trajectory of the body moved to the
+/// LiDAR by the extrinsic.
+struct Reference {
+  std::vector<Pose3> kitti;
+  Trajectory stamped;
+  Pose3 extrinsic = Pose3::Identity();
+
+  /// The reference pose of a scan; throws for a KITTI frame without a pose line.
+  std::optional<Pose3> of(const Scan& scan, long frame, const std::string& name) const {
+    if (!kitti.empty()) {
+      if (frame < 0 || static_cast<std::size_t>(frame) >= kitti.size())
+        throw std::runtime_error(name + ": no reference pose line for frame " + std::to_string(frame));
+      return kitti[frame];
+    }
+    if (stamped.empty()) return std::nullopt;
+    const auto p = stamped.at(scan.stamp);
+    if (!p) return std::nullopt;
+    return *p * extrinsic;
+  }
+};
+
+Reference readReference(Args& a) {
+  Reference ref;
+  if (a.count("poses")) {
+    ref.kitti = readKittiPoses(a["poses"]);
+    if (a.count("calib")) ref.kitti = kittiPosesToLidar(ref.kitti, readKittiCalibTr(a["calib"]));
+  }
+  if (a.count("extrinsic")) {
+    std::stringstream ss(a["extrinsic"]);
+    std::vector<double> v;
+    double x;
+    while (ss >> x) v.push_back(x);
+    ref.extrinsic = parsePoseNumbers(v, "--extrinsic");
+  }
+  if (a.count("reference-tum")) ref.stamped = readTumTrajectory(a["reference-tum"]);
+  if (a.count("reference-csv")) ref.stamped = readMcdPoseCsv(a["reference-csv"]);
+  return ref;
+}
+
+std::vector<double> segmentLengths(Args& a) {
+  if (!a.count("segments")) return {10.0, 20.0, 40.0, 100.0};
+  std::vector<double> segments;
+  std::stringstream ss(a["segments"]);
+  std::string item;
+  while (std::getline(ss, item, ',')) segments.push_back(std::stod(item));
+  return segments;
+}
+
+/// LOAM over the scans one by one: the estimated poses, the reference poses of the scans that have one, the
+/// time per scan.
+class OdometryRun {
+ public:
+  OdometryRun(const LoamParams& params, Reference reference, bool quiet)
+      : odom_(params), reference_(std::move(reference)), quiet_(quiet) {}
+
+  void process(const Scan& scan, long frame, const std::string& name) {
+    bench::Stopwatch sw;
+    const double cpu0 = threadCpuMs();
+    const OdometryResult r = odom_.update(scan);
+    times_ms.push_back(sw.elapsedMs());
+    cpu_ms.push_back(threadCpuMs() - cpu0);
+    est.push_back(r.pose);
+    if (scan.stamp > 0 && (est_traj.empty() || scan.stamp > est_traj.endStamp())) est_traj.append(scan.stamp, r.pose);
+    if (const std::optional<Pose3> p = reference_.of(scan, frame, name)) ref.push_back(*p);
+    if (!r.ok) {
+      ++warnings;
+      std::cerr << "warning: " << name << ": " << r.warning << "\n";
+    }
+    if (!quiet_)
+      std::cout << std::fixed << std::setprecision(3) << name << "  t=" << r.pose.translation().transpose()
+                << "  step=" << r.delta.translation().norm() << " m  feats " << r.num_edge_features << "/"
+                << r.num_planar_features << "  it " << r.iterations << "  inl " << r.inlier_fraction << "  "
+                << r.initial_guess << "  " << times_ms.back() << " ms\n";
+  }
+
+  std::vector<Pose3> est, ref;
+  Trajectory est_traj;
+  std::vector<double> times_ms, cpu_ms;
+  std::size_t warnings = 0;
+
+ private:
+  LoamOdometry odom_;
+  Reference reference_;
+  bool quiet_;
+};
+
+/// The scans from --first, at most --count of them.
+struct Range {
+  long first = 0, count = -1;
+};
+
+/// A folder of scan files, stamped by their frame number times the period.
+void runFolder(const std::string& dir, const Range& range, double period, OdometryRun& run) {
+  const auto files = listScanFiles(dir);
+  if (files.empty()) throw std::runtime_error(dir + ": no .pcd / .bin scan files");
+  long n = 0;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    if (static_cast<long>(i) < range.first) continue;
+    if (range.count >= 0 && n >= range.count) break;
+    ++n;
+    Scan s = readScanFile(files[i]);
+    const long frame = frameIndexOf(files[i]);
+    s.stamp = toStampNs(1.0 + static_cast<double>(frame >= 0 ? frame : static_cast<long>(i)) * period);
+    run.process(s, frame >= 0 ? frame : static_cast<long>(i), fs::path(files[i]).filename().string());
+  }
+}
+
+void runBag(const std::string& bag, const std::string& topic, const Range& range, OdometryRun& run) {
+  ros_glue::ScanBagReader reader(bag, topic);
+  Scan s;
+  long i = 0, n = 0;
+  while (reader.next(s)) {
+    if (i++ < range.first) continue;
+    if (range.count >= 0 && n >= range.count) break;
+    ++n;
+    run.process(s, i - 1, topic + "#" + std::to_string(i - 1));
+  }
+}
+
+void printTiming(const OdometryRun& run) {
+  std::cout << std::fixed << std::setprecision(3);
+  std::cout << "scans: " << run.est.size() << "  warnings: " << run.warnings << "\n";
+  std::cout << "time per scan: median " << bench::quantile(run.times_ms, 0.5) << " ms, p95 "
+            << bench::quantile(run.times_ms, 0.95) << " ms wall; CPU time median " << bench::quantile(run.cpu_ms, 0.5)
+            << " ms, p95 " << bench::quantile(run.cpu_ms, 0.95) << " ms (one thread)\n";
+}
+
+void printSegmentErrors(const std::vector<Pose3>& est, const std::vector<Pose3>& ref,
+                        const std::vector<double>& segments) {
+  for (const auto& e : segmentErrors(est, ref, segments)) {
+    std::cout << "segment " << std::setw(5) << e.length << " m: ";
+    if (e.count == 0)
+      std::cout << "n/a (trajectory too short)\n";
+    else
+      std::cout << std::setprecision(3) << e.translation_percent << " %  " << std::setprecision(5)
+                << e.rotation_deg_per_m << " deg/m  (" << e.count << " segments)\n" << std::setprecision(3);
+  }
+}
+
+void printWorstStep(const std::vector<Pose3>& est, const std::vector<Pose3>& ref) {
+  if (est.size() < 2) return;
+  double worst_t = 0, worst_r = 0;
+  for (std::size_t i = 1; i < est.size(); ++i) {
+    const Pose3 de = est[i - 1].inverse() * est[i], dg = ref[i - 1].inverse() * ref[i];
+    worst_t = std::max(worst_t, translationError(de, dg));
+    worst_r = std::max(worst_r, rotationErrorRad(de, dg) * 180.0 / M_PI);
+  }
+  std::cout << "worst per-step error: " << worst_t * 100.0 << " cm, " << worst_r << " deg\n";
+}
+
+void printConstantMotionRuns(const std::vector<Pose3>& ref) {
+  const auto fills = findConstantMotionRuns(ref);
+  if (fills.empty()) return;
+  std::cout << "reference moves at a perfectly constant velocity (steps equal within 2 mm / 0.005 deg for >= 10 "
+               "steps) over scans";
+  for (const auto& f : fills) std::cout << " " << f.first << "-" << f.last;
+  std::cout << ": expected of a simulated reference; in a measured one (GPS/INS) these are gaps filled by "
+               "interpolation, and per-step errors there measure the fill\n";
+}
+
+/// ATE, path length, segment errors, the worst step and the reference's constant-motion runs, when every scan
+/// has a reference pose.
+void printEvaluation(const std::vector<Pose3>& est, std::vector<Pose3> ref, const std::vector<double>& segments) {
+  if (ref.empty()) return;
+  if (ref.size() != est.size()) {
+    std::cout << "reference covers " << ref.size() << " of " << est.size() << " scans: no evaluation\n";
+    return;
+  }
+  // Express the reference relative to its first pose, like the odometry.
+  const Pose3 r0inv = ref.front().inverse();
+  for (auto& p : ref) p = r0inv * p;
+  const AteResult ate = absoluteTrajectoryError(est, ref);
+  std::cout << "ATE (SE(3)-aligned): rmse " << ate.rmse << " m, mean " << ate.mean << " m, max " << ate.max << " m\n";
+  double path = 0.0;
+  for (std::size_t i = 1; i < ref.size(); ++i) path += (ref[i].translation() - ref[i - 1].translation()).norm();
+  std::cout << "reference path length " << path << " m\n";
+  printSegmentErrors(est, ref, segments);
+  printWorstStep(est, ref);
+  printConstantMotionRuns(ref);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  cosmo::keepScanBuffersInProcess();
+  Args a;
+  bool quiet = false;
+  if (const std::optional<int> exit_code = parseArgs(argc, argv, a, quiet)) return *exit_code;
   try {
     LoamParams params;
     if (a.count("config")) params = LoamParams::fromConfig(ConfigNode::load(a["config"]));
     const double period = a.count("period") ? std::stod(a["period"]) : 0.1;
-    const long first = a.count("first") ? std::stol(a["first"]) : 0;
-    const long count = a.count("count") ? std::stol(a["count"]) : -1;
-
-    std::vector<Pose3> kitti_ref;
-    if (a.count("poses")) {
-      kitti_ref = readKittiPoses(a["poses"]);
-      if (a.count("calib")) kitti_ref = kittiPosesToLidar(kitti_ref, readKittiCalibTr(a["calib"]));
-    }
-    std::vector<double> segments{10.0, 20.0, 40.0, 100.0};
-    if (a.count("segments")) {
-      segments.clear();
-      std::stringstream ss(a["segments"]);
-      std::string item;
-      while (std::getline(ss, item, ',')) segments.push_back(std::stod(item));
-    }
-    Pose3 extrinsic = Pose3::Identity();
-    if (a.count("extrinsic")) {
-      std::stringstream ss(a["extrinsic"]);
-      std::vector<double> v;
-      double x;
-      while (ss >> x) v.push_back(x);
-      extrinsic = parsePoseNumbers(v, "--extrinsic");
-    }
-    Trajectory stamped_ref;
-    if (a.count("reference-tum")) stamped_ref = readTumTrajectory(a["reference-tum"]);
-    if (a.count("reference-csv")) stamped_ref = readMcdPoseCsv(a["reference-csv"]);
-
-    LoamOdometry odom(params);
-    std::vector<Pose3> est, ref;
-    Trajectory est_traj;
-    std::vector<double> times_ms, cpu_ms;
-    std::size_t warnings = 0;
-    auto process = [&](Scan scan, long frame, const std::string& name) {
-      bench::Stopwatch sw;
-      const double cpu0 = threadCpuMs();
-      const OdometryResult r = odom.update(scan);
-      times_ms.push_back(sw.elapsedMs());
-      cpu_ms.push_back(threadCpuMs() - cpu0);
-      est.push_back(r.pose);
-      if (scan.stamp > 0 && (est_traj.empty() || scan.stamp > est_traj.endStamp())) est_traj.append(scan.stamp, r.pose);
-      if (!kitti_ref.empty()) {
-        if (frame < 0 || static_cast<std::size_t>(frame) >= kitti_ref.size())
-          throw std::runtime_error(name + ": no reference pose line for frame " + std::to_string(frame));
-        ref.push_back(kitti_ref[frame]);
-      } else if (!stamped_ref.empty()) {
-        const auto p = stamped_ref.at(scan.stamp);
-        if (p) ref.push_back(*p * extrinsic);
-      }
-      if (!r.ok) {
-        ++warnings;
-        std::cerr << "warning: " << name << ": " << r.warning << "\n";
-      }
-      if (!quiet)
-        std::cout << std::fixed << std::setprecision(3) << name << "  t=" << r.pose.translation().transpose()
-                  << "  step=" << r.delta.translation().norm() << " m  feats " << r.num_edge_features << "/"
-                  << r.num_planar_features << "  it " << r.iterations << "  inl " << r.inlier_fraction << "  "
-                  << r.initial_guess << "  " << times_ms.back() << " ms\n";
-    };
-
-    if (a.count("scans")) {
-      const auto files = listScanFiles(a["scans"]);
-      if (files.empty()) throw std::runtime_error(a["scans"] + ": no .pcd / .bin scan files");
-      long n = 0;
-      for (std::size_t i = 0; i < files.size(); ++i) {
-        if (static_cast<long>(i) < first) continue;
-        if (count >= 0 && n >= count) break;
-        ++n;
-        Scan s = readScanFile(files[i]);
-        const long frame = frameIndexOf(files[i]);
-        s.stamp = toStampNs(1.0 + static_cast<double>(frame >= 0 ? frame : static_cast<long>(i)) * period);
-        process(std::move(s), frame >= 0 ? frame : static_cast<long>(i), fs::path(files[i]).filename().string());
-      }
-    } else {
-      ros_glue::ScanBagReader reader(a["bag"], a["topic"]);
-      Scan s;
-      long i = 0, n = 0;
-      while (reader.next(s)) {
-        if (i++ < first) continue;
-        if (count >= 0 && n >= count) break;
-        ++n;
-        process(s, i - 1, a["topic"] + "#" + std::to_string(i - 1));
-      }
-    }
-
-    if (a.count("out-kitti")) writeKittiPoses(a["out-kitti"], est);
-    if (a.count("out-tum")) writeTumTrajectory(a["out-tum"], est_traj);
-
-    std::cout << std::fixed << std::setprecision(3);
-    std::cout << "scans: " << est.size() << "  warnings: " << warnings << "\n";
-    std::cout << "time per scan: median " << bench::quantile(times_ms, 0.5) << " ms, p95 "
-              << bench::quantile(times_ms, 0.95) << " ms wall; CPU time median " << bench::quantile(cpu_ms, 0.5)
-              << " ms, p95 " << bench::quantile(cpu_ms, 0.95) << " ms (one thread)\n";
-    if (!ref.empty() && ref.size() == est.size()) {
-      // Express the reference relative to its first pose, like the odometry.
-      const Pose3 r0inv = ref.front().inverse();
-      for (auto& p : ref) p = r0inv * p;
-      const AteResult ate = absoluteTrajectoryError(est, ref);
-      std::cout << "ATE (SE(3)-aligned): rmse " << ate.rmse << " m, mean " << ate.mean << " m, max " << ate.max
-                << " m\n";
-      double path = 0.0;
-      for (std::size_t i = 1; i < ref.size(); ++i) path += (ref[i].translation() - ref[i - 1].translation()).norm();
-      std::cout << "reference path length " << path << " m\n";
-      for (const auto& e : segmentErrors(est, ref, segments)) {
-        std::cout << "segment " << std::setw(5) << e.length << " m: ";
-        if (e.count == 0)
-          std::cout << "n/a (trajectory too short)\n";
-        else
-          std::cout << std::setprecision(3) << e.translation_percent << " %  " << std::setprecision(5)
-                    << e.rotation_deg_per_m << " deg/m  (" << e.count << " segments)\n" << std::setprecision(3);
-      }
-      if (est.size() >= 2) {
-        double worst_t = 0, worst_r = 0;
-        for (std::size_t i = 1; i < est.size(); ++i) {
-          const Pose3 de = est[i - 1].inverse() * est[i], dg = ref[i - 1].inverse() * ref[i];
-          worst_t = std::max(worst_t, translationError(de, dg));
-          worst_r = std::max(worst_r, rotationErrorRad(de, dg) * 180.0 / M_PI);
-        }
-        std::cout << "worst per-step error: " << worst_t * 100.0 << " cm, " << worst_r << " deg\n";
-      }
-      const auto fills = findConstantMotionRuns(ref);
-      if (!fills.empty()) {
-        std::cout << "reference moves at a perfectly constant velocity (steps equal within 2 mm / 0.005 deg for >= 10 "
-                     "steps) over scans";
-        for (const auto& f : fills) std::cout << " " << f.first << "-" << f.last;
-        std::cout << ": expected of a simulated reference; in a measured one (GPS/INS) these are gaps filled by "
-                     "interpolation, and per-step errors there measure the fill\n";
-      }
-    } else if (!ref.empty()) {
-      std::cout << "reference covers " << ref.size() << " of " << est.size() << " scans: no evaluation\n";
-    }
+    const Range range{a.count("first") ? std::stol(a["first"]) : 0, a.count("count") ? std::stol(a["count"]) : -1};
+    const std::vector<double> segments = segmentLengths(a);
+    OdometryRun run(params, readReference(a), quiet);
+    if (a.count("scans")) runFolder(a["scans"], range, period, run);
+    else runBag(a["bag"], a["topic"], range, run);
+    if (a.count("out-kitti")) writeKittiPoses(a["out-kitti"], run.est);
+    if (a.count("out-tum")) writeTumTrajectory(a["out-tum"], run.est_traj);
+    printTiming(run);
+    printEvaluation(run.est, run.ref, segments);
   } catch (const std::exception& e) {
     std::cerr << "cosmo_lidar_odometry: " << e.what() << "\n";
     return 1;
