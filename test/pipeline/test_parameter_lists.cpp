@@ -103,6 +103,15 @@ void expectEachKeyReachesItsOwnMember(const Params& defaults) {
   });
 }
 
+/// The three checks above on one section, and the module's own reader on it gives the defaults.
+template <class Params>
+void expectFileStructAndReaderAgree(const ConfigNode& section, const Params& defaults,
+                                    const std::vector<std::string>& other_keys = {}) {
+  expectSectionListsEveryParameter<Params>(section, other_keys);
+  expectSectionHoldsTheDefaults(section, defaults);
+  expectEachKeyReachesItsOwnMember(defaults);
+}
+
 template <class Params>
 std::string errorOf(const std::string& text) {
   try {
@@ -117,29 +126,21 @@ std::string errorOf(const std::string& text) {
 
 TEST(ParameterLists, OdometryFileStructAndReaderAgree) {
   const ConfigNode section = shippedSection("odometry.yaml", {"odometry"});
-  expectSectionListsEveryParameter<LoamParams>(section, {});
-  expectSectionHoldsTheDefaults(section, LoamParams{});
-  expectEachKeyReachesItsOwnMember(LoamParams{});
+  expectFileStructAndReaderAgree(section, LoamParams{});
   EXPECT_EQ(listedValues(LoamParams::fromConfig(section)), listedValues(LoamParams{}));
 }
 
 TEST(ParameterLists, RegistrationFileStructAndReaderAgree) {
   const ConfigNode section = shippedSection("registration.yaml", {"registration"});
-  expectSectionListsEveryParameter<RegistrationParams>(section, {});
-  expectSectionHoldsTheDefaults(section, RegistrationParams{});
-  expectEachKeyReachesItsOwnMember(RegistrationParams{});
+  expectFileStructAndReaderAgree(section, RegistrationParams{});
   EXPECT_EQ(listedValues(RegistrationParams::fromConfig(section)), listedValues(RegistrationParams{}));
 }
 
 TEST(ParameterLists, PlaceRecognitionFileStructAndReaderAgree) {
   const ConfigNode section = shippedSection("place_recognition.yaml", {"place_recognition"});
-  expectSectionListsEveryParameter<PlaceRecognitionParams>(section, {"scan_context"});
-  expectSectionHoldsTheDefaults(section, PlaceRecognitionParams{});
-  expectEachKeyReachesItsOwnMember(PlaceRecognitionParams{});
+  expectFileStructAndReaderAgree(section, PlaceRecognitionParams{}, {"scan_context"});
   const ConfigNode sc = shippedSection("place_recognition.yaml", {"place_recognition", "scan_context"});
-  expectSectionListsEveryParameter<ScanContextParams>(sc, {"empty_columns"});
-  expectSectionHoldsTheDefaults(sc, ScanContextParams{});
-  expectEachKeyReachesItsOwnMember(ScanContextParams{});
+  expectFileStructAndReaderAgree(sc, ScanContextParams{}, {"empty_columns"});
   const PlaceRecognitionParams read = PlaceRecognitionParams::fromConfig(section);
   EXPECT_EQ(listedValues(read), listedValues(PlaceRecognitionParams{}));
   EXPECT_EQ(listedValues(read.sc), listedValues(ScanContextParams{}));
@@ -148,9 +149,7 @@ TEST(ParameterLists, PlaceRecognitionFileStructAndReaderAgree) {
 
 TEST(ParameterLists, FrontendFileStructAndReaderAgree) {
   const ConfigNode section = shippedSection("frontend.yaml", {"frontend"});
-  expectSectionListsEveryParameter<pipeline::FrontendParams>(section, {});
-  expectSectionHoldsTheDefaults(section, pipeline::FrontendParams{});
-  expectEachKeyReachesItsOwnMember(pipeline::FrontendParams{});
+  expectFileStructAndReaderAgree(section, pipeline::FrontendParams{});
   EXPECT_EQ(listedValues(pipeline::FrontendParams::fromConfig(section)), listedValues(pipeline::FrontendParams{}));
 }
 
@@ -158,9 +157,7 @@ TEST(ParameterLists, RadioFilesHoldTheirPresetsAndTheReaderAgrees) {
   for (const auto& [file, preset] : {std::pair{"comm/wifi.yaml", RadioParams::wifi()},
                                       std::pair{"comm/proradio.yaml", RadioParams::proRadio()}}) {
     const ConfigNode section = shippedSection(file, {"comm"});
-    expectSectionListsEveryParameter<RadioParams>(section, {"preset", "timeout_mode", "size_model"});
-    expectSectionHoldsTheDefaults(section, preset);
-    expectEachKeyReachesItsOwnMember(preset);
+    expectFileStructAndReaderAgree(section, preset, {"preset", "timeout_mode", "size_model"});
     const RadioParams read = RadioParams::fromConfig(section);
     EXPECT_EQ(listedValues(read), listedValues(preset)) << file;
     EXPECT_EQ(read.timeout_mode, preset.timeout_mode) << file;
