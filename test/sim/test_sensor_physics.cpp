@@ -1,6 +1,7 @@
 // The LiDAR physics that make two scans of one place disagree by centimetres (LidarModel): canopies as a volume
 // of leaves, late detection of weak returns (range walk), returns from anywhere in the beam's footprint. Each is
-// checked on a small world whose surfaces are known: a tree canopy in front of a wall, walls near and far.
+// checked on a small world whose surfaces are known: a tree canopy in front of a wall, walls near and far; and
+// hedges (WorldParams::hedge_fraction), foliage added to a generated world without moving anything else.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 
 #include "cosmo/sim/material.hpp"
 #include "cosmo/sim/scan_simulator.hpp"
+#include "cosmo/sim/world_generator.hpp"
 
 using namespace cosmo;
 using namespace cosmo::sim;
@@ -137,4 +139,38 @@ TEST(SensorPhysics, BeamFootprintSpreadsOnlyObliqueSurfacesAndBleedsAtEdges) {
   EXPECT_LT(wall_max, 0.003);
   EXPECT_GT(ground_max, 0.02);
   EXPECT_LT(ground_max, 0.3);
+}
+
+TEST(SensorPhysics, HedgesAreFoliageBoxesAddedWithoutChangingTheRestOfTheWorld) {
+  WorldParams wp;
+  wp.blocks_x = 2;
+  wp.blocks_y = 2;
+  wp.block_min = 50;
+  wp.block_max = 60;
+  wp.outer_ring = 30;
+  wp.terrain_margin = 60;
+  const WorldLayout plain = generateLayout(wp, 3);
+  const std::string key = wp.describe();
+  wp.hedge_fraction = 0.5;
+  EXPECT_NE(wp.describe(), key);  // the cache key follows the hedges
+  const WorldLayout hedged = generateLayout(wp, 3);
+  std::vector<Primitive> others;
+  std::size_t hedges = 0;
+  for (const Primitive& p : hedged.fixed) {
+    if (p.kind == Primitive::Kind::Box && p.material == kFoliage) {
+      ++hedges;
+      EXPECT_NEAR(2.0 * p.half.y(), 1.0, 1e-9);  // 1 m thick
+    } else {
+      others.push_back(p);
+    }
+  }
+  EXPECT_GT(hedges, 10u);
+  // Every other object is where it was without hedges.
+  ASSERT_EQ(others.size(), plain.fixed.size());
+  for (std::size_t i = 0; i < others.size(); ++i) {
+    EXPECT_EQ(others[i].center, plain.fixed[i].center);
+    EXPECT_EQ(others[i].half, plain.fixed[i].half);
+  }
+  EXPECT_EQ(hedged.canopies.size(), plain.canopies.size());
+  EXPECT_EQ(hedged.cars.size(), plain.cars.size());
 }
