@@ -1,4 +1,5 @@
 #include "cosmo/comm/radio_params.hpp"
+#include "cosmo/common/param_list.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -78,17 +79,7 @@ RadioParams RadioParams::fromConfig(const ConfigNode& root) {
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(node["preset"].where + ": " + e.what());
   }
-  node.read("bandwidth_kBps", p.bandwidth_kBps);
-  node.read("d_init", p.d_init);
-  node.read("d_intf", p.d_intf);
-  node.read("p_max", p.p_max);
-  node.read("alpha", p.alpha);
-  node.read("beta", p.beta);
-  node.read("r_max", p.r_max);
-  node.read("step", p.step);
-  node.read("timeout", p.timeout);
-  node.read("size_factor_mean", p.size_factor_mean);
-  node.read("size_factor_stddev", p.size_factor_stddev);
+  readParams(node, p, {"preset", "timeout_mode", "size_model"});
   if (node.has("timeout_mode")) {
     std::string s;
     node.read("timeout_mode", s);

@@ -1,5 +1,8 @@
 #include "cosmo/common/config.hpp"
 
+#include <algorithm>
+#include <cstddef>
+
 namespace cosmo {
 
 ConfigNode ConfigNode::load(const std::string& path) {
@@ -18,6 +21,47 @@ ConfigNode ConfigNode::operator[](const std::string& key) const {
   const bool root = !where.empty() && where.back() == ' ';
   child.where = where + (root || where.empty() ? "" : ".") + key;
   return child;
+}
+
+namespace {
+
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t substitute = diagonal + (a[i - 1] == b[j - 1] ? 0 : 1);
+      diagonal = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, substitute});
+    }
+  }
+  return row[b.size()];
+}
+
+std::string nearestKey(const std::string& key, const std::vector<std::string>& known) {
+  std::string best;
+  std::size_t best_distance = key.size();
+  for (const std::string& k : known) {
+    const std::size_t d = editDistance(key, k);
+    if (d < best_distance) best = k, best_distance = d;
+  }
+  return best_distance <= std::max<std::size_t>(2, key.size() / 3) ? best : std::string();
+}
+
+}  // namespace
+
+void ConfigNode::rejectUnknownKeys(const std::vector<std::string>& known) const {
+  if (!node || !node.IsMap()) return;
+  for (const auto& entry : node) {
+    const std::string key = entry.first.as<std::string>();
+    if (std::find(known.begin(), known.end(), key) != known.end()) continue;
+    const std::string nearest = nearestKey(key, known);
+    const bool root = where.empty() || where.back() == ' ';
+    throw std::runtime_error(where + (root ? "" : ".") + key + ": unknown parameter" +
+                             (nearest.empty() ? std::string() : " (did you mean '" + nearest + "'?)"));
+  }
 }
 
 }  // namespace cosmo

@@ -7,15 +7,6 @@
 
 namespace cosmo {
 
-NoiseModelEstimationParams NoiseModelEstimationParams::fromConfig(const ConfigNode& config) {
-  NoiseModelEstimationParams p;
-  config.read("max_translation_error", p.max_translation_error);
-  config.read("max_rotation_error", p.max_rotation_error);
-  config.read("subtract_mean", p.subtract_mean);
-  config.read("min_samples", p.min_samples);
-  return p;
-}
-
 CovarianceEstimate estimateCovariance(const std::vector<MeasurementWithTruth>& measurements,
                                       const NoiseModelEstimationParams& params, bool apply_thresholds,
                                       const std::string& what) {

@@ -1,4 +1,5 @@
 #include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/common/param_list.hpp"
 
 #include <filesystem>
 #include <stdexcept>
@@ -8,13 +9,7 @@ namespace cosmo::pipeline {
 FrontendParams FrontendParams::fromConfig(const ConfigNode& node) {
   const ConfigNode n = node.has("frontend") ? node["frontend"] : node;
   FrontendParams p;
-  n.read("keyframe_distance", p.keyframe_distance);
-  n.read("dewarp_with_reference", p.dewarp_with_reference);
-  n.read("keyframe_min_range", p.keyframe_min_range);
-  n.read("reference_tolerance_s", p.reference_tolerance_s);
-  n.read("cache_features", p.cache_features);
-  n.read("spill_keyframes", p.spill_keyframes);
-  n.read("spill_dir", p.spill_dir);
+  readParams(n, p);
   if (!(p.keyframe_distance > 0.0)) throw std::runtime_error(n["keyframe_distance"].where + ": must be > 0");
   if (!(p.keyframe_min_range >= 0.0)) throw std::runtime_error(n["keyframe_min_range"].where + ": must be >= 0");
   if (!(p.reference_tolerance_s >= 0.0)) throw std::runtime_error(n["reference_tolerance_s"].where + ": must be >= 0");

@@ -1,5 +1,6 @@
 // Intra- and inter-robot place recognition over one own and one-per-teammate ScanContext databases.
 #include "cosmo/place_recognition/place_recognizer.hpp"
+#include "cosmo/common/param_list.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -13,13 +14,10 @@ PlaceRecognitionParams PlaceRecognitionParams::fromConfig(const ConfigNode& root
   if (node.has("place_recognition")) node = node["place_recognition"];
   PlaceRecognitionParams p;
   p.sc = ScanContextParams::fromConfig(node);
-  node.read("num_candidates", p.num_candidates);
-  node.read("threshold", p.threshold);
-  node.read("exclude_recent", p.exclude_recent);
-  node.read("exclude_recent_seconds", p.exclude_recent_seconds);
-  node.read("max_matches_per_database", p.max_matches_per_database);
-  node.read("rebuild_every", p.rebuild_every);
-  node.read("rebuild_fraction", p.rebuild_fraction);
+  // The ScanContext keys sit in a `scan_context` sub-section, or beside these.
+  std::vector<std::string> other_keys = paramKeys<ScanContextParams>();
+  other_keys.insert(other_keys.end(), {"scan_context", "empty_columns"});
+  readParams(node, p, other_keys);
   try {
     p.validate();
   } catch (const std::invalid_argument& e) {

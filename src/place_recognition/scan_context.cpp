@@ -1,5 +1,6 @@
 // Building the ScanContext descriptor and reading its parameters.
 #include "cosmo/place_recognition/scan_context.hpp"
+#include "cosmo/common/param_list.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -28,15 +29,14 @@ inline float azimuthOf(float y, float x) {
 ScanContextParams ScanContextParams::fromConfig(const ConfigNode& root) {
   ConfigNode node = root;
   if (node.has("place_recognition")) node = node["place_recognition"];
-  if (node.has("scan_context")) node = node["scan_context"];
+  const bool own_section = node.has("scan_context");
+  if (own_section) node = node["scan_context"];
   ScanContextParams p;
-  node.read("rings", p.rings);
-  node.read("sectors", p.sectors);
-  node.read("max_range", p.max_range);
-  node.read("min_range", p.min_range);
-  node.read("sensor_height", p.sensor_height);
-  node.read("point_stride", p.point_stride);
-  node.read("coarse_search_radius", p.coarse_search_radius);
+  if (own_section) {
+    readParams(node, p, {"empty_columns"});
+  } else {
+    readListedParams(node, p);  // beside the place-recognition keys, which that reader checks
+  }
   if (node.has("empty_columns")) {
     std::string policy;
     node.read("empty_columns", policy);

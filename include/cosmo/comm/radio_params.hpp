@@ -56,6 +56,22 @@ struct RadioParams {
   static RadioParams proRadio();
   /// "wifi" or "proradio" (also "pro-radio", "pro_radio"); throws std::invalid_argument otherwise.
   static RadioParams byName(const std::string& name);
+
+  /// The YAML keys, one per member (common/param_list.hpp); `preset`, `timeout_mode` and `size_model` are read by fromConfig.
+  template <class Visitor>
+  void visit(Visitor&& v) {
+    v("bandwidth_kBps", bandwidth_kBps);
+    v("d_init", d_init);
+    v("d_intf", d_intf);
+    v("p_max", p_max);
+    v("alpha", alpha);
+    v("beta", beta);
+    v("r_max", r_max);
+    v("step", step);
+    v("timeout", timeout);
+    v("size_factor_mean", size_factor_mean);
+    v("size_factor_stddev", size_factor_stddev);
+  }
 };
 
 std::string toString(RadioParams::TimeoutMode mode);

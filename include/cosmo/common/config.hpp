@@ -1,11 +1,12 @@
 #pragma once
 // Reading parameters from YAML config files (config/*.yaml). A missing key keeps the default; a key of the
 // wrong type throws std::runtime_error naming the file and the key, e.g. "config/loam.yaml: odometry.max_icf_iterations:
-// expected int".
+// expected int"; so does a key no reader knows (a typo would otherwise be ignored: see common/param_list.hpp).
 #include <yaml-cpp/yaml.h>
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace cosmo {
 
@@ -19,6 +20,10 @@ struct ConfigNode {
   /// Child section (an absent section is an empty node: every read keeps its default).
   ConfigNode operator[](const std::string& key) const;
   bool has(const std::string& key) const { return node && node.IsMap() && node[key]; }
+
+  /// Throws, naming the file, the section and the key (and the nearest known key), when this section holds a key
+  /// that is not in `known`.
+  void rejectUnknownKeys(const std::vector<std::string>& known) const;
 
   /// Overwrite `value` with the key's value when present.
   template <typename T>

@@ -8,7 +8,6 @@
 #include <optional>
 #include <vector>
 
-#include "cosmo/common/config.hpp"
 #include "cosmo/common/pose.hpp"
 #include "cosmo/dataset/noise_models.hpp"
 #include "cosmo/jrl/dataset.hpp"
@@ -26,9 +25,6 @@ struct NoiseModelEstimationParams {
   double max_rotation_error = 0.05;    ///< rad: loop closures with a larger error are not used
   bool subtract_mean = false;          ///< true: centred sample covariance (divide by N-1)
   std::size_t min_samples = 10;        ///< fewer usable measurements: error (6 is the bare minimum)
-
-  /// Keys max_translation_error, max_rotation_error, subtract_mean, min_samples.
-  static NoiseModelEstimationParams fromConfig(const ConfigNode& config);
 };
 
 /// What one covariance was computed from.

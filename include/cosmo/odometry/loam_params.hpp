@@ -117,6 +117,56 @@ struct LoamParams {
 
   /// Reads the keys above (same names) from `cfg` (its `odometry` child when present).
   static LoamParams fromConfig(const ConfigNode& cfg);
+
+  /// The YAML keys, one per member (common/param_list.hpp).
+  template <class Visitor>
+  void visit(Visitor&& v) {
+    v("fallback_scan_lines", fallback_scan_lines);
+    v("min_range", min_range);
+    v("max_range", max_range);
+    v("neighbor_points", neighbor_points);
+    v("number_sectors", number_sectors);
+    v("max_edge_feats_per_sector", max_edge_feats_per_sector);
+    v("max_planar_feats_per_sector", max_planar_feats_per_sector);
+    v("edge_feat_threshold", edge_feat_threshold);
+    v("planar_feat_threshold", planar_feat_threshold);
+    v("occlusion_thresh", occlusion_thresh);
+    v("parallel_thresh", parallel_thresh);
+    v("num_local_map_scans", num_local_map_scans);
+    v("max_icf_iterations", max_icf_iterations);
+    v("position_convergence_thresh", position_convergence_thresh);
+    v("rotation_convergence_thresh", rotation_convergence_thresh);
+    v("num_edge_neighbors", num_edge_neighbors);
+    v("max_edge_neighbor_dist", max_edge_neighbor_dist);
+    v("min_line_fit_points", min_line_fit_points);
+    v("min_line_condition_number", min_line_condition_number);
+    v("num_plane_neighbors", num_plane_neighbors);
+    v("max_plane_neighbor_dist", max_plane_neighbor_dist);
+    v("max_avg_point_plane_dist", max_avg_point_plane_dist);
+    v("min_plane_fit_points", min_plane_fit_points);
+    v("min_plane_spread_ratio", min_plane_spread_ratio);
+    v("max_plane_planarity", max_plane_planarity);
+    v("plane_off_surface_min_dist", plane_off_surface_min_dist);
+    v("huber_delta", huber_delta);
+    v("min_guess_inlier_fraction", min_guess_inlier_fraction);
+    v("inlier_dist", inlier_dist);
+    v("yaw_search_step_deg", yaw_search_step_deg);
+    v("yaw_search_max_deg", yaw_search_max_deg);
+    v("yaw_search_correction_deg", yaw_search_correction_deg);
+    v("min_correspondences", min_correspondences);
+    v("min_eigenvalue_per_constraint", min_eigenvalue_per_constraint);
+    v("map_edge_voxel_size", map_edge_voxel_size);
+    v("map_planar_voxel_size", map_planar_voxel_size);
+    v("planar_feature_voxel_size", planar_feature_voxel_size);
+    v("map_insert_min_translation", map_insert_min_translation);
+    v("map_insert_min_rotation_deg", map_insert_min_rotation_deg);
+    v("deskew", deskew);
+    v("deskew_planar_only", deskew_planar_only);
+    v("deskew_reestimate_translation", deskew_reestimate_translation);
+    v("deskew_reestimate_rotation_deg", deskew_reestimate_rotation_deg);
+    v("deskew_refine_steps", deskew_refine_steps);
+    v("deskew_rotation_tie", deskew_rotation_tie);
+  }
 };
 
 }  // namespace cosmo

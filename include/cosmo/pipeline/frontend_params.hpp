@@ -38,6 +38,18 @@ struct FrontendParams {
   /// Every file of a config folder that exists: frontend.yaml, odometry.yaml, place_recognition.yaml,
   /// registration.yaml (a missing file keeps the defaults).
   static FrontendParams loadDir(const std::string& config_dir);
+
+  /// The YAML keys, one per member (common/param_list.hpp).
+  template <class Visitor>
+  void visit(Visitor&& v) {
+    v("keyframe_distance", keyframe_distance);
+    v("dewarp_with_reference", dewarp_with_reference);
+    v("keyframe_min_range", keyframe_min_range);
+    v("reference_tolerance_s", reference_tolerance_s);
+    v("cache_features", cache_features);
+    v("spill_keyframes", spill_keyframes);
+    v("spill_dir", spill_dir);
+  }
 };
 
 /// The package's config folder in the source tree (compiled in), for tools run from a build tree.

@@ -42,6 +42,18 @@ struct PlaceRecognitionParams {
   static PlaceRecognitionParams fromConfig(const ConfigNode& node);
   void validate() const;
   ScanContextDatabaseParams databaseParams() const;
+
+  /// The YAML keys, one per member (common/param_list.hpp).
+  template <class Visitor>
+  void visit(Visitor&& v) {
+    v("num_candidates", num_candidates);
+    v("threshold", threshold);
+    v("exclude_recent", exclude_recent);
+    v("exclude_recent_seconds", exclude_recent_seconds);
+    v("max_matches_per_database", max_matches_per_database);
+    v("rebuild_every", rebuild_every);
+    v("rebuild_fraction", rebuild_fraction);
+  }
 };
 
 struct LoopCandidate {

@@ -45,6 +45,18 @@ struct ScanContextParams {
   static ScanContextParams fromConfig(const ConfigNode& node);
   /// Throws std::invalid_argument naming the field when a value is out of range.
   void validate() const;
+
+  /// The YAML keys, one per member (common/param_list.hpp); `empty_columns` (an enumeration) is read by fromConfig.
+  template <class Visitor>
+  void visit(Visitor&& v) {
+    v("rings", rings);
+    v("sectors", sectors);
+    v("max_range", max_range);
+    v("min_range", min_range);
+    v("sensor_height", sensor_height);
+    v("point_stride", point_stride);
+    v("coarse_search_radius", coarse_search_radius);
+  }
 };
 
 struct ScanContext {

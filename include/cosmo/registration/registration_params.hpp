@@ -57,6 +57,45 @@ struct RegistrationParams {
   std::string gate = "strict";
 
   static RegistrationParams fromConfig(const ConfigNode& node);
+
+  /// The YAML keys, one per member (common/param_list.hpp).
+  template <class Visitor>
+  void visit(Visitor&& v) {
+    v("voxel_size", voxel_size);
+    v("min_range", min_range);
+    v("max_range", max_range);
+    v("normal_radius", normal_radius);
+    v("fpfh_radius", fpfh_radius);
+    v("spfh_radius", spfh_radius);
+    v("min_normal_neighbors", min_normal_neighbors);
+    v("max_linearity", max_linearity);
+    v("fast_features", fast_features);
+    v("keypoint_voxel", keypoint_voxel);
+    v("max_correspondences", max_correspondences);
+    v("mutual_filter", mutual_filter);
+    v("matching_eps", matching_eps);
+    v("noise_bound", noise_bound);
+    v("use_max_clique", use_max_clique);
+    v("max_clique_nodes", max_clique_nodes);
+    v("max_hypotheses", max_hypotheses);
+    v("gnc_factor", gnc_factor);
+    v("gnc_max_iterations", gnc_max_iterations);
+    v("gnc_cost_tolerance", gnc_cost_tolerance);
+    v("max_rotation_pairs", max_rotation_pairs);
+    v("refine", refine);
+    v("icp_iterations", icp_iterations);
+    v("icp_max_distance", icp_max_distance);
+    v("icp_max_points", icp_max_points);
+    v("icp_max_correction_m", icp_max_correction_m);
+    v("icp_max_correction_deg", icp_max_correction_deg);
+    v("min_final_inliers", min_final_inliers);
+    v("min_correspondences", min_correspondences);
+    v("min_inlier_ratio", min_inlier_ratio);
+    v("min_overlap", min_overlap);
+    v("min_structure_overlap", min_structure_overlap);
+    v("structure_max_normal_z", structure_max_normal_z);
+    v("gate", gate);
+  }
 };
 
 }  // namespace cosmo
