@@ -52,8 +52,13 @@ LidarModel LidarModel::fromConfig(const ConfigNode& node) {
 #undef X
   node.read("range_sigma_per_m", m.range_sigma_per_m);
   node.read("beam_angle_sigma_deg", m.beam_angle_sigma_deg);
-  if (m.range_sigma_per_m < 0.0 || m.beam_angle_sigma_deg < 0.0)
-    throw std::runtime_error(node.where + ": range_sigma_per_m and beam_angle_sigma_deg must be >= 0");
+  node.read("beam_divergence_mrad", m.beam_divergence_mrad);
+  node.read("range_walk", m.range_walk);
+  node.read("foliage_mean_free_path", m.foliage_mean_free_path);
+  if (m.range_sigma_per_m < 0.0 || m.beam_angle_sigma_deg < 0.0 || m.beam_divergence_mrad < 0.0 || m.range_walk < 0.0 ||
+      m.foliage_mean_free_path < 0.0)
+    throw std::runtime_error(node.where + ": range_sigma_per_m, beam_angle_sigma_deg, beam_divergence_mrad, range_walk "
+                             "and foliage_mean_free_path must be >= 0");
   if (m.beams < 1 || m.columns < 1 || !(m.rate_hz > 0) || !(m.max_range > m.min_range))
     throw std::runtime_error(node.where + ": LiDAR needs beams, columns >= 1, rate_hz > 0, max_range > min_range");
   return m;
@@ -68,6 +73,9 @@ std::string LidarModel::describe() const {
   // Only when used: the cache keys of sensors without them stay valid.
   if (range_sigma_per_m > 0.0) os << "range_sigma_per_m=" << range_sigma_per_m << ';';
   if (beam_angle_sigma_deg > 0.0) os << "beam_angle_sigma_deg=" << beam_angle_sigma_deg << ';';
+  if (beam_divergence_mrad > 0.0) os << "beam_divergence_mrad=" << beam_divergence_mrad << ';';
+  if (range_walk > 0.0) os << "range_walk=" << range_walk << ';';
+  if (foliage_mean_free_path > 0.0) os << "foliage_mean_free_path=" << foliage_mean_free_path << ';';
   return os.str();
 }
 

@@ -79,6 +79,7 @@ bool intersectBox(const Primitive& p, const Ray& r, double t_min, Hit& hit) {
   Eigen::Vector3d n = Eigen::Vector3d::Zero();
   n[axis] = sign;
   hit.t = t0;
+  hit.exit = t1;
   hit.normal = toWorld(p, n);
   hit.material = p.material;
   return true;
@@ -124,6 +125,7 @@ bool intersectCylinder(const Primitive& p, const Ray& r, double t_min, Hit& hit)
   }
   if (!found) return false;
   hit.t = best;
+  hit.exit = best;
   hit.normal = n;
   hit.material = p.material;
   return true;
@@ -141,6 +143,7 @@ bool intersectEllipsoid(const Primitive& p, const Ray& r, double t_min, Hit& hit
   if (t <= t_min || t >= hit.t) return false;
   const Eigen::Vector3d q = o + t * d;  // on the unit sphere
   hit.t = t;
+  hit.exit = (-b + std::sqrt(disc)) / a;
   hit.normal = q.cwiseQuotient(p.half).normalized();
   hit.material = p.material;
   return true;

@@ -18,6 +18,42 @@ inline double gaussian(std::uint64_t& s) {
   const double u1 = std::max(uniform01(s), 1e-300), u2 = uniform01(s);
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
 }
+
+/// A random direction of the beam's footprint: within `half_angle` of the beam axis `d`, uniform over the disc.
+Eigen::Vector3d footprintDirection(const Eigen::Vector3d& d, double half_angle, std::uint64_t& rs) {
+  const Eigen::Vector3d e1 = d.unitOrthogonal(), e2 = d.cross(e1);
+  const double rad = half_angle * std::sqrt(uniform01(rs)), phi = 2.0 * M_PI * uniform01(rs);
+  return (d + rad * (std::cos(phi) * e1 + std::sin(phi) * e2)).normalized();
+}
+
+/// Canopies as a volume of leaves: a ray that enters one scatters after an exponential depth (mean free path
+/// `mfp`) unless it leaves the canopy, or meets a trunk or another surface, first; then it goes on to what lies
+/// behind. On a return inside a canopy the leaf faces a random way (`cos_inc`). False: the ray left every canopy
+/// and met nothing.
+bool throughCanopies(const World& world, const Ray& ray, double mfp, double max_range, std::uint64_t& rs, Hit& hit,
+                     double& cos_inc) {
+  for (int k = 0; k < 8 && hit.material == kFoliage; ++k) {
+    const double depth = -mfp * std::log(std::max(uniform01(rs), 1e-300));
+    Hit next;
+    const bool more = world.intersect(ray, hit.t + 1e-4, max_range, next);
+    const double leave = more ? std::min(hit.exit, next.t) : hit.exit;
+    if (hit.t + depth < leave) {
+      hit.t += depth;
+      cos_inc = 0.2 + 0.8 * uniform01(rs);
+      return true;
+    }
+    if (!more) return false;
+    hit = next;
+    cos_inc = std::abs(hit.normal.dot(ray.d));
+  }
+  return true;
+}
+
+/// Late detection of weak pulses: `walk` for a return at the detection limit (strength 1), falling linearly with
+/// log10 of the strength to 0 at 1000.
+double rangeWalk(double walk, double strength) {
+  return walk * std::clamp(1.0 - std::log10(std::max(strength, 1e-12)) / 3.0, 0.0, 1.0);
+}
 }  // namespace
 
 ScanSimulator::ScanSimulator(const World& world, LidarModel lidar) : world_(world), lidar_(std::move(lidar)) {
@@ -74,6 +110,8 @@ Scan ScanSimulator::simulate(const std::vector<Pose3>& column_poses, StampNs sta
   const LidarModel& L = lidar_;
   const std::vector<Eigen::Vector3d> cast = L.beam_angle_sigma_deg > 0.0 ? castDirections(seed) : std::vector<Eigen::Vector3d>{};
   const std::vector<Eigen::Vector3d>& cast_dirs = cast.empty() ? dirs_ : cast;
+  const double half_divergence = 0.5e-3 * L.beam_divergence_mrad;
+  const bool volume_foliage = L.foliage_mean_free_path > 0.0;
 
   tbb::parallel_for(tbb::blocked_range<int>(0, C, 16), [&](const tbb::blocked_range<int>& cols) {
     for (int c = cols.begin(); c != cols.end(); ++c) {
@@ -82,13 +120,15 @@ Scan ScanSimulator::simulate(const std::vector<Pose3>& column_poses, StampNs sta
       const Eigen::Vector3d origin = T.translation();
       for (int b = 0; b < B; ++b) {
         const std::size_t idx = static_cast<std::size_t>(b) * C + c;
-        const Eigen::Vector3d& ds = cast_dirs[idx];
-        const Ray ray(origin, R * ds);
-        Hit hit;
-        if (!world_.intersect(ray, 1e-6, L.max_range, hit)) continue;
         std::uint64_t rs = scan_seed ^ (static_cast<std::uint64_t>(idx) * 0x9E3779B97F4A7C15ULL);
         splitmix64(rs);
-        const double cos_inc = std::abs(hit.normal.dot(ray.d));
+        const Eigen::Vector3d axis = R * cast_dirs[idx];
+        const Ray ray(origin, half_divergence > 0.0 ? footprintDirection(axis, half_divergence, rs) : axis);
+        Hit hit;
+        if (!world_.intersect(ray, 1e-6, L.max_range, hit)) continue;
+        double cos_inc = std::abs(hit.normal.dot(ray.d));
+        if (volume_foliage && !throughCanopies(world_, ray, L.foliage_mean_free_path, L.max_range, rs, hit, cos_inc))
+          continue;
         if (cos_inc < L.grazing_cos) continue;
         const MaterialProps& m = materials[hit.material < kCount ? hit.material : 0];
         if (uniform01(rs) > m.return_prob * (1.0 - L.dropout)) continue;
@@ -99,7 +139,9 @@ Scan ScanSimulator::simulate(const std::vector<Pose3>& column_poses, StampNs sta
         const double q2 = q * q, q4 = q2 * q2;
         if (uniform01(rs) > 1.0 / (1.0 + q4 * q4)) continue;
         double r = hit.t + (L.range_sigma + L.range_sigma_per_m * hit.t) * gaussian(rs);
-        if (m.depth_spread > 0.0f && L.foliage_spread > 0.0) r += L.foliage_spread * m.depth_spread * uniform01(rs);
+        if (L.range_walk > 0.0) r += rangeWalk(L.range_walk, signal / 0.1 * std::pow(L.detection_range / hit.t, 2));
+        if (!volume_foliage && m.depth_spread > 0.0f && L.foliage_spread > 0.0)
+          r += L.foliage_spread * m.depth_spread * uniform01(rs);
         if (r < L.min_range || r > L.max_range) continue;
         range[idx] = static_cast<float>(r);
         intensity[idx] = static_cast<float>(std::min(L.intensity_scale * signal * (0.95 + 0.1 * uniform01(rs)), 65535.0));

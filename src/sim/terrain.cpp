@@ -216,6 +216,7 @@ bool Terrain::intersect(const Ray& ray, double t_min, Hit& hit) const {
           Eigen::Vector3d n;
           if (intersectCell(cw.i, cw.j, ray, ca, cb, t, n) && t > t_min && t < hit.t) {
             hit.t = t;
+            hit.exit = t;
             hit.normal = n;
             hit.material = materialAt(ray.o.x() + t * ray.d.x(), ray.o.y() + t * ray.d.y());
             return true;

@@ -5,10 +5,12 @@
 #include <iomanip>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 
 #include <Eigen/Geometry>
 
 #include "cosmo/sim/material.hpp"
+#include "cosmo/sim/scan_simulator.hpp"
 
 namespace cosmo::sim {
 
@@ -34,6 +36,8 @@ WorldParams WorldParams::fromConfig(const ConfigNode& node) {
   COSMO_SIM_CHANGE_FIELDS(X)
   COSMO_SIM_LOOKALIKE_FIELDS(X)
 #undef X
+  node.read("hedge_fraction", p.hedge_fraction);
+  if (p.hedge_fraction < 0.0 || p.hedge_fraction > 1.0) throw std::runtime_error(node.where + ".hedge_fraction: must be in [0, 1]");
   return p;
 }
 
@@ -56,6 +60,7 @@ std::string WorldParams::describe() const {
     COSMO_SIM_LOOKALIKE_FIELDS(X)
 #undef X
   }
+  if (hedge_fraction > 0.0) os << "hedge_fraction=" << hedge_fraction << ';';
   return os.str();
 }
 
@@ -366,6 +371,11 @@ class Builder {
       if (chance(p_.parked_car_fraction))
         for (double s = s0 + 4.0; s < s1 - 4.0; s += 6.0)
           if (chance(0.75)) car(a + s * u + (hw - 1.2) * off, yaw + (side > 0 ? 0.0 : M_PI));
+      if (p_.hedge_fraction > 0.0 && hedgeAlong(a, b, side))
+        for (double s = s0; s < s1; s += 5.0) {
+          const double l = std::min(5.0, s1 - s);
+          box(a + (s + 0.5 * l) * u + (hw + p_.sidewalk_width + 1.1) * off, l, 1.0, 0.0, 1.4, yaw, kFoliage);
+        }
       if (chance(p_.wall_fraction)) {
         const bool fence = chance(0.5);
         const double d = hw + p_.sidewalk_width + 2.8;
@@ -375,6 +385,17 @@ class Builder {
         }
       }
     }
+  }
+
+  /// Whether a street side has a hedge: a hash of the street and side, so that the main random stream (and with
+  /// it every other object of the world) is the same with and without hedges.
+  bool hedgeAlong(const Vector2d& a, const Vector2d& b, int side) const {
+    std::uint64_t h = 0x6A09E667F3BCC909ULL;
+    for (double v : {a.x(), a.y(), b.x(), b.y(), static_cast<double>(side)}) {
+      h ^= static_cast<std::uint64_t>(std::llround(v * 100.0));
+      h = splitmix64(h);
+    }
+    return static_cast<double>(splitmix64(h) >> 11) * 0x1.0p-53 < p_.hedge_fraction;
   }
 
   TreeShape row_tree_;

@@ -2,6 +2,7 @@
 // streets_only, reject bad junctions, and a sequence config's waypoints give a trajectory through those places.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "cosmo/sim/route_planner.hpp"
@@ -124,8 +125,8 @@ trials:
 
 TEST(RoutePlanner, DefaultDemoTrialsShareMuchOfTheirPaths) {
   // The demo (config/sim/default.yaml) relies on the robots driving the same streets (Wi-Fi meetings and
-  // inter-robot loop closures): each pair of trials covers >= 100 m of common path (within 5 m), and every
-  // trial revisits some of its own path later (intra-robot closures).
+  // inter-robot loop closures): each pair of trials covers >= 100 m of common path (within 5 m); every ATV
+  // revisits some of its own path later (intra-robot closures), and one (b, the noise-model trial) >= 40 m.
   const auto params = SimulationParams::load(std::string(COSMO_SOURCE_DIR) + "/config/sim/default.yaml");
   const auto seq = planSequence(params);
   ASSERT_GE(seq.trials.size(), 3u);
@@ -144,6 +145,7 @@ TEST(RoutePlanner, DefaultDemoTrialsShareMuchOfTheirPaths) {
   };
   std::vector<std::vector<Eigen::Vector2d>> pts;
   for (const auto& t : seq.trials) pts.push_back(samples(t.body));
+  double most_revisited = 0.0;  // m
   for (std::size_t i = 0; i < pts.size(); ++i) {
     for (std::size_t j = i + 1; j < pts.size(); ++j) {
       std::size_t shared = 0;
@@ -152,6 +154,8 @@ TEST(RoutePlanner, DefaultDemoTrialsShareMuchOfTheirPaths) {
     }
     std::size_t revisits = 0;  // points within 5 m of where the trial was >= 60 m of travel earlier
     for (std::size_t k = 30; k < pts[i].size(); ++k) revisits += near(pts[i][k], pts[i], k - 30);
-    if (seq.trials[i].params.platform != "handheld") EXPECT_GE(2.0 * revisits, 40.0) << seq.trials[i].params.name;
+    if (seq.trials[i].params.platform != "handheld") EXPECT_GE(2.0 * revisits, 10.0) << seq.trials[i].params.name;
+    most_revisited = std::max(most_revisited, 2.0 * revisits);
   }
+  EXPECT_GE(most_revisited, 40.0);
 }

@@ -29,6 +29,17 @@ struct LidarModel {
   double dropout = 0.002;         ///< random loss of any return
   double intensity_scale = 1000.0;  ///< intensity = scale * reflectivity * cos(incidence) (clamped)
   double foliage_spread = 1.0;    ///< scale of the extra range spread of porous materials (0: solid surfaces)
+  // Sensor physics that make two scans of one place from different viewpoints disagree by centimetres (each 0:
+  // off, the ideal sensor above):
+  double beam_divergence_mrad = 0.0;  ///< full angle of the beam: each return comes from a random point of the
+                                  ///< beam's footprint (r * divergence wide) but is reported along the beam's
+                                  ///< axis, so edges bleed into the background and oblique surfaces spread in range
+  double range_walk = 0.0;        ///< m, range bias of the weakest detectable return (a weak pulse crosses the
+                                  ///< detection threshold late); falls linearly with log10 of the return's strength
+                                  ///< to 0 at 1000x that; the strength falls with range^2, darkness and incidence
+  double foliage_mean_free_path = 0.0;  ///< m: canopies are a volume of leaves, not a surface: a ray entering one
+                                  ///< scatters after an exponential depth of this mean, or leaves it through a gap
+                                  ///< and goes on (replaces foliage_spread)
   bool clockwise = true;          ///< Ouster heads spin clockwise seen from above (azimuth decreases)
 
   static LidarModel os1_64();

@@ -47,6 +47,7 @@ struct Aabb {
 /// Nearest intersection: distance along the ray, outward unit normal, material.
 struct Hit {
   double t = 0.0;
+  double exit = 0.0;  ///< where the ray leaves the primitive it entered at t (boxes, ellipsoids; cylinders, terrain: t)
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
   std::uint8_t material = 0;
 };

@@ -4,6 +4,8 @@
 // stamped at the end of the sweep and `time` holds each point's offset (<= 0 s). Rays run in parallel (TBB);
 // noise comes from a counter-based generator keyed by (seed, stamp, ray index), so the output does not
 // depend on thread scheduling. The seed also fixes the sensor's beam calibration errors (one sensor per seed).
+// Optional physics (LidarModel): each return from a random point of the beam's footprint, late detection of weak
+// pulses (range walk), canopies as a volume of leaves that rays scatter inside or pass through.
 #include <cstdint>
 #include <vector>
 

@@ -48,6 +48,9 @@ struct WorldParams {
   /// ScanContext and align convincingly, as repeated façades do on real campuses. 0: none.
   double terrace_fraction = 0.0;
   double p_open = 0.0;               ///< block type weight: open plaza / lawn with little structure (benches)
+  /// Street sides lined with a hedge (1 m thick, 1.4 m high, behind the pavement): foliage, which a LiDAR with
+  /// LidarModel::foliage_mean_free_path sees as a volume that returns at a random depth. 0: none.
+  double hedge_fraction = 0.0;
   TerrainParams terrain;
 
   static WorldParams fromConfig(const ConfigNode& node);
