@@ -111,9 +111,7 @@ std::string inliersSolveLine(const jrl::Dataset& dataset) {
     if (ate > init)
       line += "; SUSPICIOUS: the labelled inliers pull the team further from the ground truth than odometry alone";
     return line;
-  } catch (const std::exception& e) {
-    return std::string("inliers solve: skipped (") + e.what() + ")";
-  }
+  } catch (const std::exception& e) { return std::string("inliers solve: skipped (") + e.what() + ")"; }
 }
 
 }  // namespace cosmo::backend

@@ -26,9 +26,7 @@ namespace {
 /// A pose as one PoseManifold parameter block: quaternion [x, y, z, w], translation.
 struct PoseBlock {
   double x[7];
-  Pose3 pose() const {
-    return makePose(Eigen::Vector3d(x[4], x[5], x[6]), Eigen::Quaterniond(x[3], x[0], x[1], x[2]));
-  }
+  Pose3 pose() const { return makePose(Eigen::Vector3d(x[4], x[5], x[6]), Eigen::Quaterniond(x[3], x[0], x[1], x[2])); }
 };
 
 bool selected(const jrl::PoseFactor& f, FactorSelection selection) {

@@ -8,7 +8,8 @@
 namespace cosmo {
 
 PayloadStore::PayloadStore(bool compress, std::uint32_t xz_preset) : compress_(compress), xz_preset_(xz_preset) {
-  if (xz_preset > 9) throw std::invalid_argument("payload store: xz preset must be in 0..9, got " + std::to_string(xz_preset));
+  if (xz_preset > 9)
+    throw std::invalid_argument("payload store: xz preset must be in 0..9, got " + std::to_string(xz_preset));
 }
 
 PayloadStore::Payload PayloadStore::pack(std::shared_ptr<const Scan> scan) const {

@@ -76,9 +76,7 @@ RadioParams RadioParams::fromConfig(const ConfigNode& root) {
   RadioParams p;
   try {
     p = byName(preset);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(node["preset"].where + ": " + e.what());
-  }
+  } catch (const std::invalid_argument& e) { throw std::invalid_argument(node["preset"].where + ": " + e.what()); }
   readParams(node, p, {"preset", "timeout_mode", "size_model"});
   if (node.has("timeout_mode")) {
     std::string s;

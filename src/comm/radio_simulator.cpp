@@ -29,13 +29,15 @@ RadioSimulator::RadioSimulator(const RadioParams& p, std::vector<char> robots, s
 
 RadioSimulator::Robot& RadioSimulator::robot(char id, const char* what) {
   auto it = robots_.find(id);
-  if (it == robots_.end()) throw std::invalid_argument(std::string("RadioSimulator::") + what + ": unknown robot " + robotName(id));
+  if (it == robots_.end())
+    throw std::invalid_argument(std::string("RadioSimulator::") + what + ": unknown robot " + robotName(id));
   return it->second;
 }
 
 const RadioSimulator::Robot& RadioSimulator::robot(char id, const char* what) const {
   auto it = robots_.find(id);
-  if (it == robots_.end()) throw std::invalid_argument(std::string("RadioSimulator::") + what + ": unknown robot " + robotName(id));
+  if (it == robots_.end())
+    throw std::invalid_argument(std::string("RadioSimulator::") + what + ": unknown robot " + robotName(id));
   return it->second;
 }
 
@@ -53,8 +55,8 @@ void RadioSimulator::offerKeyframe(char id, std::size_t keyframe, std::size_t pa
   if (params_.size_model == RadioParams::SizeModel::RealCompressed) {
     offer.payload_bytes = payload_bytes;
   } else {
-    const double s = raw_bytes > 0 ? static_cast<double>(raw_bytes)
-                                    : static_cast<double>(payload_bytes) / params_.size_factor_mean;
+    const double s =
+        raw_bytes > 0 ? static_cast<double>(raw_bytes) : static_cast<double>(payload_bytes) / params_.size_factor_mean;
     std::mt19937_64 size_rng(radio_random::mixSeed(seed_, static_cast<unsigned char>(id), keyframe));
     const double f =
         std::max(0.01, radio_random::normal(size_rng, params_.size_factor_mean, params_.size_factor_stddev));
@@ -135,7 +137,8 @@ void RadioSimulator::initializeNewCommunications(double t) {
       candidates.emplace_back(robot_ids_[i], robot_ids_[j]);
     }
   }
-  for (std::size_t i = candidates.size(); i > 1; --i) std::swap(candidates[i - 1], candidates[radio_random::index(rng_, i)]);
+  for (std::size_t i = candidates.size(); i > 1; --i)
+    std::swap(candidates[i - 1], candidates[radio_random::index(rng_, i)]);
 
   for (const auto& [ia, ib] : candidates) {
     Robot& a = robots_.at(ia);

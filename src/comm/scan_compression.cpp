@@ -42,9 +42,10 @@ std::vector<std::uint8_t> compressScan(const Scan& scan, std::uint32_t preset) {
   }
   std::vector<std::uint8_t> out(lzma_stream_buffer_bound(raw.size()));
   std::size_t out_pos = 0;
-  const lzma_ret ret = lzma_easy_buffer_encode(preset, LZMA_CHECK_CRC64, nullptr, raw.data(), raw.size(),
-                                               out.data(), &out_pos, out.size());
-  if (ret != LZMA_OK) throw std::runtime_error("compressScan: liblzma encoder failed (code " + std::to_string(ret) + ")");
+  const lzma_ret ret = lzma_easy_buffer_encode(preset, LZMA_CHECK_CRC64, nullptr, raw.data(), raw.size(), out.data(),
+                                               &out_pos, out.size());
+  if (ret != LZMA_OK)
+    throw std::runtime_error("compressScan: liblzma encoder failed (code " + std::to_string(ret) + ")");
   out.resize(out_pos);
   return out;
 }
@@ -66,8 +67,8 @@ Scan decompressScan(const std::vector<std::uint8_t>& bytes) {
     if (ret == LZMA_STREAM_END) break;
     if (ret != LZMA_OK) {
       lzma_end(&strm);
-      throw std::runtime_error("decompressScan: payload is not a valid xz stream (liblzma code " +
-                               std::to_string(ret) + ")");
+      throw std::runtime_error("decompressScan: payload is not a valid xz stream (liblzma code " + std::to_string(ret) +
+                               ")");
     }
     if (strm.avail_out == 0) {
       const std::size_t used = raw.size();

@@ -14,8 +14,8 @@ void writeTransferCsv(std::ostream& out, const std::vector<Transfer>& transfers)
   out << "sender,receiver,keyframe,start,end,bytes,outcome\n";
   out << std::fixed << std::setprecision(3);
   for (const Transfer& x : transfers)
-    out << x.sender << ',' << x.receiver << ',' << x.keyframe << ',' << x.start << ',' << x.end << ',' << x.bytes
-        << ',' << toString(x.outcome) << '\n';
+    out << x.sender << ',' << x.receiver << ',' << x.keyframe << ',' << x.start << ',' << x.end << ',' << x.bytes << ','
+        << toString(x.outcome) << '\n';
 }
 
 nlohmann::json transferSummary(const RadioStats& s, const RadioParams& p) {
@@ -30,10 +30,17 @@ nlohmann::json transferSummary(const RadioStats& s, const RadioParams& p) {
   j["link_successes"] = s.link_successes;
   j["bytes_delivered"] = s.bytes_delivered;
   j["bytes_transmitted"] = s.bytes_transmitted;
-  j["params"] = {{"bandwidth_kBps", p.bandwidth_kBps}, {"d_init", p.d_init},     {"d_intf", p.d_intf},
-                 {"p_max", p.p_max},                   {"alpha", p.alpha},       {"beta", p.beta},
-                 {"r_max", p.r_max},                   {"step", p.step},         {"timeout", p.timeout},
-                 {"timeout_mode", toString(p.timeout_mode)}, {"size_model", toString(p.size_model)}};
+  j["params"] = {{"bandwidth_kBps", p.bandwidth_kBps},
+                 {"d_init", p.d_init},
+                 {"d_intf", p.d_intf},
+                 {"p_max", p.p_max},
+                 {"alpha", p.alpha},
+                 {"beta", p.beta},
+                 {"r_max", p.r_max},
+                 {"step", p.step},
+                 {"timeout", p.timeout},
+                 {"timeout_mode", toString(p.timeout_mode)},
+                 {"size_model", toString(p.size_model)}};
   return j;
 }
 

@@ -10,9 +10,7 @@ ConfigNode ConfigNode::load(const std::string& path) {
     return ConfigNode{YAML::LoadFile(path), path + ": "};
   } catch (const YAML::BadFile&) {
     throw std::runtime_error(path + ": cannot open config file");
-  } catch (const YAML::Exception& e) {
-    throw std::runtime_error(path + ": malformed YAML: " + e.what());
-  }
+  } catch (const YAML::Exception& e) { throw std::runtime_error(path + ": malformed YAML: " + e.what()); }
 }
 
 ConfigNode ConfigNode::operator[](const std::string& key) const {

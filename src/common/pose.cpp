@@ -78,8 +78,6 @@ Pose3 interpolate(const Pose3& a, const Pose3& b, double s) {
   return makePose((1.0 - s) * a.translation() + s * b.translation(), qa.slerp(s, qb));
 }
 
-Pose3 orthonormalized(const Pose3& T) {
-  return makePose(T.translation(), Eigen::Quaterniond(T.linear()).normalized());
-}
+Pose3 orthonormalized(const Pose3& T) { return makePose(T.translation(), Eigen::Quaterniond(T.linear()).normalized()); }
 
 }  // namespace cosmo

@@ -11,7 +11,7 @@ namespace cosmo {
 namespace {
 std::vector<double> numbersOf(std::string line) {
   for (char& c : line)
-    if (c == ',' || c == ':' ) c = ' ';
+    if (c == ',' || c == ':') c = ' ';
   std::istringstream ss(line);
   std::vector<double> v;
   std::string tok;
@@ -81,9 +81,8 @@ void writeTumTrajectory(const std::string& path, const Trajectory& trajectory) {
   for (const auto& p : trajectory.poses()) {
     const Eigen::Quaterniond q(p.pose.linear());
     const auto& t = p.pose.translation();
-    out << std::setprecision(9) << toSeconds(p.stamp) << ' ' << std::setprecision(6) << t.x() << ' ' << t.y()
-        << ' ' << t.z() << ' ' << std::setprecision(9) << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w()
-        << '\n';
+    out << std::setprecision(9) << toSeconds(p.stamp) << ' ' << std::setprecision(6) << t.x() << ' ' << t.y() << ' '
+        << t.z() << ' ' << std::setprecision(9) << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
   }
 }
 
@@ -134,8 +133,8 @@ void writeMcdPoseCsv(const std::string& path, const Trajectory& trajectory) {
     const auto& t = p.pose.translation();
     std::snprintf(buf, sizeof(buf), "%zu,%llu.%09llu,%.6f,%.6f,%.6f,%.9f,%.9f,%.9f,%.9f\n", n++,
                   static_cast<unsigned long long>(p.stamp / 1000000000ULL),
-                  static_cast<unsigned long long>(p.stamp % 1000000000ULL), t.x(), t.y(), t.z(), q.x(), q.y(),
-                  q.z(), q.w());
+                  static_cast<unsigned long long>(p.stamp % 1000000000ULL), t.x(), t.y(), t.z(), q.x(), q.y(), q.z(),
+                  q.w());
     out << buf;
   }
 }

@@ -16,8 +16,8 @@ Trajectory::Trajectory(std::vector<StampedPose> poses) : poses_(std::move(poses)
 
 void Trajectory::append(StampNs stamp, const Pose3& pose) {
   if (!poses_.empty() && stamp <= poses_.back().stamp)
-    throw std::invalid_argument("Trajectory::append: stamp " + std::to_string(stamp) +
-                                " is not after the last stamp " + std::to_string(poses_.back().stamp));
+    throw std::invalid_argument("Trajectory::append: stamp " + std::to_string(stamp) + " is not after the last stamp " +
+                                std::to_string(poses_.back().stamp));
   poses_.push_back({stamp, pose});
 }
 

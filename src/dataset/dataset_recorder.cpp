@@ -78,8 +78,8 @@ void DatasetRecorder::addKeyframe(char robot, std::size_t index, StampNs stamp, 
     refuse("stamp " + std::to_string(stamp) + " not before keyframe " + std::to_string(next->first) + "'s " +
            std::to_string(next->second.stamp));
   if (next != frames.begin() && std::prev(next)->second.stamp >= stamp)
-    refuse("stamp " + std::to_string(stamp) + " not after keyframe " + std::to_string(std::prev(next)->first) +
-           "'s " + std::to_string(std::prev(next)->second.stamp));
+    refuse("stamp " + std::to_string(stamp) + " not after keyframe " + std::to_string(std::prev(next)->first) + "'s " +
+           std::to_string(std::prev(next)->second.stamp));
   Keyframe k;
   k.stamp = stamp;
   k.odometry = index == 0 ? Pose3::Identity() : odometry_from_previous;
@@ -269,7 +269,8 @@ std::string DatasetRecorder::statsPath(const std::string& jrl_path) { return bes
 
 std::string DatasetRecorder::metadataYaml(const BuildReport& report) const {
   std::ostringstream out;
-  out << "# Written by the cosmo recorder next to " << name_ << ".jrl (see include/cosmo/dataset/dataset_recorder.hpp)\n";
+  out << "# Written by the cosmo recorder next to " << name_
+      << ".jrl (see include/cosmo/dataset/dataset_recorder.hpp)\n";
   out << "name: " << quoted(name_) << "\n";
   out << "robots: [";
   for (std::size_t i = 0; i < robots_.size(); ++i) out << (i ? ", " : "") << robots_[i];
@@ -280,7 +281,8 @@ std::string DatasetRecorder::metadataYaml(const BuildReport& report) const {
   out << "]\n";
   out << "outlier_labels: " << (report.labelled ? "true" : "false") << "\n";
   if (!report.labelled) out << "outlier_labels_note: " << quoted(report.labels_note) << "\n";
-  out << "outlier_rule: " << outlierRuleName(rule_) << "  # fidelity: sqrt(r^T Q^-1 r) > critical; squared: r^T Q^-1 r > critical\n";
+  out << "outlier_rule: " << outlierRuleName(rule_)
+      << "  # fidelity: sqrt(r^T Q^-1 r) > critical; squared: r^T Q^-1 r > critical\n";
   out << "critical_value: " << critical_value_ << "  # 95 % chi^2, 6 dof\n";
   out << "noise_models:  # the covariances of every odometry factor / loop closure and of the outlier labels\n";
   out << "  environment: " << quoted(noise_.environment) << "\n";
@@ -310,8 +312,8 @@ BuildReport DatasetRecorder::write(const std::string& path, jrl::Dataset* built)
   jrl::Dataset ds = build(&report);
   jrl::writeJrl(path, ds);
   writeFileAtomically(metadataPath(path), metadataYaml(report));
-  writeFileAtomically(statsPath(path), jrl::formatStats(jrl::computeStats(ds)) + "\nnoise models: " +
-                                           noise_.describe() + "\n");
+  writeFileAtomically(statsPath(path),
+                      jrl::formatStats(jrl::computeStats(ds)) + "\nnoise models: " + noise_.describe() + "\n");
   if (built) *built = std::move(ds);
   return report;
 }

@@ -73,13 +73,13 @@ MeasurementSets collectMeasurements(const jrl::Dataset& dataset, std::optional<c
         try {
           m.truth = jrl::pose3At(gt->second, k1).inverse(Eigen::Isometry) * jrl::pose3At(gt->second, k2);
         } catch (const std::out_of_range&) {
-          throw std::runtime_error("dataset '" + dataset.name + "': robot " + std::string(1, r) +
-                                   ": factor " + jrl::keyName(k1) + " -> " + jrl::keyName(k2) +
+          throw std::runtime_error("dataset '" + dataset.name + "': robot " + std::string(1, r) + ": factor " +
+                                   jrl::keyName(k1) + " -> " + jrl::keyName(k2) +
                                    " refers to a key without groundtruth");
         }
         // COSMO convention (jrl.md §10): odometry <r>(i-1) -> <r>i is measurement 0 of its entry.
-        const bool odometry = i == 0 && jrl::robotOf(k1) == r && jrl::robotOf(k2) == r &&
-                              jrl::indexOf(k2) == jrl::indexOf(k1) + 1;
+        const bool odometry =
+            i == 0 && jrl::robotOf(k1) == r && jrl::robotOf(k2) == r && jrl::indexOf(k2) == jrl::indexOf(k1) + 1;
         (odometry ? sets.odometry : sets.loop_closures).push_back(m);
       }
     }

@@ -18,8 +18,8 @@ const cosmo::Pose3& truthOf(const PoseMap& gt, Key key) {
 }  // namespace
 
 ClosureError closureError(const PoseFactor& f, const PoseMap& gt) {
-  const cosmo::Pose3 truth = f.kind == FactorKind::Prior ? truthOf(gt, f.key1)
-                                                         : truthOf(gt, f.key1).inverse() * truthOf(gt, f.key2);
+  const cosmo::Pose3 truth =
+      f.kind == FactorKind::Prior ? truthOf(gt, f.key1) : truthOf(gt, f.key1).inverse() * truthOf(gt, f.key2);
   const cosmo::Pose3 E = f.measured.inverse() * truth;
   ClosureError out;
   out.trans_m = E.translation().norm();

@@ -83,10 +83,8 @@ bool isPrior(FactorType type) {
     case FactorType::PriorFactorPose3:
     case FactorType::PriorFactorPose2:
     case FactorType::PriorFactorPoint2:
-    case FactorType::PriorFactorPoint3:
-      return true;
-    default:
-      return false;
+    case FactorType::PriorFactorPoint3: return true;
+    default: return false;
   }
 }
 
@@ -130,8 +128,8 @@ Eigen::MatrixXd Factor::covarianceMatrix() const {
 const Factor& Dataset::factor(char robot, const FactorId& id) const {
   const auto& entries = measurements.at(robot);
   if (id.entry >= entries.size() || id.measurement >= entries[id.entry].factors.size())
-    throw std::out_of_range("jrl: no factor [" + std::to_string(id.entry) + "," +
-                            std::to_string(id.measurement) + "] in robot " + std::string(1, robot));
+    throw std::out_of_range("jrl: no factor [" + std::to_string(id.entry) + "," + std::to_string(id.measurement) +
+                            "] in robot " + std::string(1, robot));
   return entries[id.entry].factors[id.measurement];
 }
 
@@ -143,9 +141,7 @@ cosmo::Pose3 pose3At(const Values& values, Key key) {
   return p->toPose();
 }
 
-void insertPose3(Values& values, Key key, const cosmo::Pose3& pose) {
-  values[key] = Pose3Value::fromPose(pose);
-}
+void insertPose3(Values& values, Key key, const cosmo::Pose3& pose) { values[key] = Pose3Value::fromPose(pose); }
 
 const char* valueTag(const Value& value) {
   static constexpr const char* kTags[] = {"Pose3", "Pose2", "Point2", "Point3", "Vector", "Scalar"};

@@ -61,12 +61,14 @@ void exportG2o(const Dataset& dataset, const std::string& path) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot write");
   out << header << "\n";
-  for (const auto& [key, T] : g.initialization) out << "VERTEX_SE3:QUAT " << id.at(key) << numbers(poseNumbers(T)) << "\n";
+  for (const auto& [key, T] : g.initialization)
+    out << "VERTEX_SE3:QUAT " << id.at(key) << numbers(poseNumbers(T)) << "\n";
   for (const PoseFactor& f : g.factors) {
     if (f.kind == FactorKind::Prior) continue;
     const auto a = id.find(f.key1), b = id.find(f.key2);
     if (a == id.end() || b == id.end())
-      throw std::runtime_error(dataset.name + ": no initialization of pose " + keyName(a == id.end() ? f.key1 : f.key2));
+      throw std::runtime_error(dataset.name + ": no initialization of pose " +
+                               keyName(a == id.end() ? f.key1 : f.key2));
     out << "EDGE_SE3:QUAT " << a->second << " " << b->second << numbers(poseNumbers(f.measured))
         << numbers(upperTriangle(g2oInformation(f.covariance))) << "\n";
   }

@@ -20,9 +20,12 @@ void exportLabelsCsv(const Dataset& dataset, const std::string& path) {
     if (!f.isLoopClosure()) continue;
     const ClosureError e = closureError(f, g.groundtruth);
     std::snprintf(buf, sizeof buf, "%.6f,%.6f,%.6f", e.trans_m, e.rot_rad * 180.0 / M_PI, e.d2);
-    out << f.robot << ',' << f.id.entry << ',' << f.id.measurement << ',' << factorKindName(f.kind) << ','
-        << f.key1 << ',' << f.key2 << ',' << keyName(f.key1) << ',' << keyName(f.key2) << ',' << f.stamp << ','
-        << buf << ',' << (!g.has_outlier_labels ? "unlabelled" : f.outlier ? "outlier" : "inlier") << "\n";
+    out << f.robot << ',' << f.id.entry << ',' << f.id.measurement << ',' << factorKindName(f.kind) << ',' << f.key1
+        << ',' << f.key2 << ',' << keyName(f.key1) << ',' << keyName(f.key2) << ',' << f.stamp << ',' << buf << ','
+        << (!g.has_outlier_labels ? "unlabelled"
+            : f.outlier           ? "outlier"
+                                  : "inlier")
+        << "\n";
   }
   out.close();
   if (!out) throw std::runtime_error(path + ": cannot write");

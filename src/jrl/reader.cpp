@@ -13,8 +13,8 @@
 
 namespace cosmo::jrl {
 
-using nlohmann::json;
 using detail::JsonPath;
+using nlohmann::json;
 
 JrlError::JrlError(const std::string& source, const std::string& path, const std::string& problem)
     : std::runtime_error(source + ": " + (path.empty() ? std::string() : path + ": ") + problem),
@@ -26,23 +26,15 @@ namespace {
 
 std::string describe(const json& j) {
   switch (j.type()) {
-    case json::value_t::null:
-      return "null";
-    case json::value_t::boolean:
-      return "boolean";
-    case json::value_t::string:
-      return "string";
+    case json::value_t::null: return "null";
+    case json::value_t::boolean: return "boolean";
+    case json::value_t::string: return "string";
     case json::value_t::number_integer:
-    case json::value_t::number_unsigned:
-      return "integer " + j.dump();
-    case json::value_t::number_float:
-      return "floating-point number " + j.dump();
-    case json::value_t::object:
-      return "object";
-    case json::value_t::array:
-      return "array";
-    default:
-      return j.type_name();
+    case json::value_t::number_unsigned: return "integer " + j.dump();
+    case json::value_t::number_float: return "floating-point number " + j.dump();
+    case json::value_t::object: return "object";
+    case json::value_t::array: return "array";
+    default: return j.type_name();
   }
 }
 
@@ -217,19 +209,15 @@ class Reader {
 
   Measured measured(const json& j, const JsonPath& p, std::size_t kind) const {
     switch (kind) {
-      case 0:
-        return pose3(j, p);
+      case 0: return pose3(j, p);
       case 1:
         object(j, p, "a Pose2 object");
         return Pose2{numberField(j, "x", p), numberField(j, "y", p), numberField(j, "theta", p)};
-      case 2:
-        object(j, p, "a Point2 object");
-        return Point2{numberField(j, "x", p), numberField(j, "y", p)};
+      case 2: object(j, p, "a Point2 object"); return Point2{numberField(j, "x", p), numberField(j, "y", p)};
       case 3:
         object(j, p, "a Point3 object");
         return Point3{numberField(j, "x", p), numberField(j, "y", p), numberField(j, "z", p)};
-      case 4:
-        return scalar(j, p);
+      case 4: return scalar(j, p);
       case 5: {
         object(j, p, "a BearingRange object");
         const JsonPath pb = p.field("bearing");
@@ -245,8 +233,8 @@ class Reader {
         const json& b = object(field(j, "bearing", p), pb, "a Unit3 object");
         BearingRange3 br;
         br.bearing = Unit3{numberField(b, "i", pb), numberField(b, "j", pb), numberField(b, "k", pb)};
-        const double n = std::sqrt(br.bearing.i * br.bearing.i + br.bearing.j * br.bearing.j +
-                                   br.bearing.k * br.bearing.k);
+        const double n =
+            std::sqrt(br.bearing.i * br.bearing.i + br.bearing.j * br.bearing.j + br.bearing.k * br.bearing.k);
         if (!(std::abs(n - 1.0) <= kUnitNormTolerance))
           fail(pb, "Unit3 bearing is not unit (norm " + fmt(n) + ", tolerance 1e-6)");
         br.range = scalar(field(j, "range", p), p.field("range"));
@@ -289,14 +277,15 @@ class Reader {
         const JsonPath pi = pr.index(i);
         Key key = 0;
         Value v = value((*it)[i], pi, &key);
-        if (!values.emplace(key, std::move(v)).second) fail(pi, "duplicate key " + keyName(key) + " (" + std::to_string(key) + ")");
+        if (!values.emplace(key, std::move(v)).second)
+          fail(pi, "duplicate key " + keyName(key) + " (" + std::to_string(key) + ")");
       }
     }
     return out;
   }
 
   std::map<char, std::set<FactorId>> perRobotFactorIds(const json& j, const JsonPath& p,
-                                                        const std::vector<char>& robots) const {
+                                                       const std::vector<char>& robots) const {
     if (!j.is_object()) fail(p, "expected an object keyed by robot id, got " + describe(j));
     std::map<char, std::set<FactorId>> out;
     for (char r : robots) {
@@ -335,8 +324,9 @@ Dataset parseJrl(const std::string& text, const std::string& source) {
   try {
     doc = json::parse(text);
   } catch (const json::parse_error& e) {
-    throw JrlError(source, "", "invalid JSON (" + std::string(text.empty() ? "empty document" : "truncated or malformed") +
-                                   "): " + stripNlohmannPrefix(e.what()));
+    throw JrlError(source, "",
+                   "invalid JSON (" + std::string(text.empty() ? "empty document" : "truncated or malformed") +
+                       "): " + stripNlohmannPrefix(e.what()));
   } catch (const json::exception& e) {  // e.g. out_of_range.406 "number overflow parsing '1e999'"
     throw JrlError(source, "", "invalid JSON: " + stripNlohmannPrefix(e.what()));
   }

@@ -41,13 +41,12 @@ Dataset makeSyntheticDataset(const SyntheticParams& p, std::mt19937_64& rng) {
   std::map<char, std::vector<cosmo::Pose3>> gt;
   for (std::size_t ri = 0; ri < p.robots.size(); ++ri) {
     auto& traj = gt[p.robots[ri]];
-    cosmo::Pose3 T = cosmo::makePose(5.0 * double(ri), -3.0 * double(ri), 0.1 * gauss(rng), 0.0, 0.0,
-                                     2.0 * M_PI * uni(rng));
+    cosmo::Pose3 T =
+        cosmo::makePose(5.0 * double(ri), -3.0 * double(ri), 0.1 * gauss(rng), 0.0, 0.0, 2.0 * M_PI * uni(rng));
     traj.push_back(T);
     for (std::size_t i = 1; i < n; ++i) {
-      const cosmo::Pose3 step = cosmo::makePose(p.step_m * (0.7 + 0.6 * uni(rng)), 0.05 * gauss(rng),
-                                                0.01 * gauss(rng), 0.005 * gauss(rng), 0.005 * gauss(rng),
-                                                0.15 * gauss(rng));
+      const cosmo::Pose3 step = cosmo::makePose(p.step_m * (0.7 + 0.6 * uni(rng)), 0.05 * gauss(rng), 0.01 * gauss(rng),
+                                                0.005 * gauss(rng), 0.005 * gauss(rng), 0.15 * gauss(rng));
       T = cosmo::orthonormalized(T * step);
       traj.push_back(T);
     }

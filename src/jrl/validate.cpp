@@ -43,7 +43,8 @@ class Validator {
     for (std::size_t i = 0; i < d_.robots.size(); ++i) {
       const char r = d_.robots[i];
       if (r < 0x21 || r > 0x7e) add("robots" + idx(i), "robot id is not a printable ASCII character");
-      if (std::find(d_.robots.begin(), d_.robots.begin() + static_cast<long>(i), r) != d_.robots.begin() + static_cast<long>(i))
+      if (std::find(d_.robots.begin(), d_.robots.begin() + static_cast<long>(i), r) !=
+          d_.robots.begin() + static_cast<long>(i))
         add("robots" + idx(i), std::string("duplicate robot '") + r + "'");
     }
     auto unlisted = [&](const char* name, const auto& map) {
@@ -76,8 +77,10 @@ class Validator {
       finite(p->rotation.coeffs().data(), 4, place + ".rotation");
       unitQuaternion(p->rotation, place + ".rotation");
     } else if (const auto* b = std::get_if<BearingRange3>(&m)) {
-      const double n = std::sqrt(b->bearing.i * b->bearing.i + b->bearing.j * b->bearing.j + b->bearing.k * b->bearing.k);
-      if (!(std::abs(n - 1.0) <= kUnitNormTolerance)) add(place + ".bearing", "Unit3 is not unit (norm " + fmt(n) + ")");
+      const double n =
+          std::sqrt(b->bearing.i * b->bearing.i + b->bearing.j * b->bearing.j + b->bearing.k * b->bearing.k);
+      if (!(std::abs(n - 1.0) <= kUnitNormTolerance))
+        add(place + ".bearing", "Unit3 is not unit (norm " + fmt(n) + ")");
     }
   }
 
@@ -165,8 +168,8 @@ class Validator {
     for (std::uint64_t i : own) {
       if (i == 0 || links.count({i - 1, i})) continue;
       if (++missing <= 20)
-        add(pr, "odometry chain broken: no Between factor " + keyName(symbol(r, i - 1)) + " -> " +
-                    keyName(symbol(r, i)));
+        add(pr,
+            "odometry chain broken: no Between factor " + keyName(symbol(r, i - 1)) + " -> " + keyName(symbol(r, i)));
     }
     if (missing > 20) add(pr, "odometry chain broken: " + std::to_string(missing - 20) + " further missing links");
   }
@@ -204,9 +207,9 @@ class Validator {
         const double dq = std::min((p->rotation.coeffs() - o.rotation.coeffs()).norm(),
                                    (p->rotation.coeffs() + o.rotation.coeffs()).norm());
         if (dt > 1e-9 || dq > 1e-9)
-          add("groundtruth." + rk(r) + idx(index),
-              "ground truth of " + keyName(key) + " differs from groundtruth." + rk(it->second.first) + " (" +
-                  fmt(dt) + " m, quaternion " + fmt(dq) + ")");
+          add("groundtruth." + rk(r) + idx(index), "ground truth of " + keyName(key) + " differs from groundtruth." +
+                                                       rk(it->second.first) + " (" + fmt(dt) + " m, quaternion " +
+                                                       fmt(dq) + ")");
       }
     }
   }

@@ -17,8 +17,8 @@
 
 namespace cosmo::jrl {
 
-using nlohmann::json;
 using detail::JsonPath;
+using nlohmann::json;
 
 namespace {
 
@@ -83,16 +83,11 @@ json point3(const Point3& v, const JsonPath& p) {
 
 json measured(const Measured& m, const JsonPath& p) {
   switch (m.index()) {
-    case 0:
-      return pose3(std::get<Pose3Value>(m), p);
-    case 1:
-      return pose2(std::get<Pose2>(m), p);
-    case 2:
-      return point2(std::get<Point2>(m), p);
-    case 3:
-      return point3(std::get<Point3>(m), p);
-    case 4:
-      return scalar(std::get<Scalar>(m), p);
+    case 0: return pose3(std::get<Pose3Value>(m), p);
+    case 1: return pose2(std::get<Pose2>(m), p);
+    case 2: return point2(std::get<Point2>(m), p);
+    case 3: return point3(std::get<Point3>(m), p);
+    case 4: return scalar(std::get<Scalar>(m), p);
     case 5: {
       const auto& br = std::get<BearingRange2>(m);
       json j;
@@ -146,27 +141,17 @@ json factor(const Factor& f, const JsonPath& p) {
 json value(Key key, const Value& v, const JsonPath& p) {
   json j;
   switch (v.index()) {
-    case 0:
-      j = pose3(std::get<Pose3Value>(v), p);
-      break;
-    case 1:
-      j = pose2(std::get<Pose2>(v), p);
-      break;
-    case 2:
-      j = point2(std::get<Point2>(v), p);
-      break;
-    case 3:
-      j = point3(std::get<Point3>(v), p);
-      break;
+    case 0: j = pose3(std::get<Pose3Value>(v), p); break;
+    case 1: j = pose2(std::get<Pose2>(v), p); break;
+    case 2: j = point2(std::get<Point2>(v), p); break;
+    case 3: j = point3(std::get<Point3>(v), p); break;
     case 4: {
       const auto& data = std::get<VectorValue>(v).data;
       j["data"] = numbers(data.data(), data.size(), p.field("data"));
       j["type"] = "Vector";
       break;
     }
-    default:
-      j = scalar(std::get<Scalar>(v), p);
-      break;
+    default: j = scalar(std::get<Scalar>(v), p); break;
   }
   j["key"] = key;
   return j;

@@ -23,9 +23,7 @@ std::string edgeText(jrl::Key from, jrl::Key to, std::int32_t type, const std::s
 bool sameEdge(const PoseGraphEdge& a, const Between& b, CovarianceOrder order) {
   try {
     return a.pose.toPose().isApprox(b.measurement, 1e-12) && toJrlCovariance(a.covariance, order) == b.covariance;
-  } catch (const std::invalid_argument&) {
-    return false;
-  }
+  } catch (const std::invalid_argument&) { return false; }
 }
 
 std::string robotLabel(const RobotGraph& r) {
@@ -195,9 +193,9 @@ NebulaGraph GraphBuilder::build() const {
       const auto node = nodes_.find(jrl::symbol(c, i));
       if (link == robot_links.end()) break;
       if (node == nodes_.end())
-        throw GraphError(robotLabel(r) + ": odometry edge " + edgeText(link->second->key1, link->second->key2, kOdom,
-                                                                      link->second->source) +
-                         " leads to " + jrl::keyName(jrl::symbol(c, i)) + ", which has no node (no stamp)");
+        throw GraphError(robotLabel(r) + ": odometry edge " +
+                         edgeText(link->second->key1, link->second->key2, kOdom, link->second->source) + " leads to " +
+                         jrl::keyName(jrl::symbol(c, i)) + ", which has no node (no stamp)");
       if (node->second.stamp < r.stamps.back())
         throw GraphError(robotLabel(r) + ": the stamp of " + jrl::keyName(jrl::symbol(c, i)) + " (" +
                          node->second.source + ") is earlier than that of " + jrl::keyName(jrl::symbol(c, i - 1)));

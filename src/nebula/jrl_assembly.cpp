@@ -69,7 +69,8 @@ std::optional<NoiseModels> constantModels(const NebulaGraph& graph, const std::v
   if (params.noise == NoiseSource::Given) return params.models;
   std::vector<MeasurementWithTruth> odometry, loop_closures;
   for (const auto& [c, robot] : graph.robots)
-    for (const Between& o : robot.odometry) odometry.push_back({o.measurement, truthBetween(reference, o.key1, o.key2)});
+    for (const Between& o : robot.odometry)
+      odometry.push_back({o.measurement, truthBetween(reference, o.key1, o.key2)});
   for (const PlacedClosure& p : closures)
     loop_closures.push_back({p.between.measurement, truthBetween(reference, p.between.key1, p.between.key2)});
   report.estimate = estimateNoiseModels(odometry, loop_closures, params.estimation);
@@ -78,8 +79,8 @@ std::optional<NoiseModels> constantModels(const NebulaGraph& graph, const std::v
 }
 
 Matrix6 recordedCovariance(const Between& b) {
-  checkCovariance(b.covariance, "recorded covariance of " + edgeTypeName(b.type) + " " + jrl::keyName(b.key1) +
-                                    " -> " + jrl::keyName(b.key2) + " (" + b.source +
+  checkCovariance(b.covariance, "recorded covariance of " + edgeTypeName(b.type) + " " + jrl::keyName(b.key1) + " -> " +
+                                    jrl::keyName(b.key2) + " (" + b.source +
                                     "; give --noise-models or --estimate-noise-models to replace it)");
   return b.covariance;
 }

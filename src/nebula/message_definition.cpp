@@ -45,8 +45,8 @@ constexpr std::string_view kPoseGraphEdgeMsg =
     "float64 range_error\n";
 
 const std::set<std::string>& builtinTypes() {
-  static const std::set<std::string> kTypes = {"bool",   "int8",    "uint8",   "int16",   "uint16", "int32",
-                                               "uint32", "int64",   "uint64",  "float32", "float64", "string",
+  static const std::set<std::string> kTypes = {"bool",   "int8",     "uint8",  "int16",   "uint16",  "int32",
+                                               "uint32", "int64",    "uint64", "float32", "float64", "string",
                                                "time",   "duration", "char",   "byte"};
   return kTypes;
 }
@@ -90,7 +90,8 @@ std::string md5Text(std::string_view msg_text, const std::map<std::string, std::
       fields << type << ' ' << name << '\n';
     } else {
       const auto it = nested_md5.find(bare);
-      if (it == nested_md5.end()) throw std::invalid_argument("message definition: no md5 for nested type '" + bare + "'");
+      if (it == nested_md5.end())
+        throw std::invalid_argument("message definition: no md5 for nested type '" + bare + "'");
       fields << it->second << ' ' << name << '\n';
     }
   }
@@ -120,9 +121,9 @@ std::string poseGraphNodeMd5() {
 std::string poseGraphEdgeMd5() { return md5Hex(md5Text(kPoseGraphEdgeMsg, {{"geometry_msgs/Pose", kPoseMd5}})); }
 
 std::string poseGraphMd5() {
-  return md5Hex(md5Text(kPoseGraphMsg, {{"Header", kHeaderMd5},
-                                        {"PoseGraphNode", poseGraphNodeMd5()},
-                                        {"PoseGraphEdge", poseGraphEdgeMd5()}}));
+  return md5Hex(
+      md5Text(kPoseGraphMsg,
+              {{"Header", kHeaderMd5}, {"PoseGraphNode", poseGraphNodeMd5()}, {"PoseGraphEdge", poseGraphEdgeMd5()}}));
 }
 
 std::string poseGraphFullDefinition(std::string_view header_text, std::string_view pose_text,

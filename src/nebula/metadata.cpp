@@ -36,7 +36,8 @@ std::string metadataYaml(const NebulaGraph& graph, const ConversionReport& repor
   out << YAML::BeginMap;
   out << YAML::Key << "name" << YAML::Value << params.name;
   out << YAML::Key << "source" << YAML::Value << inputs.source_dir;
-  out << YAML::Key << "read_from" << YAML::Value << (inputs.from_g2o ? "g2o_pcd (stamps: pose index i -> i s)" : "rosbag");
+  out << YAML::Key << "read_from" << YAML::Value
+      << (inputs.from_g2o ? "g2o_pcd (stamps: pose index i -> i s)" : "rosbag");
   out << YAML::Key << "inputs" << YAML::Value << YAML::BeginSeq;
   for (const auto& f : inputs.files) out << f;
   out << YAML::EndSeq;

@@ -6,8 +6,8 @@
 namespace cosmo::nebula {
 
 std::string edgeTypeName(std::int32_t type) {
-  static const char* const kNames[] = {"ODOM",      "PRIOR",       "IMU",           "LOOPCLOSE",   "ARTIFACT",
-                                       "UWB_RANGE", "UWB_BETWEEN", "INTERROB_RANGE", "INTERROB_BETW"};
+  static const char* const kNames[] = {
+      "ODOM", "PRIOR", "IMU", "LOOPCLOSE", "ARTIFACT", "UWB_RANGE", "UWB_BETWEEN", "INTERROB_RANGE", "INTERROB_BETW"};
   if (type >= 0 && type <= kInterRobotBetween) return kNames[type];
   return "unknown type " + std::to_string(type);
 }

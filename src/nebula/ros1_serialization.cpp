@@ -48,8 +48,10 @@ class Reader {
     const std::size_t at = offset_;
     const std::uint32_t n = scalar<std::uint32_t>(field);
     if (std::uint64_t{n} * min_bytes > size_ - offset_)
-      fail(field, "array length " + std::to_string(n) + " needs at least " + std::to_string(n * min_bytes) +
-                      " bytes, " + std::to_string(size_ - offset_) + " left", at);
+      fail(field,
+           "array length " + std::to_string(n) + " needs at least " + std::to_string(n * min_bytes) + " bytes, " +
+               std::to_string(size_ - offset_) + " left",
+           at);
     return n;
   }
   void finish() const {

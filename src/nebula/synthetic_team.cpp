@@ -173,8 +173,9 @@ SyntheticTeam makeSyntheticTeam(const SyntheticTeamParams& params, std::mt19937_
       }
       if (params.robots.size() > 1 && unit(rng) < params.irlc_probability) {
         char other = c;
-        while (other == c) other = params.robots[static_cast<std::size_t>(unit(rng) * params.robots.size()) %
-                                                 params.robots.size()].second;
+        while (other == c)
+          other =
+              params.robots[static_cast<std::size_t>(unit(rng) * params.robots.size()) % params.robots.size()].second;
         const auto j = nearby(key, other, params.poses_per_robot);
         if (!j) continue;
         const jrl::Key key2 = *j;

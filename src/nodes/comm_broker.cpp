@@ -9,7 +9,8 @@
 //             /comm/links          (visualization_msgs/MarkerArray, frame `world`) active links, coloured by
 //                                  their mean throughput so far (red 0 .. green B)
 //             /comm/stats          (std_msgs/String, JSON, once per step batch) counters + active links
-// Params      ~robots [a, b, c] (or "a,b,c"; absent: the player's sequence, /player/robots), ~comm wifi|proradio, ~config (a config/comm/*.yaml, wins over
+// Params      ~robots [a, b, c] (or "a,b,c"; absent: the player's sequence, /player/robots), ~comm wifi|proradio,
+// ~config (a config/comm/*.yaml, wins over
 //             ~comm), ~seed (int), ~size_model paper|real, ~timeout_mode no_progress|total_duration,
 //             ~log_file (CSV of every transfer + <name>.summary.json; written every 30 s of ROS time and on
 //             shutdown; empty = none), ~xz_preset (0..9, default 6), ~frame_id (default world),
@@ -115,14 +116,17 @@ class CommBroker {
         sim_(std::make_unique<RadioSimulator>(o_.radio, o_.robots, static_cast<std::uint64_t>(o_.seed))),
         payloads_(o_.compress, static_cast<std::uint32_t>(o_.xz_preset)) {
     connectRobots(nh);
-    if (o_.lockstep) connectLockstep(nh);
-    else timer_ = nh.createWallTimer(ros::WallDuration(0.01), [this](const ros::WallTimerEvent&) { onTimer(); });
+    if (o_.lockstep)
+      connectLockstep(nh);
+    else
+      timer_ = nh.createWallTimer(ros::WallDuration(0.01), [this](const ros::WallTimerEvent&) { onTimer(); });
     const RadioParams& p = o_.radio;
-    ROS_INFO("comm_broker: %zu robots, B %.0f kB/s, d_init %.0f m, d_intf %.0f m, P_max %.2f, seed %s, sizes %s, "
-             "timeout %s%s",
-             o_.robots.size(), p.bandwidth_kBps, p.d_init, p.d_intf, p.p_max,
-             o_.lockstep ? "from the sequence" : std::to_string(o_.seed).c_str(), toString(p.size_model).c_str(),
-             toString(p.timeout_mode).c_str(), o_.lockstep ? ", lockstep (driven by the player)" : "");
+    ROS_INFO(
+        "comm_broker: %zu robots, B %.0f kB/s, d_init %.0f m, d_intf %.0f m, P_max %.2f, seed %s, sizes %s, "
+        "timeout %s%s",
+        o_.robots.size(), p.bandwidth_kBps, p.d_init, p.d_intf, p.p_max,
+        o_.lockstep ? "from the sequence" : std::to_string(o_.seed).c_str(), toString(p.size_model).c_str(),
+        toString(p.timeout_mode).c_str(), o_.lockstep ? ", lockstep (driven by the player)" : "");
   }
 
   ~CommBroker() { writeLog(); }
@@ -132,9 +136,7 @@ class CommBroker {
     if (o_.log_file.empty()) return;
     try {
       writeTransferLog(o_.log_file, sim_->transferLog(), sim_->stats(), sim_->params());
-    } catch (const std::exception& e) {
-      ROS_ERROR("comm_broker: %s", e.what());
-    }
+    } catch (const std::exception& e) { ROS_ERROR("comm_broker: %s", e.what()); }
   }
 
  private:
@@ -267,9 +269,7 @@ class CommBroker {
     Trajectory reference;
     try {
       reference = ros_glue::trajectoryFromMsg(m, ros_glue::referenceTrajectoryTopic(r));
-    } catch (const std::exception& e) {
-      ROS_ERROR("comm_broker: %s; positions from its reference_pose", e.what());
-    }
+    } catch (const std::exception& e) { ROS_ERROR("comm_broker: %s; positions from its reference_pose", e.what()); }
     std::lock_guard<std::mutex> lock(mutex_);
     references_[r] = std::move(reference);
     startLockstep();
@@ -330,7 +330,9 @@ class CommBroker {
                                            last == last_position_.end() ? Eigen::Vector3d::Zero() : last->second);
       return s;
     };
-    const auto on_transfer = [&](StampNs step_stamp, const Transfer& x) { deliver(x, ros_glue::stampToRos(step_stamp)); };
+    const auto on_transfer = [&](StampNs step_stamp, const Transfer& x) {
+      deliver(x, ros_glue::stampToRos(step_stamp));
+    };
     if (pipeline::advanceRadio(*sim_, origin_, request.order.through, state, on_transfer) > 0) {
       publishRadioState(ros_glue::stampToRos(last_step), toSeconds(last_step - origin_), toSeconds(last_step),
                         lastStepLinks(*sim_));
@@ -395,9 +397,7 @@ class CommBroker {
     last_log_write_ = radio_time;
     try {
       writeTransferLog(o_.log_file, sim_->transferLog(), sim_->stats(), sim_->params());
-    } catch (const std::exception& ex) {
-      ROS_ERROR_THROTTLE(30.0, "comm_broker: %s", ex.what());
-    }
+    } catch (const std::exception& ex) { ROS_ERROR_THROTTLE(30.0, "comm_broker: %s", ex.what()); }
   }
 
   struct Offer {

@@ -23,9 +23,10 @@
 //             (the sweep instant of the points' header stamp; scans are processed stamped at the sweep end)
 // Lockstep (~lockstep true, sequence.launch mode:=lockstep): the reference trajectory is the player's sequence's
 //   own (reference_trajectory, cosmo/ReferenceTrajectory, latched: the CSV as the offline driver reads it, poses
-//   bit-exact; the rounded reference_pose messages are ignored; scans wait until it arrived), reference odometry takes it held at the ends as TeamRun does, and loop
-//   closures on delivered scans are stamped with the broker's delivery step (Keyframe.received_at); with the
-//   bit-exact pose fields of the recorder messages this makes the JRL byte-identical to cosmo_generate's.
+//   bit-exact; the rounded reference_pose messages are ignored; scans wait until it arrived), reference odometry takes
+//   it held at the ends as TeamRun does, and loop closures on delivered scans are stamped with the broker's delivery
+//   step (Keyframe.received_at); with the bit-exact pose fields of the recorder messages this makes the JRL
+//   byte-identical to cosmo_generate's.
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
@@ -78,7 +79,8 @@ Options readOptions(const ros::NodeHandle& pnh) {
   pnh.param("lockstep", o.lockstep, o.lockstep);
   pnh.param<std::string>("stamp", stamp, stamp);
   if (stamp != "end" && stamp != "start")
-    throw std::runtime_error("~stamp must be start or end (the sweep instant of the header stamp), got '" + stamp + "'");
+    throw std::runtime_error("~stamp must be start or end (the sweep instant of the header stamp), got '" + stamp +
+                             "'");
   o.stamp_at_end = stamp == "end";
   if (o.odometry != "loam" && o.odometry != "reference" && o.odometry != "external")
     throw std::runtime_error("~odometry must be loam, reference or external, got '" + o.odometry + "'");
@@ -146,9 +148,7 @@ class FrontendNode {
       }
       if (reference.empty()) ROS_WARN("frontend %c: the sequence has no reference for this robot", o_.robot);
       frontend_ = std::make_unique<pipeline::RobotFrontend>(o_.robot, params_, std::move(reference));
-    } catch (const std::exception& e) {
-      ROS_ERROR("frontend %c: lockstep: %s; no reference", o_.robot, e.what());
-    }
+    } catch (const std::exception& e) { ROS_ERROR("frontend %c: lockstep: %s; no reference", o_.robot, e.what()); }
     drainPending();
   }
 

@@ -101,8 +101,8 @@ Options readOptions(const ros::NodeHandle& pnh) {
 
 /// The built-in synthetic sequence: cosmo_simulate (beside this program) writes it once, cached by its parameters.
 std::string builtInSequence(const Options& o) {
-  const std::string config = o.simulate_config.empty() ? std::string(COSMO_SOURCE_DIR) + "/config/sim/default.yaml"
-                                                        : o.simulate_config;
+  const std::string config =
+      o.simulate_config.empty() ? std::string(COSMO_SOURCE_DIR) + "/config/sim/default.yaml" : o.simulate_config;
   const std::string name = sim::SimulationParams::load(config).name;
   char exe[4096] = {0};
   const ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
@@ -136,7 +136,8 @@ Sequence resolveSequence(const Options& o) {
            pipeline::loadSequenceNoiseModels(s.config, o.config_dir, o.noise_models).describe().c_str());
   if (o.seed >= 0) s.config.seed = static_cast<unsigned long long>(o.seed);
   std::string check;
-  const bool ok = ros_glue::checkSequence(s.config, pipeline::chooseNoiseModels(s.config, pipeline::defaultConfigDir()), check);
+  const bool ok =
+      ros_glue::checkSequence(s.config, pipeline::chooseNoiseModels(s.config, pipeline::defaultConfigDir()), check);
   ROS_INFO("player: pre-flight check:\n%s", check.c_str());
   if (!ok) throw std::runtime_error("the pre-flight check failed (above)");
   s.timing = ros_glue::synchronizeSequence(s.config);
@@ -168,7 +169,8 @@ class Player {
       if (o_.wait_for_broker) {
         waitConnected([&] { return step_pub_.getNumSubscribers() > 0 && step_done_sub_.getNumPublishers() > 0; });
         use_broker_ = step_pub_.getNumSubscribers() > 0 && step_done_sub_.getNumPublishers() > 0;
-        if (!use_broker_) ROS_WARN("player: lockstep without a lockstep comm_broker (no /comm/step_request subscriber)");
+        if (!use_broker_)
+          ROS_WARN("player: lockstep without a lockstep comm_broker (no /comm/step_request subscriber)");
       }
     }
     std::lock_guard<std::mutex> lock(mutex_);
@@ -184,8 +186,10 @@ class Player {
     char robot;
     Scan scan;
     while (ros::ok() && stream.next(robot, scan) && scan.stamp <= seq_.end) {
-      if (o_.lockstep()) runScheduleBefore(robot, scan.stamp);
-      else waitForWallTime(scan.stamp);
+      if (o_.lockstep())
+        runScheduleBefore(robot, scan.stamp);
+      else
+        waitForWallTime(scan.stamp);
       publishScan(robot, scan);
       reportProgress(scan.stamp);
     }
@@ -227,20 +231,19 @@ class Player {
 
   void subscribe(ros::NodeHandle& nh) {
     for (char r : seq_.robots())
-      ack_subs_.push_back(nh.subscribe<cosmo::FrontendAck>(std::string("/") + r + "/ack", 1000,
-                                                           [this, r](const cosmo::FrontendAck::ConstPtr& m) { onAck(r, *m); }));
-    step_done_sub_ = nh.subscribe<cosmo::RadioStepDone>("/comm/step_done", 100,
-                                                        [this](const cosmo::RadioStepDone::ConstPtr& m) { onStepDone(*m); });
+      ack_subs_.push_back(nh.subscribe<cosmo::FrontendAck>(
+          std::string("/") + r + "/ack", 1000, [this, r](const cosmo::FrontendAck::ConstPtr& m) { onAck(r, *m); }));
+    step_done_sub_ = nh.subscribe<cosmo::RadioStepDone>(
+        "/comm/step_done", 100, [this](const cosmo::RadioStepDone::ConstPtr& m) { onStepDone(*m); });
     subs_.push_back(nh.subscribe<std_msgs::String>("/comm/stats", 100, [this](const std_msgs::String::ConstPtr& m) {
       try {
         const auto j = nlohmann::json::parse(m->data);
         std::lock_guard<std::mutex> lock(mutex_);
         broker_delivered_ = j.value("delivered", std::uint64_t{0});
-      } catch (const std::exception&) {
-      }
+      } catch (const std::exception&) {}
     }));
-    subs_.push_back(nh.subscribe<cosmo::RecorderProgress>("/recorder/progress", 10,
-                                                          [this](const cosmo::RecorderProgress::ConstPtr& m) { onRecorder(*m); }));
+    subs_.push_back(nh.subscribe<cosmo::RecorderProgress>(
+        "/recorder/progress", 10, [this](const cosmo::RecorderProgress::ConstPtr& m) { onRecorder(*m); }));
   }
 
   void publishSequence() {
@@ -388,7 +391,7 @@ class Player {
 
   Options o_;
   Sequence seq_;
-  std::mutex mutex_;                    ///< guards what the callbacks update: the schedule and the counters below
+  std::mutex mutex_;  ///< guards what the callbacks update: the schedule and the counters below
   pipeline::LockstepSchedule schedule_;
   std::uint32_t step_done_seq_ = 0;
   std::uint64_t broker_delivered_ = 0;  ///< /comm/stats, for the progress line

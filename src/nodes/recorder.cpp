@@ -6,13 +6,13 @@
 // Subscribes, per robot r of ~robots: /<r>/keyframes_meas (cosmo/RecorderKeyframe) and /<r>/loop_closures
 // (cosmo/RecorderLoopClosure). Publishes /recorder/progress (cosmo/RecorderProgress, latched): what it received
 // per robot, whenever that changes; the player's lockstep mode waits on it before it ends the run.
-// Parameters: ~robots ("a,b,c" or a list; absent: the player's sequence, /player/robots), ~name (dataset name), ~output_dir, the noise models: ~noise_models
-// (YAML path), else those of ~sequence (a sequence config: its environment / noise_models), else those of the
-// built-in sequence of ~simulate_config (sequence_noise_models.hpp; none of them, or a missing file: the node
-// stops with a message that says how to make them), ~config_dir (config/noise_models/ lives there),
-// ~outlier_rule (fidelity | squared), ~autosave_period (s, 0 = off), ~progress_period (s, 0 = off).
-// The sequence's lines of <name>.recorder.yaml (its name, source, reference_offset, trials:
-// trials::sequenceMetadata, as cosmo_generate writes them) come from the sequence the player resolved
+// Parameters: ~robots ("a,b,c" or a list; absent: the player's sequence, /player/robots), ~name (dataset name),
+// ~output_dir, the noise models: ~noise_models (YAML path), else those of ~sequence (a sequence config: its environment
+// / noise_models), else those of the built-in sequence of ~simulate_config (sequence_noise_models.hpp; none of them, or
+// a missing file: the node stops with a message that says how to make them), ~config_dir (config/noise_models/ lives
+// there), ~outlier_rule (fidelity | squared), ~autosave_period (s, 0 = off), ~progress_period (s, 0 = off). The
+// sequence's lines of <name>.recorder.yaml (its name, source, reference_offset, trials: trials::sequenceMetadata, as
+// cosmo_generate writes them) come from the sequence the player resolved
 // (/player/resolved_sequence and /player/resolved_data_root), else from ~sequence below ~data_root (empty: the
 // config's own precedence); without either (live robots) there are none.
 #include <ros/ros.h>
@@ -73,15 +73,15 @@ class RecorderNode {
       subs_.push_back(nh.subscribe<cosmo::RecorderKeyframe>(
           ns + "/keyframes_meas", 10000, [this, r](const cosmo::RecorderKeyframe::ConstPtr& m) { onKeyframe(r, *m); }));
       subs_.push_back(nh.subscribe<cosmo::RecorderLoopClosure>(
-          ns + "/loop_closures", 10000, [this, r](const cosmo::RecorderLoopClosure::ConstPtr& m) { onLoopClosure(r, *m); }));
+          ns + "/loop_closures", 10000,
+          [this, r](const cosmo::RecorderLoopClosure::ConstPtr& m) { onLoopClosure(r, *m); }));
     }
     for (const char r : robots) received_[r];
     progress_pub_ = nh.advertise<cosmo::RecorderProgress>("/recorder/progress", 1, true);
     publishProgress();
     service_ = pnh.advertiseService("write", &RecorderNode::onWriteService, this);
-    write_request_ = pnh.subscribe<std_msgs::Empty>("write_request", 10, [this](const std_msgs::Empty::ConstPtr&) {
-      write("request");
-    });
+    write_request_ = pnh.subscribe<std_msgs::Empty>("write_request", 10,
+                                                    [this](const std_msgs::Empty::ConstPtr&) { write("request"); });
     ROS_INFO("recorder: %zu robots, noise models %s, outlier rule %s, writing %s", robots.size(),
              noise.describe().c_str(), cosmo::outlierRuleName(*rule), path_.c_str());
   }
@@ -124,9 +124,7 @@ class RecorderNode {
                        : cosmo::ros_glue::poseFromExactOrMsg(m.odometry_from_previous_exact, m.odometry_from_previous);
       recorder_->addKeyframe(robot, m.index, m.header.stamp.toNSec(), odometry, reference);
       changed_ = true;
-    } catch (const std::exception& e) {
-      ROS_WARN("recorder: /%c/keyframes_meas: %s (ignored)", topic_robot, e.what());
-    }
+    } catch (const std::exception& e) { ROS_WARN("recorder: /%c/keyframes_meas: %s (ignored)", topic_robot, e.what()); }
   }
 
   void onLoopClosure(char topic_robot, const cosmo::RecorderLoopClosure& m) {
@@ -143,9 +141,7 @@ class RecorderNode {
       lc.measurement = cosmo::ros_glue::poseFromExactOrMsg(m.measurement_exact, m.measurement);
       recorder_->addLoopClosure(lc);
       changed_ = true;
-    } catch (const std::exception& e) {
-      ROS_WARN("recorder: /%c/loop_closures: %s (ignored)", topic_robot, e.what());
-    }
+    } catch (const std::exception& e) { ROS_WARN("recorder: /%c/loop_closures: %s (ignored)", topic_robot, e.what()); }
   }
 
   bool onWriteService(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {

@@ -8,8 +8,9 @@
 namespace cosmo {
 
 FeatureRegistrationResult refineContinuousRotation(const LoamFeatures& features, FeatureRegistrationResult previous,
-                                            const LoamParams& params, const Pose3& previous_pose,
-                                            const Pose3& predicted_delta, double period, double tie, int max_steps) {
+                                                   const LoamParams& params, const Pose3& previous_pose,
+                                                   const Pose3& predicted_delta, double period, double tie,
+                                                   int max_steps) {
   FeatureRegistrationResult res = std::move(previous);
   if (res.constraints.empty() || !(period > 0.0)) return res;
   using Matrix9 = Eigen::Matrix<double, 9, 9>;

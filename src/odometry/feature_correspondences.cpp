@@ -29,7 +29,8 @@ constexpr double kOffSurfaceDrop = 0.1;
 
 /// Whether one neighbour alone keeps `nb` (smallest-first eigenvalues `ev`) from being flat (see
 /// LoamParams::plane_off_surface_min_dist).
-bool oneNeighbourOffSurface(const std::vector<Eigen::Vector3d>& nb, const Eigen::Vector3d& ev, const LoamParams& params) {
+bool oneNeighbourOffSurface(const std::vector<Eigen::Vector3d>& nb, const Eigen::Vector3d& ev,
+                            const LoamParams& params) {
   const double d = params.plane_off_surface_min_dist;
   if (nb.size() < 5 || !(ev[0] > kOffSurfaceFlatness * ev[1]) || !(ev[0] > d * d)) return false;
   std::vector<Eigen::Vector3d> others;
@@ -146,10 +147,10 @@ double searchWithReuseRadius(const KdTree3& tree, const Eigen::Vector3d& q, int 
 }
 }  // namespace
 
-void associateFeaturesRemembering(const std::vector<Eigen::Vector3d>& edges,
-                                  const std::vector<Eigen::Vector3d>& planes, const LocalFeatureMap& map,
-                                  const Pose3& T, const LoamParams& params, std::vector<FeatureConstraint>& out,
-                                  AssociationMemory& memory, std::size_t memory_stride, bool remember) {
+void associateFeaturesRemembering(const std::vector<Eigen::Vector3d>& edges, const std::vector<Eigen::Vector3d>& planes,
+                                  const LocalFeatureMap& map, const Pose3& T, const LoamParams& params,
+                                  std::vector<FeatureConstraint>& out, AssociationMemory& memory,
+                                  std::size_t memory_stride, bool remember) {
   out.clear();
   out.reserve(edges.size() + planes.size());
   memory_stride = std::max<std::size_t>(1, memory_stride);
@@ -169,8 +170,8 @@ void associateFeaturesRemembering(const std::vector<Eigen::Vector3d>& edges,
       ++memory.searched;
       std::optional<MapLine> line;
       if (remember) {
-        e.reuse_radius = searchWithReuseRadius(map.edgeTree(), q, params.num_edge_neighbors,
-                                               params.max_edge_neighbor_dist, nb);
+        e.reuse_radius =
+            searchWithReuseRadius(map.edgeTree(), q, params.num_edge_neighbors, params.max_edge_neighbor_dist, nb);
         e.query = q;
         line = fitMapLine(nb, params);
         e.fitted = line.has_value();
@@ -197,8 +198,8 @@ void associateFeaturesRemembering(const std::vector<Eigen::Vector3d>& edges,
       ++memory.searched;
       std::optional<LinearConstraint> c;
       if (remember) {
-        e.reuse_radius = searchWithReuseRadius(map.planeTree(), q, params.num_plane_neighbors,
-                                               params.max_plane_neighbor_dist, nb);
+        e.reuse_radius =
+            searchWithReuseRadius(map.planeTree(), q, params.num_plane_neighbors, params.max_plane_neighbor_dist, nb);
         e.query = q;
         c = fitPlaneConstraint(nb, params);
         e.fitted = c.has_value();

@@ -15,8 +15,8 @@ Pose3 applyCentredUpdate(const Vector6& dx, const Pose3& T) {
   return orthonormalized(to_centre * expSE3(dx) * to_centre.inverse() * T);
 }
 
-Vector6 robustGaussNewtonStep(const std::vector<FeatureConstraint>& constraints, const Pose3& T,
-                              double huber_delta, double min_eigenvalue_per_constraint, int& degenerate) {
+Vector6 robustGaussNewtonStep(const std::vector<FeatureConstraint>& constraints, const Pose3& T, double huber_delta,
+                              double min_eigenvalue_per_constraint, int& degenerate) {
   Matrix6 H = Matrix6::Zero();
   Vector6 g = Vector6::Zero();
   // Perturbation about the sensor position (see applyCentredUpdate): lever arms are the features' ranges, not
@@ -47,8 +47,8 @@ double scorePose(const LoamFeatures& features, const LocalFeatureMap& map, const
                  std::size_t stride) {
   std::vector<FeatureConstraint> cs;
   associateFeatures(features.edge_points, features.planar_points, map, T, params, cs, stride);
-  const std::size_t n = (features.edge_points.size() + stride - 1) / stride +
-                        (features.planar_points.size() + stride - 1) / stride;
+  const std::size_t n =
+      (features.edge_points.size() + stride - 1) / stride + (features.planar_points.size() + stride - 1) / stride;
   if (n == 0) return 0.0;
   std::size_t good = 0;
   for (const auto& c : cs)
@@ -69,17 +69,18 @@ std::vector<T> subsample(const std::vector<T>& v, std::size_t stride) {
 }  // namespace
 
 FeatureRegistrationResult registerFeatures(const LoamFeatures& features, const LocalFeatureMap& map, const Pose3& guess,
-                                    const LoamParams& params, const std::optional<DeskewReference>& deskew) {
+                                           const LoamParams& params, const std::optional<DeskewReference>& deskew) {
   FeatureRegistrationResult res;
   res.pose = guess;
-  const bool do_deskew = deskew && params.deskew && deskew->period > 0.0 &&
-                         (!features.edge_time.empty() || !features.planar_time.empty());
+  const bool do_deskew =
+      deskew && params.deskew && deskew->period > 0.0 && (!features.edge_time.empty() || !features.planar_time.empty());
   constexpr int kInnerSteps = 4;  // Gauss-Newton steps per association
   std::vector<FeatureConstraint> cs;
   std::vector<Eigen::Vector3d> edges, planes;
 
-  // Coarse-to-fine: a subsample of the features (about kCoarseFeatures), then all features. Each stage: associate, then a few Gauss-Newton steps with
-  // the association fixed; repeat until an association round moves the pose less than the thresholds.
+  // Coarse-to-fine: a subsample of the features (about kCoarseFeatures), then all features. Each stage: associate, then
+  // a few Gauss-Newton steps with the association fixed; repeat until an association round moves the pose less than the
+  // thresholds.
   constexpr std::size_t kCoarseFeatures = 1000;
   const std::size_t n_all = features.size();
   const std::size_t coarse_stride = std::max<std::size_t>(1, n_all / kCoarseFeatures);
@@ -168,14 +169,14 @@ FeatureRegistrationResult registerFeatures(const LoamFeatures& features, const L
   return res;
 }
 
-void deskewFeatures(const LoamFeatures& features, const Pose3& delta, double period, std::vector<Eigen::Vector3d>& edges,
-                    std::vector<Eigen::Vector3d>& planes) {
+void deskewFeatures(const LoamFeatures& features, const Pose3& delta, double period,
+                    std::vector<Eigen::Vector3d>& edges, std::vector<Eigen::Vector3d>& planes) {
   deskewConstantVelocity(features.edge_points, features.edge_time, delta, period, edges);
   deskewConstantVelocity(features.planar_points, features.planar_time, delta, period, planes);
 }
 
 FeatureRegistrationResult refineRedeskewed(const LoamFeatures& features, FeatureRegistrationResult previous,
-                                    const LoamParams& params, const DeskewReference& deskew, int max_steps) {
+                                           const LoamParams& params, const DeskewReference& deskew, int max_steps) {
   FeatureRegistrationResult res = std::move(previous);
   std::vector<Eigen::Vector3d> edges, planes;
   deskewFeatures(features, deskew.delta, deskew.period, edges, planes);

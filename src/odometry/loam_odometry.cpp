@@ -33,7 +33,10 @@ std::vector<Eigen::Vector3d> transformed(const Pose3& T, const std::vector<Eigen
 }
 }  // namespace
 
-LoamOdometry::LoamOdometry(const LoamParams& p) : params_(p), map_(static_cast<std::size_t>(std::max(1, p.num_local_map_scans)), p.map_edge_voxel_size, p.map_planar_voxel_size) {}
+LoamOdometry::LoamOdometry(const LoamParams& p)
+    : params_(p),
+      map_(static_cast<std::size_t>(std::max(1, p.num_local_map_scans)), p.map_edge_voxel_size,
+           p.map_planar_voxel_size) {}
 
 OdometryResult LoamOdometry::fallback(OdometryResult r, double period, const std::string& why) {
   const Pose3 delta = predictMotion(last_delta_, last_period_, period);
@@ -49,11 +52,11 @@ OdometryResult LoamOdometry::fallback(OdometryResult r, double period, const std
 
 /// What one scan's registration works with.
 struct LoamOdometry::ScanMotion {
-  double period = 0.0;               ///< s since the previous scan (0: unknown)
-  bool has_times = false;            ///< the features carry point times and can be deskewed
-  Pose3 cv_delta;                    ///< constant-velocity prediction of the motion over the sweep
-  Pose3 deskew_delta;                ///< the motion the features are deskewed with
-  std::size_t stride = 1;            ///< feature subsample for scoring guesses
+  double period = 0.0;     ///< s since the previous scan (0: unknown)
+  bool has_times = false;  ///< the features carry point times and can be deskewed
+  Pose3 cv_delta;          ///< constant-velocity prediction of the motion over the sweep
+  Pose3 deskew_delta;      ///< the motion the features are deskewed with
+  std::size_t stride = 1;  ///< feature subsample for scoring guesses
 };
 
 OdometryResult LoamOdometry::update(const Scan& scan) {
@@ -98,7 +101,8 @@ OdometryResult LoamOdometry::startMap(const Scan& scan, OdometryResult r) {
   } else {
     map_.add(last_features_.edge_points, last_features_.planar_points);
     first_features_ = last_features_;
-    first_needs_deskew_ = params_.deskew && (!first_features_.edge_time.empty() || !first_features_.planar_time.empty());
+    first_needs_deskew_ =
+        params_.deskew && (!first_features_.edge_time.empty() || !first_features_.planar_time.empty());
   }
   return r;
 }
@@ -106,8 +110,9 @@ OdometryResult LoamOdometry::startMap(const Scan& scan, OdometryResult r) {
 std::optional<OdometryResult> LoamOdometry::fallbackIfUnusable(const Scan& scan, const OdometryResult& r,
                                                                double period) {
   if (r.num_points < kMinPoints)
-    return fallback(r, period,
-                    "scan has only " + std::to_string(r.num_points) + " valid points (of " + std::to_string(scan.size()) + ")");
+    return fallback(
+        r, period,
+        "scan has only " + std::to_string(r.num_points) + " valid points (of " + std::to_string(scan.size()) + ")");
   if (last_features_.size() < static_cast<std::size_t>(params_.min_correspondences))
     return fallback(r, period, "scan has only " + std::to_string(last_features_.size()) + " features");
   if (map_.empty()) {
@@ -133,8 +138,8 @@ LoamOdometry::ScanMotion LoamOdometry::predictScanMotion(double period) const {
   m.period = period;
   m.cv_delta = predictMotion(last_delta_, last_period_, period);
   m.stride = std::max<std::size_t>(1, last_features_.size() / 400);
-  m.has_times = params_.deskew && period > 0.0 &&
-                (!last_features_.edge_time.empty() || !last_features_.planar_time.empty());
+  m.has_times =
+      params_.deskew && period > 0.0 && (!last_features_.edge_time.empty() || !last_features_.planar_time.empty());
   // Deskew motion of this scan: the constant-velocity prediction (the previous scan's estimated motion), not
   // the scan's own estimate. Deskewing with the own estimate, iterated to self-consistency, feeds the deskew
   // errors of the map's scans back into the estimate: a period-2 oscillation of the scan-to-scan motion that
@@ -231,8 +236,10 @@ void LoamOdometry::searchYawIfPoorFit(ScanMotion& m, const Pose3& guess, Feature
   // hypothesis: its features are deskewed with that motion before they are scored (a scan taken during a fast
   // turn is distorted by it, and no rigid yaw fits the raw points), and its registration starts deskewed with it.
   const double turned_deg = Eigen::AngleAxisd((guess.inverse() * reg.pose).linear()).angle() * 180.0 / kPi;
-  const bool unpredicted_turn = params_.yaw_search_correction_deg > 0.0 && turned_deg >= params_.yaw_search_correction_deg;
-  if (!((reg.inlier_fraction < params_.min_guess_inlier_fraction || unpredicted_turn) && params_.yaw_search_step_deg > 0.0))
+  const bool unpredicted_turn =
+      params_.yaw_search_correction_deg > 0.0 && turned_deg >= params_.yaw_search_correction_deg;
+  if (!((reg.inlier_fraction < params_.min_guess_inlier_fraction || unpredicted_turn) &&
+        params_.yaw_search_step_deg > 0.0))
     return;
   const double base = scorePose(last_features_, map_, reg.pose, params_, m.stride);
   LoamFeatures deskewed = last_features_;

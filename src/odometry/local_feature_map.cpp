@@ -60,7 +60,8 @@ void LocalFeatureMap::clear() {
 }
 
 namespace {
-void nearestIn(const KdTree3& tree, const Eigen::Vector3d& q, int k, double max_dist, std::vector<Eigen::Vector3d>& out) {
+void nearestIn(const KdTree3& tree, const Eigen::Vector3d& q, int k, double max_dist,
+               std::vector<Eigen::Vector3d>& out) {
   out.clear();
   KnnResult result;
   result.reset(k, max_dist);

@@ -30,8 +30,10 @@ std::vector<std::uint16_t> linesFromOrder(const std::vector<ValidPoint>& pts) {
   std::size_t small_steps = 0, wraps = 0;
   for (std::size_t i = 1; i < pts.size(); ++i) {
     const float d = pts[i].azimuth - pts[i - 1].azimuth;
-    if (std::abs(d) > kPi) ++wraps;
-    else if (std::abs(d) < 5.0f * kDeg) ++small_steps;
+    if (std::abs(d) > kPi)
+      ++wraps;
+    else if (std::abs(d) < 5.0f * kDeg)
+      ++small_steps;
   }
   if (small_steps < 0.95 * static_cast<double>(pts.size()) || wraps < 8 || wraps > 256) return {};
   // A new line at an azimuth wrap once the current line has swept most of a turn (jitter of the points near

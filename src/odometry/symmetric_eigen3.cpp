@@ -49,8 +49,10 @@ Eigen::Vector3d anyPerpendicular(const Eigen::Vector3d& u) {
   // Cross with the axis least aligned with u.
   const Eigen::Vector3d au = u.cwiseAbs();
   Eigen::Vector3d axis = Eigen::Vector3d::UnitX();
-  if (au.y() <= au.x() && au.y() <= au.z()) axis = Eigen::Vector3d::UnitY();
-  else if (au.z() <= au.x() && au.z() <= au.y()) axis = Eigen::Vector3d::UnitZ();
+  if (au.y() <= au.x() && au.y() <= au.z())
+    axis = Eigen::Vector3d::UnitY();
+  else if (au.z() <= au.x() && au.z() <= au.y())
+    axis = Eigen::Vector3d::UnitZ();
   return u.cross(axis).normalized();
 }
 

@@ -49,7 +49,8 @@ SyntheticScene SyntheticScene::street(double length, double half_width) {
       const double h = 4.0 + 6.0 * std::abs(std::cos(0.9 * k));
       const double y0 = side * (half_width + setback);
       const double y1 = side * (half_width + setback + 10.0);
-      s.boxes.push_back({Eigen::Vector3d(x, std::min(y0, y1), s.ground_z), Eigen::Vector3d(x + w, std::max(y0, y1), s.ground_z + h)});
+      s.boxes.push_back(
+          {Eigen::Vector3d(x, std::min(y0, y1), s.ground_z), Eigen::Vector3d(x + w, std::max(y0, y1), s.ground_z + h)});
       x += w + 1.0 + 2.0 * std::abs(std::sin(0.7 * k));  // alleys between blocks
       ++k;
     }
@@ -68,9 +69,12 @@ SyntheticScene SyntheticScene::street(double length, double half_width) {
 SyntheticScene SyntheticScene::corridor(double length, double half_width, double height) {
   SyntheticScene s;
   s.ground_z = -1.0;
-  s.boxes.push_back({Eigen::Vector3d(-length, half_width, -5.0), Eigen::Vector3d(length, half_width + 1.0, height + 5.0)});
-  s.boxes.push_back({Eigen::Vector3d(-length, -half_width - 1.0, -5.0), Eigen::Vector3d(length, -half_width, height + 5.0)});
-  s.boxes.push_back({Eigen::Vector3d(-length, -half_width - 1.0, s.ground_z + height), Eigen::Vector3d(length, half_width + 1.0, s.ground_z + height + 1.0)});
+  s.boxes.push_back(
+      {Eigen::Vector3d(-length, half_width, -5.0), Eigen::Vector3d(length, half_width + 1.0, height + 5.0)});
+  s.boxes.push_back(
+      {Eigen::Vector3d(-length, -half_width - 1.0, -5.0), Eigen::Vector3d(length, -half_width, height + 5.0)});
+  s.boxes.push_back({Eigen::Vector3d(-length, -half_width - 1.0, s.ground_z + height),
+                     Eigen::Vector3d(length, half_width + 1.0, s.ground_z + height + 1.0)});
   return s;
 }
 
@@ -104,14 +108,16 @@ Scan simulateSweep(const SyntheticScene& full_scene, const SyntheticLidar& lidar
   std::normal_distribution<double> noise(0.0, lidar.range_noise);
   std::vector<double> elev(lidar.rings);
   for (int r = 0; r < lidar.rings; ++r)
-    elev[r] = (lidar.fov_down_deg + (lidar.fov_up_deg - lidar.fov_down_deg) * r / std::max(1, lidar.rings - 1)) * kPi / 180.0;
+    elev[r] =
+        (lidar.fov_down_deg + (lidar.fov_up_deg - lidar.fov_down_deg) * r / std::max(1, lidar.rings - 1)) * kPi / 180.0;
   // Column-major, as an Ouster delivers: all rings of a column share a time.
   for (int c = 0; c < lidar.columns; ++c) {
     const double t = -static_cast<double>(lidar.columns - 1 - c) / lidar.columns * lidar.period;
     const Pose3 T = pose_at(t);
     const double az = kPi - 2.0 * kPi * c / lidar.columns;  // clockwise from the back
     for (int r = 0; r < lidar.rings; ++r) {
-      const Eigen::Vector3d dir_s(std::cos(elev[r]) * std::cos(az), std::cos(elev[r]) * std::sin(az), std::sin(elev[r]));
+      const Eigen::Vector3d dir_s(std::cos(elev[r]) * std::cos(az), std::cos(elev[r]) * std::sin(az),
+                                  std::sin(elev[r]));
       const Eigen::Vector3d dir_w = T.linear() * dir_s;
       double range = scene.raycast(T.translation(), dir_w, lidar.max_range);
       if (!std::isfinite(range)) continue;

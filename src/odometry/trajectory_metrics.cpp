@@ -93,7 +93,7 @@ std::vector<ConstantMotionRun> findConstantMotionRuns(const std::vector<Pose3>& 
                                                       std::size_t min_steps, double min_step_m) {
   std::vector<ConstantMotionRun> runs;
   const double tol_rad = tol_deg * M_PI / 180.0;
-  std::size_t start = 0;  // first pose of the current run of equal steps
+  std::size_t start = 0;               // first pose of the current run of equal steps
   auto close = [&](std::size_t end) {  // the run's last pose
     if (end > start && end - start >= min_steps) {
       const Pose3 d = poses[start].inverse() * poses[start + 1];

@@ -21,8 +21,9 @@ std::size_t featureCloudBytes(const FeatureCloud& f) {
 }
 
 std::vector<char> serializeFeatureCloud(const FeatureCloud& f) {
-  const std::uint64_t h[6] = {f.points.size(), f.normals.size(), f.keypoints.size(),
-                              static_cast<std::uint64_t>(f.features.cols()), f.input_points, f.downsampled_points};
+  const std::uint64_t h[6] = {f.points.size(),    f.normals.size(),
+                              f.keypoints.size(), static_cast<std::uint64_t>(f.features.cols()),
+                              f.input_points,     f.downsampled_points};
   std::vector<char> out(kHeader + featureCloudBytes(f));
   std::memcpy(out.data(), h, kHeader);
   std::size_t at = kHeader;
@@ -48,7 +49,8 @@ FeatureCloud deserializeFeatureCloud(const std::vector<char>& bytes) {
   f.features.resize(kFpfhDim, static_cast<Eigen::Index>(h[3]));
   f.input_points = h[4];
   f.downsampled_points = h[5];
-  if (bytes.size() != kHeader + featureCloudBytes(f)) throw std::runtime_error("feature cache: spilled block of the wrong size");
+  if (bytes.size() != kHeader + featureCloudBytes(f))
+    throw std::runtime_error("feature cache: spilled block of the wrong size");
   std::size_t at = kHeader;
   const auto take = [&](void* p, std::size_t n) {
     if (n > 0) std::memcpy(p, bytes.data() + at, n);

@@ -6,7 +6,8 @@ FrontendMap::FrontendMap(char robot, std::optional<NoiseModels> noise) : robot_(
 
 void FrontendMap::addKeyframe(const KeyframeRecord& kf) {
   if (kf.index == 0 && kf.reference) world_T_odom_ = *kf.reference * kf.odom_pose.inverse();
-  const Eigen::Vector3d position = kf.reference ? kf.reference->translation() : (world_T_odom_ * kf.odom_pose).translation();
+  const Eigen::Vector3d position =
+      kf.reference ? kf.reference->translation() : (world_T_odom_ * kf.odom_pose).translation();
   positions_[{robot_, kf.index}] = position;
   if (kf.reference) labeller_.addReference(robot_, kf.index, *kf.reference);
   trajectory_.push_back(position);

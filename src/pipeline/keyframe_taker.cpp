@@ -14,7 +14,8 @@ KeyframeTaker::KeyframeTaker(const FrontendParams& params)
 KeyframeDecision KeyframeTaker::update(StampNs stamp, const Pose3& odom_pose) {
   // The odometry track for dewarping: the previous pose and this one cover the sweep.
   std::vector<StampedPose> track;
-  if (!recent_odometry_.empty() && recent_odometry_.endStamp() < stamp) track.push_back(recent_odometry_.poses().back());
+  if (!recent_odometry_.empty() && recent_odometry_.endStamp() < stamp)
+    track.push_back(recent_odometry_.poses().back());
   track.push_back({stamp, odom_pose});
   recent_odometry_ = Trajectory(track);
   return keyframer_.update(odom_pose);

@@ -25,7 +25,8 @@ void LockstepSchedule::scanHandedOver(char robot, StampNs stamp) {
 
 const FrontendProgress& LockstepSchedule::progress(char robot) const {
   const auto it = progress_.find(robot);
-  if (it == progress_.end()) throw std::invalid_argument(std::string("lockstep schedule: unknown robot '") + robot + "'");
+  if (it == progress_.end())
+    throw std::invalid_argument(std::string("lockstep schedule: unknown robot '") + robot + "'");
   return it->second;
 }
 

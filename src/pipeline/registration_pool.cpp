@@ -67,9 +67,7 @@ void RegistrationPool::run(std::size_t slot) {
     std::exception_ptr error;
     try {
       result = q.job();
-    } catch (...) {
-      error = std::current_exception();
-    }
+    } catch (...) { error = std::current_exception(); }
     {  // counted before the result is seen, so a caller holding the result sees the job counted
       const double cpu = threadCpuSeconds();
       std::lock_guard<std::mutex> lock(mutex_);

@@ -22,7 +22,8 @@ std::optional<Pose3> RobotFrontend::referenceAt(StampNs stamp) const {
   if (auto p = reference_.at(stamp)) return p;
   const StampNs tol = toStampNs(params_.reference_tolerance_s);
   const StampNs start = reference_.startStamp(), end = reference_.endStamp();
-  if ((stamp < start && start - stamp <= tol) || (stamp > end && stamp - end <= tol)) return reference_.atClamped(stamp);
+  if ((stamp < start && start - stamp <= tol) || (stamp > end && stamp - end <= tol))
+    return reference_.atClamped(stamp);
   return std::nullopt;
 }
 
@@ -70,9 +71,8 @@ ScanOutcome RobotFrontend::processPrepared(StampNs stamp, const OdometryResult& 
 }
 
 ScanOutcome RobotFrontend::afterOdometry(const Scan& scan, OdometryResult odometry) {
-  return afterOdometry(scan.stamp, std::move(odometry), [&]() {
-    return std::make_shared<const Scan>(taker_.keyframeScan(scan, reference_));
-  });
+  return afterOdometry(scan.stamp, std::move(odometry),
+                       [&]() { return std::make_shared<const Scan>(taker_.keyframeScan(scan, reference_)); });
 }
 
 ScanOutcome RobotFrontend::afterOdometry(StampNs stamp, OdometryResult odometry,
@@ -111,8 +111,8 @@ ScanOutcome RobotFrontend::afterOdometry(StampNs stamp, OdometryResult odometry,
   return out;
 }
 
-std::vector<LoopClosureAttempt> RobotFrontend::receiveTeammateScan(char teammate, std::size_t index,
-                                                                   const Scan& scan, StampNs received_at) {
+std::vector<LoopClosureAttempt> RobotFrontend::receiveTeammateScan(char teammate, std::size_t index, const Scan& scan,
+                                                                   StampNs received_at) {
   auto kept = std::make_shared<Scan>();
   kept->stamp = scan.stamp;
   kept->points = removeInvalidPoints(scan).points;

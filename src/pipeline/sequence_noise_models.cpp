@@ -36,9 +36,7 @@ std::string chooseNoiseModels(const SequenceConfig& config, const std::string& c
     const std::string path = sequenceNoiseModelsPath(config, config_dir, given);
     const bool by_environment = given.empty() && config.noise_models.empty();
     return by_environment && !std::filesystem::exists(path) ? std::string() : path;
-  } catch (const NoiseModelsMissing&) {
-    return "";
-  }
+  } catch (const NoiseModelsMissing&) { return ""; }
 }
 
 NoiseModels loadSequenceNoiseModels(const SequenceConfig& sequence, const std::string& config_dir,
@@ -51,8 +49,8 @@ NoiseModels loadSequenceNoiseModels(const SequenceConfig& sequence, const std::s
   try {
     return NoiseModels::load(path);
   } catch (const NoiseModelsUnknown& e) {
-    throw NoiseModelsMissing(sequenceLabel(sequence) + ": the noise models" + env + " are not known (" + path +
-                             ": " + e.reason + ").\n" + howToMakeNoiseModels(sequence, path));
+    throw NoiseModelsMissing(sequenceLabel(sequence) + ": the noise models" + env + " are not known (" + path + ": " +
+                             e.reason + ").\n" + howToMakeNoiseModels(sequence, path));
   }
 }
 
@@ -64,8 +62,10 @@ NoiseModels loadRunNoiseModels(const std::string& explicit_path, const std::stri
     try {
       return NoiseModels::load(explicit_path);
     } catch (const NoiseModelsUnknown& e) {
-      throw NoiseModelsMissing(std::string(e.what()) + ". Make them with cosmo_generate SEQUENCE.yaml "
-                               "--estimate-noise-models TRIAL, or cosmo_noise_models RUN.jrl " + explicit_path);
+      throw NoiseModelsMissing(std::string(e.what()) +
+                               ". Make them with cosmo_generate SEQUENCE.yaml "
+                               "--estimate-noise-models TRIAL, or cosmo_noise_models RUN.jrl " +
+                               explicit_path);
     }
   }
   SequenceConfig sequence;
@@ -77,8 +77,9 @@ NoiseModels loadRunNoiseModels(const std::string& explicit_path, const std::stri
     sequence.name = sim.name;
     sequence.environment = sim.environment;
   } else {
-    throw NoiseModelsMissing("no noise models: give a noise-model file, or the sequence whose environment names "
-                             "them (environment: NAME -> config/noise_models/NAME.yaml)");
+    throw NoiseModelsMissing(
+        "no noise models: give a noise-model file, or the sequence whose environment names "
+        "them (environment: NAME -> config/noise_models/NAME.yaml)");
   }
   return loadSequenceNoiseModels(sequence, config_dir);
 }
@@ -98,8 +99,8 @@ std::string howToMakeNoiseModels(const SequenceConfig& sequence, const std::stri
 const TrialConfig& findTrial(const SequenceConfig& sequence, const std::string& which) {
   for (const auto& t : sequence.trials)
     if ((which.size() == 1 && t.robot == which[0]) || t.name == which) return t;
-  throw std::runtime_error(sequenceLabel(sequence) + ": no trial '" + which + "' (robot id or trial name: " +
-                           trialChoices(sequence) + ")");
+  throw std::runtime_error(sequenceLabel(sequence) + ": no trial '" + which +
+                           "' (robot id or trial name: " + trialChoices(sequence) + ")");
 }
 
 }  // namespace cosmo::pipeline

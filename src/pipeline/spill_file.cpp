@@ -15,7 +15,8 @@ namespace {
 std::string reason() { return std::strerror(errno); }
 }  // namespace
 
-SpillFile::SpillFile(const std::string& dir) : dir_(dir.empty() ? std::filesystem::temp_directory_path().string() : dir) {
+SpillFile::SpillFile(const std::string& dir)
+    : dir_(dir.empty() ? std::filesystem::temp_directory_path().string() : dir) {
   std::string path = (std::filesystem::path(dir_) / "cosmo-spill-XXXXXX").string();
   std::vector<char> name(path.begin(), path.end());
   name.push_back('\0');
@@ -41,7 +42,8 @@ SpillFile::Extent SpillFile::append(const void* data, std::size_t size) {
   while (done < size) {
     const ssize_t n = ::pwrite(fd_, p + done, size - done, static_cast<off_t>(e.offset + done));
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) throw std::runtime_error("spill file in " + dir_ + ": write failed: " + (n < 0 ? reason() : "no progress"));
+    if (n <= 0)
+      throw std::runtime_error("spill file in " + dir_ + ": write failed: " + (n < 0 ? reason() : "no progress"));
     done += static_cast<std::size_t>(n);
   }
   return e;
@@ -53,7 +55,8 @@ void SpillFile::read(const Extent& extent, void* out) const {
   while (done < extent.size) {
     const ssize_t n = ::pread(fd_, p + done, extent.size - done, static_cast<off_t>(extent.offset + done));
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) throw std::runtime_error("spill file in " + dir_ + ": read failed: " + (n < 0 ? reason() : "short file"));
+    if (n <= 0)
+      throw std::runtime_error("spill file in " + dir_ + ": read failed: " + (n < 0 ? reason() : "short file"));
     done += static_cast<std::size_t>(n);
   }
 }

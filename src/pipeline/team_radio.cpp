@@ -13,7 +13,8 @@ StampNs radioStepStamp(StampNs origin, double radio_time) {
   return origin + static_cast<StampNs>(std::llround(radio_time * 1e9));
 }
 
-Eigen::Vector3d radioPosition(const Trajectory& reference, StampNs step_stamp, const Eigen::Vector3d& odometry_position) {
+Eigen::Vector3d radioPosition(const Trajectory& reference, StampNs step_stamp,
+                              const Eigen::Vector3d& odometry_position) {
   return reference.empty() ? odometry_position : Eigen::Vector3d(reference.atClamped(step_stamp).translation());
 }
 

@@ -53,7 +53,8 @@ TrialCheck checkTrial(const TrialConfig& trial, const TrialProbe& probe, const T
     line << ", topic " << trial.topic << " MISSING (the bag has:";
     for (const auto& t : probe.topics) line << " " << t;
     line << ")";
-    c.errors.push_back(trial.name + ": " + (probe.error.empty() ? "no topic " + trial.topic + " in " + trial.bag : probe.error));
+    c.errors.push_back(trial.name + ": " +
+                       (probe.error.empty() ? "no topic " + trial.topic + " in " + trial.bag : probe.error));
     c.line = line.str();
     return c;
   }
@@ -72,14 +73,16 @@ TrialCheck checkTrial(const TrialConfig& trial, const TrialProbe& probe, const T
     for (const auto& p : s.points) returns += isReturn(p);
   if (probe.points_in_messages > 0)
     line << ", invalid returns "
-         << fmt("%.1f %%", 100.0 * (1.0 - static_cast<double>(returns) / static_cast<double>(probe.points_in_messages)));
+         << fmt("%.1f %%",
+                100.0 * (1.0 - static_cast<double>(returns) / static_cast<double>(probe.points_in_messages)));
   if (returns == 0) c.errors.push_back(trial.name + ": the first scans hold no valid point");
 
   if (reference.empty()) {
     line << ", reference NONE";
-    c.errors.push_back(trial.name + ": " + (reference_error.empty() ? "no reference: the dataset would have no "
-                                                                      "groundtruth and no outlier labels"
-                                                                    : reference_error));
+    c.errors.push_back(trial.name + ": " +
+                       (reference_error.empty() ? "no reference: the dataset would have no "
+                                                  "groundtruth and no outlier labels"
+                                                : reference_error));
   } else {
     const double before = std::max(0.0, toSeconds(reference.startStamp()) - toSeconds(probe.first_stamp));
     const double after = std::max(0.0, toSeconds(probe.last_stamp) - toSeconds(reference.endStamp()));
@@ -89,12 +92,12 @@ TrialCheck checkTrial(const TrialConfig& trial, const TrialProbe& probe, const T
          << fmt("%.1f s at the start, %.1f s at the end)", before, after);
     try {
       TrialCoverage(trial.name, reference).clip({trial.robot, probe.first_stamp, probe.last_stamp});
-    } catch (const std::exception& e) {
-      c.errors.push_back(e.what());
-    }
+    } catch (const std::exception& e) { c.errors.push_back(e.what()); }
   }
   line << ", extrinsic rotation " << fmt("%.2f deg", rotationAngle(trial.extrinsic) * 180.0 / M_PI);
-  line << ", noise models " << (noise_models.empty() ? std::string("none: the run stops (see cosmo_generate --estimate-noise-models)") : noise_models);
+  line << ", noise models "
+       << (noise_models.empty() ? std::string("none: the run stops (see cosmo_generate --estimate-noise-models)")
+                                : noise_models);
   c.line = line.str();
   return c;
 }

@@ -78,14 +78,14 @@ bool CoveredScanSource::next(Scan& scan) {
     }
     if (coverage_.after(scan)) {
       if (read_to_end_)
-        while (scans_->next(scan)) {
-        }
+        while (scans_->next(scan)) {}
       break;
     }
     if (started_)
       throw std::runtime_error("trial " + coverage_.trial() + ": the reference does not cover the scan at " +
-                               formatStamp(scan.stamp) + " (reference poses more than " + formatStamp(toStampNs(kMaxReferenceGap)) +
-                               " s apart around it); reference " + coverage_.describeSpan());
+                               formatStamp(scan.stamp) + " (reference poses more than " +
+                               formatStamp(toStampNs(kMaxReferenceGap)) + " s apart around it); reference " +
+                               coverage_.describeSpan());
     ++skipped_before_;
   }
   ended_ = true;

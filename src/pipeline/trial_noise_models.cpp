@@ -13,8 +13,9 @@ jrl::Dataset runAlone(char robot, MergedScanStream& stream, const Trajectory& re
   Scan scan;
   StampNs last = stream.timing().start();
   while (stream.next(r, scan)) {
-    if (r != robot) throw std::runtime_error("estimateTrialNoiseModels: the stream has scans of robot " +
-                                             std::string(1, r) + ", expected only " + std::string(1, robot));
+    if (r != robot)
+      throw std::runtime_error("estimateTrialNoiseModels: the stream has scans of robot " + std::string(1, r) +
+                               ", expected only " + std::string(1, robot));
     last = scan.stamp;
     run.addScan(r, scan);
   }
@@ -37,8 +38,8 @@ NoiseModelRecord recordOf(const NoiseModelEstimate& e, const NoiseModelEstimatio
 
 TrialNoiseModels estimateTrialNoiseModels(char robot, MergedScanStream& stream, const Trajectory& reference,
                                           const TeamRunParams& params, std::uint64_t radio_seed,
-                                          const NoiseModelEstimationParams& estimation,
-                                          const std::string& trial_label, const std::string& environment) {
+                                          const NoiseModelEstimationParams& estimation, const std::string& trial_label,
+                                          const std::string& environment) {
   TrialNoiseModels out;
   out.run = runAlone(robot, stream, reference, params, radio_seed, trial_label + "_alone");
   const MeasurementSets sets = collectMeasurements(out.run, robot);

@@ -20,9 +20,7 @@ PlaceRecognitionParams PlaceRecognitionParams::fromConfig(const ConfigNode& root
   readParams(node, p, other_keys);
   try {
     p.validate();
-  } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(node.where + ": " + e.what());
-  }
+  } catch (const std::invalid_argument& e) { throw std::runtime_error(node.where + ": " + e.what()); }
   return p;
 }
 
@@ -76,8 +74,7 @@ void PlaceRecognizer::collect(const std::vector<DatabaseMatch>& matches, char qu
   }
 }
 
-std::vector<LoopCandidate> PlaceRecognizer::addOwnDescriptor(std::size_t index, StampNs stamp,
-                                                             ScanContext descriptor) {
+std::vector<LoopCandidate> PlaceRecognizer::addOwnDescriptor(std::size_t index, StampNs stamp, ScanContext descriptor) {
   std::vector<LoopCandidate> out;
   collect(own_.query(descriptor, ownSearchable(stamp)), own_robot_, index, own_robot_, out);
   for (const auto& [robot, db] : teammates_) collect(db.query(descriptor), own_robot_, index, robot, out);
@@ -88,8 +85,8 @@ std::vector<LoopCandidate> PlaceRecognizer::addOwnDescriptor(std::size_t index, 
 std::vector<LoopCandidate> PlaceRecognizer::addTeammateDescriptor(char robot, std::size_t index, StampNs stamp,
                                                                   ScanContext descriptor) {
   if (robot == own_robot_) {
-    throw std::invalid_argument(std::string("PlaceRecognizer: addTeammateScan called with the own robot id '") +
-                                robot + "'");
+    throw std::invalid_argument(std::string("PlaceRecognizer: addTeammateScan called with the own robot id '") + robot +
+                                "'");
   }
   std::vector<LoopCandidate> out;
   collect(own_.query(descriptor), robot, index, own_robot_, out);

@@ -34,8 +34,8 @@ QueryOutcome outcomeOf(const std::vector<DatabaseMatch>& matches, const Eigen::V
 
 void checkSizes(std::size_t a, std::size_t b, const char* what) {
   if (a != b)
-    throw std::invalid_argument(std::string(what) + ": " + std::to_string(a) + " descriptors but " +
-                                std::to_string(b) + " positions");
+    throw std::invalid_argument(std::string(what) + ": " + std::to_string(a) + " descriptors but " + std::to_string(b) +
+                                " positions");
 }
 
 }  // namespace

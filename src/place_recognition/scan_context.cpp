@@ -51,9 +51,7 @@ ScanContextParams ScanContextParams::fromConfig(const ConfigNode& root) {
   }
   try {
     p.validate();
-  } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(node.where + ": " + e.what());
-  }
+  } catch (const std::invalid_argument& e) { throw std::runtime_error(node.where + ": " + e.what()); }
   return p;
 }
 

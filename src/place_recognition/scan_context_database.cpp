@@ -23,9 +23,8 @@ struct RingKeyCloud {
   }
 };
 
-using RingKeyTree =
-    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, RingKeyCloud>, RingKeyCloud, -1,
-                                        std::size_t>;
+using RingKeyTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, RingKeyCloud>, RingKeyCloud,
+                                                        -1, std::size_t>;
 
 }  // namespace
 
@@ -124,8 +123,7 @@ std::vector<DatabaseMatch> ScanContextDatabase::query(const ScanContext& query, 
        nearestRingKeys(query.ring_key, static_cast<std::size_t>(m.params.num_candidates), searchable)) {
     const DatabaseEntry& e = m.entries[pos];
     matches.push_back(DatabaseMatch{
-        pos, e.id,
-        scanContextDistance(query, e.descriptor, m.params.empty_columns, m.params.coarse_search_radius)});
+        pos, e.id, scanContextDistance(query, e.descriptor, m.params.empty_columns, m.params.coarse_search_radius)});
   }
   std::sort(matches.begin(), matches.end(), [](const DatabaseMatch& a, const DatabaseMatch& b) {
     return a.match.distance != b.match.distance ? a.match.distance < b.match.distance : a.position < b.position;

@@ -44,11 +44,10 @@ double wrappedYaw(int shift, int sectors) {
 int sectorKeyShift(const ScanContext& query, const ScanContext& candidate) {
   checkComparable(query, candidate);
   const int n = static_cast<int>(query.descriptor.cols());
-  const Eigen::VectorXf qk = query.sector_key.size() == n ? query.sector_key
-                                                          : Eigen::VectorXf(query.descriptor.colwise().mean());
-  const Eigen::VectorXf ck = candidate.sector_key.size() == n
-                                 ? candidate.sector_key
-                                 : Eigen::VectorXf(candidate.descriptor.colwise().mean());
+  const Eigen::VectorXf qk =
+      query.sector_key.size() == n ? query.sector_key : Eigen::VectorXf(query.descriptor.colwise().mean());
+  const Eigen::VectorXf ck =
+      candidate.sector_key.size() == n ? candidate.sector_key : Eigen::VectorXf(candidate.descriptor.colwise().mean());
   int best_shift = 0;
   float best = std::numeric_limits<float>::infinity();
   for (int s = 0; s < n; ++s) {
@@ -100,8 +99,7 @@ DescriptorMatch scanContextDistance(const ScanContext& query, const ScanContext&
       both += q_occ[static_cast<std::size_t>(i)] & c_occ[static_cast<std::size_t>(k)];
     }
     const int count = penalize ? q_count + c_count - both : both;
-    const double distance =
-        count > 0 ? std::min(1.0, std::max(0.0, 1.0 - static_cast<double>(sum) / count)) : 1.0;
+    const double distance = count > 0 ? std::min(1.0, std::max(0.0, 1.0 - static_cast<double>(sum) / count)) : 1.0;
     if (distance < best.distance) {
       best.distance = distance;
       best.shift = s;

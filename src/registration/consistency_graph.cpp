@@ -61,8 +61,7 @@ ConsistencyGraph ConsistencyGraph::induced(const std::vector<int>& vertices) con
 
 ConsistencyGraph ConsistencyGraph::fromCorrespondences(const std::vector<Eigen::Vector3f>& source,
                                                        const std::vector<Eigen::Vector3f>& target, double tolerance) {
-  if (source.size() != target.size())
-    throw std::invalid_argument("ConsistencyGraph: source and target sizes differ");
+  if (source.size() != target.size()) throw std::invalid_argument("ConsistencyGraph: source and target sizes differ");
   const int n = static_cast<int>(source.size());
   ConsistencyGraph g(n);
   const float tol = static_cast<float>(tolerance);

@@ -16,7 +16,7 @@ namespace cosmo {
 namespace {
 
 constexpr int kBins = 11;
-constexpr int kBlock = 4;  ///< pairs per vector step of the pair-feature loop (one Float4)
+constexpr int kBlock = 4;         ///< pairs per vector step of the pair-feature loop (one Float4)
 constexpr std::size_t kRow = 36;  ///< histogram row stride: 33 bins padded to a multiple of 4 floats
 
 /// acc[0..kRow) += w row[0..kRow) (both 16-byte aligned).
@@ -55,8 +55,9 @@ inline void storeBin(Float4 x, float lo, float hi, int offset, std::int32_t* out
 /// a_t = -a1, phi = -a2), v = d x u / |d x u|, w = u x v. In closed form, with c = n1.n2 and |d x u| =
 /// sqrt(1 - a_s^2): alpha = v.nb = d.(n1 x n2) / |d x u| (the same for both choices), and theta =
 /// atan2(w.nb, u.nb) = atan2(a_t - a_s c, c |d x u|).
-__attribute__((always_inline)) inline void pairFeatureBlock(const float* pn, const std::uint32_t* i, const std::uint32_t* j, std::int32_t* b1,
-                             std::int32_t* b2, std::int32_t* b3, std::int32_t* ok) {
+__attribute__((always_inline)) inline void pairFeatureBlock(const float* pn, const std::uint32_t* i,
+                                                            const std::uint32_t* j, std::int32_t* b1, std::int32_t* b2,
+                                                            std::int32_t* b3, std::int32_t* ok) {
   // Four rows [x y z 0] gathered and transposed into x, y, z lanes (the fourth row is the zero column).
   auto lanes = [&](const std::uint32_t* idx, std::size_t offset, Float4& x, Float4& y, Float4& z) {
     x = Float4::load(pn + 8 * static_cast<std::size_t>(idx[0]) + offset);

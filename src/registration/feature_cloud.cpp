@@ -9,7 +9,8 @@ namespace cosmo {
 FeatureCloud computeFeatureCloud(const Scan& scan, const RegistrationParams& params, StageObserver* observer) {
   FeatureCloud out;
   out.input_points = scan.size();
-  std::vector<Eigen::Vector3f> down = voxelDownsample(scan.points, params.voxel_size, params.min_range, params.max_range);
+  std::vector<Eigen::Vector3f> down =
+      voxelDownsample(scan.points, params.voxel_size, params.min_range, params.max_range);
   out.downsampled_points = down.size();
   notifyStage(observer, "downsample");
   if (params.fast_features) {

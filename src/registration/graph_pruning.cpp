@@ -54,7 +54,9 @@ void coreDecomposition(const ConsistencyGraph& g, std::vector<int>& core, std::v
 class BitsetCliqueSearch {
  public:
   BitsetCliqueSearch(const ConsistencyGraph& g, const std::vector<int>& vertices, std::uint64_t budget)
-      : vertices_(vertices), m_(static_cast<int>(vertices.size())), words_((vertices.size() + 63) / 64),
+      : vertices_(vertices),
+        m_(static_cast<int>(vertices.size())),
+        words_((vertices.size() + 63) / 64),
         budget_(budget) {
     adj_.assign(static_cast<std::size_t>(m_) * words_, 0u);
     for (int a = 0; a < m_; ++a)

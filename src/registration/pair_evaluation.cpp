@@ -54,9 +54,7 @@ std::vector<ScanPair> readPairList(const std::string& path) {
       for (std::size_t i = 2; i < tok.size(); ++i) {
         try {
           v.push_back(std::stod(tok[i]));
-        } catch (const std::exception&) {
-          throw std::runtime_error(where + ": not a number: '" + tok[i] + "'");
-        }
+        } catch (const std::exception&) { throw std::runtime_error(where + ": not a number: '" + tok[i] + "'"); }
       }
       p.T_target_source = parsePoseNumbers(v, where);
     }

@@ -12,8 +12,8 @@ void applyGate(const RegistrationParams& p, RegistrationResult& r) {
     r.reason = "too few correspondences (" + std::to_string(r.correspondences) + " < " +
                std::to_string(p.min_correspondences) + ")";
   } else if (r.final_inliers < p.min_final_inliers) {
-    r.reason = "too few final inliers (" + std::to_string(r.final_inliers) + " < " +
-               std::to_string(p.min_final_inliers) + ")";
+    r.reason =
+        "too few final inliers (" + std::to_string(r.final_inliers) + " < " + std::to_string(p.min_final_inliers) + ")";
   } else if (p.min_inlier_ratio > 0.0 &&
              static_cast<double>(r.final_inliers) < p.min_inlier_ratio * static_cast<double>(r.correspondences)) {
     r.reason = "inlier ratio below " + std::to_string(p.min_inlier_ratio);

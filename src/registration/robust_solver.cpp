@@ -122,8 +122,7 @@ TranslationEstimate tlsTranslation(const std::vector<Eigen::Vector3d>& v, double
     for (std::size_t i = 0; i < v.size(); ++i) axis[i] = v[i][d];
     out.t[d] = tlsScalar(axis, noise_bound);
   }
-  for (std::size_t i = 0; i < v.size(); ++i)
-    out.inliers[i] = ((v[i] - out.t).array().abs() <= noise_bound).all();
+  for (std::size_t i = 0; i < v.size(); ++i) out.inliers[i] = ((v[i] - out.t).array().abs() <= noise_bound).all();
   return out;
 }
 

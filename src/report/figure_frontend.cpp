@@ -80,8 +80,8 @@ std::string frontendSvg(const jrl::Dataset& dataset) {
 
   std::vector<LegendRow> left;
   for (std::size_t i = 0; i < g.robots.size(); ++i)
-    left.push_back({Stroke{robotColor(i), 1.2, 1.0, ""}, std::string("robot ") + g.robots[i] +
-                                                             " odometry, a dot per keyframe; light: reference"});
+    left.push_back({Stroke{robotColor(i), 1.2, 1.0, ""},
+                    std::string("robot ") + g.robots[i] + " odometry, a dot per keyframe; light: reference"});
   jrl::PoseFactor intra, inter, outlier;
   intra.kind = jrl::FactorKind::LoopClosure;
   inter.kind = jrl::FactorKind::InterRobotLoopClosure;

@@ -57,13 +57,13 @@ void Svg::beginClip(double x, double y, double w, double h) {
 }
 
 void Svg::line(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  body_ += "<line x1=\"" + num(a.x()) + "\" y1=\"" + num(a.y()) + "\" x2=\"" + num(b.x()) + "\" y2=\"" +
-           num(b.y()) + "\"/>\n";
+  body_ += "<line x1=\"" + num(a.x()) + "\" y1=\"" + num(a.y()) + "\" x2=\"" + num(b.x()) + "\" y2=\"" + num(b.y()) +
+           "\"/>\n";
 }
 
 void Svg::line(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Stroke& stroke) {
-  body_ += "<line x1=\"" + num(a.x()) + "\" y1=\"" + num(a.y()) + "\" x2=\"" + num(b.x()) + "\" y2=\"" +
-           num(b.y()) + "\" " + strokeAttributes(stroke) + "/>\n";
+  body_ += "<line x1=\"" + num(a.x()) + "\" y1=\"" + num(a.y()) + "\" x2=\"" + num(b.x()) + "\" y2=\"" + num(b.y()) +
+           "\" " + strokeAttributes(stroke) + "/>\n";
 }
 
 void Svg::polyline(const std::vector<Eigen::Vector2d>& points, const Stroke& stroke) {
@@ -74,8 +74,8 @@ void Svg::polyline(const std::vector<Eigen::Vector2d>& points, const Stroke& str
 }
 
 void Svg::circle(const Eigen::Vector2d& c, double radius, const std::string& fill, double opacity) {
-  body_ += "<circle cx=\"" + num(c.x()) + "\" cy=\"" + num(c.y()) + "\" r=\"" + num(radius) + "\" fill=\"" + fill +
-           "\"";
+  body_ +=
+      "<circle cx=\"" + num(c.x()) + "\" cy=\"" + num(c.y()) + "\" r=\"" + num(radius) + "\" fill=\"" + fill + "\"";
   if (opacity < 1.0) body_ += " fill-opacity=\"" + fraction(opacity) + "\"";
   body_ += "/>\n";
 }

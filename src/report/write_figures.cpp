@@ -29,8 +29,7 @@ bool converterInstalled() { return std::system("command -v convert >/dev/null 2>
 
 /// PNG of an SVG with ImageMagick; false when the conversion fails (the SVG stays).
 bool convertToPng(const std::string& svg, const std::string& png) {
-  const std::string cmd =
-      "convert -background white " + shellQuoted(svg) + " " + shellQuoted(png) + " >/dev/null 2>&1";
+  const std::string cmd = "convert -background white " + shellQuoted(svg) + " " + shellQuoted(png) + " >/dev/null 2>&1";
   return std::system(cmd.c_str()) == 0 && fs::exists(png);
 }
 
@@ -45,8 +44,7 @@ std::vector<std::string> writeDatasetFigures(const jrl::Dataset& dataset, const 
   FigureOptions options;
   options.source = jrl.filename().string();
   const std::vector<std::pair<std::string, std::string>> figures{
-      {stem + ".trajectories.svg", trajectoriesSvg(dataset, options)},
-      {stem + ".frontend.svg", frontendSvg(dataset)}};
+      {stem + ".trajectories.svg", trajectoriesSvg(dataset, options)}, {stem + ".frontend.svg", frontendSvg(dataset)}};
   std::vector<std::string> written;
   const bool with_png = png && converterInstalled();
   for (const auto& [path, text] : figures) {
@@ -67,9 +65,7 @@ std::string writeFiguresBesideJrl(const jrl::Dataset& dataset, const std::string
       line += png_of_previous ? "/.png" : (i ? ", " : " ") + written[i];
     }
     return line;
-  } catch (const std::exception& e) {
-    return std::string("figures not written: ") + e.what();
-  }
+  } catch (const std::exception& e) { return std::string("figures not written: ") + e.what(); }
 }
 
 }  // namespace cosmo::report

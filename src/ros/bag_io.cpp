@@ -24,7 +24,7 @@ struct ScanBagReader::Impl {
   rosbag::View::iterator it;
   std::string where;
   bool stamp_at_end = true;
-  std::vector<uint8_t> buffer;  ///< the serialized message, reused (it only grows)
+  std::vector<uint8_t> buffer;    ///< the serialized message, reused (it only grows)
   sensor_msgs::PointCloud2 meta;  ///< everything but `data`, which is decoded from `buffer` in place
   trials::CloudLayout layout;
   trials::DecodeCounts counts;
@@ -42,8 +42,8 @@ std::string findTopic(rosbag::Bag& bag, const std::string& bag_path, const std::
     if (topics.find(c->topic + " (") == std::string::npos)
       topics += (topics.empty() ? "" : ", ") + c->topic + " (" + c->datatype + ")";
   }
-  throw std::runtime_error(bag_path + ": no topic " + topic + " in this ROS 1 bag; it has: " +
-                           (topics.empty() ? "none" : topics));
+  throw std::runtime_error(bag_path + ": no topic " + topic +
+                           " in this ROS 1 bag; it has: " + (topics.empty() ? "none" : topics));
 }
 }  // namespace
 
@@ -54,9 +54,7 @@ ScanBagReader::ScanBagReader(const std::string& bag_path, const std::string& top
   impl_->stamp_at_end = stamp_at_end;
   try {
     impl_->bag.open(bag_path, rosbag::bagmode::Read);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(bag_path + ": cannot open bag: " + e.what());
-  }
+  } catch (const std::exception& e) { throw std::runtime_error(bag_path + ": cannot open bag: " + e.what()); }
   impl_->view = std::make_unique<rosbag::View>(impl_->bag, rosbag::TopicQuery(findTopic(impl_->bag, bag_path, topic)));
   if (impl_->view->size() == 0) throw std::runtime_error(impl_->where + ": no messages on this topic");
   impl_->it = impl_->view->begin();
@@ -121,9 +119,7 @@ ScanBagWriter::ScanBagWriter(const std::string& bag_path, BagCompression compres
     bag_->open(bag_path, rosbag::bagmode::Write);
     if (compression == BagCompression::Bz2) bag_->setCompression(rosbag::compression::BZ2);
     if (compression == BagCompression::Lz4) bag_->setCompression(rosbag::compression::LZ4);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(bag_path + ": cannot write bag: " + e.what());
-  }
+  } catch (const std::exception& e) { throw std::runtime_error(bag_path + ": cannot write bag: " + e.what()); }
 }
 
 ScanBagWriter::~ScanBagWriter() { close(); }

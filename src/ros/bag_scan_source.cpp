@@ -25,15 +25,12 @@ pipeline::TrialSpan readRos1TrialSpan(const std::string& bag_path, const std::st
   rosbag::Bag bag;
   try {
     bag.open(bag_path, rosbag::bagmode::Read);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(bag_path + ": cannot open bag: " + e.what());
-  }
+  } catch (const std::exception& e) { throw std::runtime_error(bag_path + ": cannot open bag: " + e.what()); }
   std::string topic = requested_topic;
   {
     rosbag::View any(bag);
     for (const auto* c : any.getConnections())
-      if (c->topic == requested_topic || c->topic == "/" + requested_topic ||
-          "/" + c->topic == requested_topic)
+      if (c->topic == requested_topic || c->topic == "/" + requested_topic || "/" + c->topic == requested_topic)
         topic = c->topic;
   }
   rosbag::View all(bag, rosbag::TopicQuery(topic));

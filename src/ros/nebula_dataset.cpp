@@ -54,7 +54,8 @@ NebulaConversion convertNebulaDataset(const NebulaOptions& options) {
       out.topics.insert(out.topics.end(), topics.begin(), topics.end());
     }
     if (out.topics.empty())
-      throw std::runtime_error((root / "rosbag").string() + ": no /<robot>/lamp/pose_graph_incremental topic in any bag");
+      throw std::runtime_error((root / "rosbag").string() +
+                               ": no /<robot>/lamp/pose_graph_incremental topic in any bag");
   }
   const std::map<jrl::Key, Pose3> reference = readReference(root, out);
   out.graph = builder.build();

@@ -26,7 +26,8 @@ void writeNebulaFolder(const std::string& dir, const nebula::SyntheticTeam& team
   for (const char* sub : {"rosbag", "g2o_pcd", "ground_truth"}) fs::create_directories(root / sub);
   for (const auto& [c, name] : team.names) {
     PoseGraphBagWriter bag((root / "rosbag" / (name + ".bag")).string());
-    for (const nebula::PoseGraph& msg : team.messages.at(name)) bag.write("/" + name + "/lamp/pose_graph_incremental", msg);
+    for (const nebula::PoseGraph& msg : team.messages.at(name))
+      bag.write("/" + name + "/lamp/pose_graph_incremental", msg);
     bag.close();
     std::map<std::uint64_t, Pose3> own;
     for (auto it = team.truth.lower_bound(jrl::symbol(c, 0)); it != team.truth.end() && jrl::robotOf(it->first) == c;

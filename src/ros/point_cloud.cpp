@@ -86,8 +86,10 @@ sensor_msgs::PointCloud2 toPointCloud2(const Scan& scan, const std::string& fram
   add("z", sensor_msgs::PointField::FLOAT32, 4);
   if (scan.hasIntensity()) add("intensity", sensor_msgs::PointField::FLOAT32, 4);
   if (scan.hasTime()) {
-    if (ouster_time) add("t", sensor_msgs::PointField::UINT32, 4);
-    else add("time", sensor_msgs::PointField::FLOAT32, 4);
+    if (ouster_time)
+      add("t", sensor_msgs::PointField::UINT32, 4);
+    else
+      add("time", sensor_msgs::PointField::FLOAT32, 4);
   }
   if (scan.hasRing()) add("ring", sensor_msgs::PointField::UINT16, 2);
   msg.row_step = msg.point_step * msg.width;
@@ -98,7 +100,10 @@ sensor_msgs::PointCloud2 toPointCloud2(const Scan& scan, const std::string& fram
     uint8_t* p = msg.data.data() + i * msg.point_step;
     std::memcpy(p, scan.points[i].data(), 12);
     std::size_t off = 12;
-    if (scan.hasIntensity()) { std::memcpy(p + off, &scan.intensity[i], 4); off += 4; }
+    if (scan.hasIntensity()) {
+      std::memcpy(p + off, &scan.intensity[i], 4);
+      off += 4;
+    }
     if (scan.hasTime() && ouster_time) {
       const auto t = static_cast<uint32_t>(std::llround((scan.time[i] - t_min) * 1e9));
       std::memcpy(p + off, &t, 4);

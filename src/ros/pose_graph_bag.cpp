@@ -83,9 +83,7 @@ std::vector<PoseGraphTopicSummary> readPoseGraphBag(const std::string& bag_path,
   rosbag::Bag bag;
   try {
     bag.open(bag_path, rosbag::bagmode::Read);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(bag_path + ": cannot open bag: " + e.what());
-  }
+  } catch (const std::exception& e) { throw std::runtime_error(bag_path + ": cannot open bag: " + e.what()); }
   // 1. The pose-graph topics and their connections' type and md5sum.
   const std::string expected_md5 = nebula::poseGraphMd5();
   std::vector<PoseGraphTopicSummary> summaries;
@@ -141,9 +139,7 @@ PoseGraphBagWriter::PoseGraphBagWriter(const std::string& bag_path, std::string 
       Definition<geometry_msgs::Point>::value(), Definition<geometry_msgs::Quaternion>::value());
   try {
     bag_->open(bag_path, rosbag::bagmode::Write);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(bag_path + ": cannot write bag: " + e.what());
-  }
+  } catch (const std::exception& e) { throw std::runtime_error(bag_path + ": cannot write bag: " + e.what()); }
 }
 
 PoseGraphBagWriter::~PoseGraphBagWriter() { close(); }

@@ -110,8 +110,8 @@ class CuMultiWriter : public TrialLayoutWriter {
     bag_.close();
     // CU-Multi's name for a site's robot: <site>_robotN_ref.csv beside robotN_<site>_lidar/ (evalio's files).
     const std::string gt = info_.name + "_robot" + std::to_string(info_.robot_number) + "_ref.csv";
-    trials::writeCuMultiGroundTruth(
-        (dir_ / gt).string(), writtenBody(body, T_body_lidar, trials::cuMultiImuTLidar(), stamps_, kSimulatedUtmOffset));
+    trials::writeCuMultiGroundTruth((dir_ / gt).string(), writtenBody(body, T_body_lidar, trials::cuMultiImuTLidar(),
+                                                                      stamps_, kSimulatedUtmOffset));
     WrittenTrial w;
     w.bag = folder_;
     w.topic = trials::cuMultiTopic(info_.robot_number);

@@ -69,9 +69,7 @@ pipeline::TrialProbe probeTrial(const pipeline::TrialConfig& trial, std::size_t 
     if (probe.first_scans.empty()) throw std::runtime_error(trial.bag + " " + trial.topic + ": no scan");
     probe.first_stamp = probe.first_scans.front().stamp;
     probe.last_stamp = readSweepEndSpan(trial).last;
-  } catch (const std::exception& e) {
-    probe.error = e.what();
-  }
+  } catch (const std::exception& e) { probe.error = e.what(); }
   return probe;
 }
 
@@ -85,17 +83,16 @@ bool checkSequence(const pipeline::SequenceConfig& config, const std::string& no
         reference_error = t.name + ": reference not found: " + t.reference;
       else
         reference = trials::readBodyReference(t);
-    } catch (const std::exception& e) {
-      reference_error = t.name + ": " + e.what();
-    }
+    } catch (const std::exception& e) { reference_error = t.name + ": " + e.what(); }
     checks.push_back(pipeline::checkTrial(t, probeTrial(t), reference, reference_error, noise_models));
   }
   const bool ok = pipeline::formatChecks(checks, text);
   std::string hint;
   for (const auto& c : checks)
     if (!ok && config.data_root_from == "config folder" && c.line.find("NOT FOUND") != std::string::npos)
-      hint = "(the trials' paths are relative to the data root: give it with --data-root DIR / data_root:=DIR or "
-             "COSMO_DATA_ROOT)\n";
+      hint =
+          "(the trials' paths are relative to the data root: give it with --data-root DIR / data_root:=DIR or "
+          "COSMO_DATA_ROOT)\n";
   text = "sequence " + config.name + " (" + config.source + "), data root " + config.data_root + " (" +
          config.data_root_from + ")\n" + text + hint;
   return ok;

@@ -150,7 +150,10 @@ bool Bvh::intersect(const Ray& ray, double t_min, Hit& hit) const {
   auto limit = [&]() { return static_cast<float>(hit.t) * 1.0001f + 1e-3f; };
   float t_root;
   if (!slab(nodes_[0].lo, nodes_[0].hi, fr, limit(), t_root)) return false;
-  struct Entry { std::uint32_t node; float t; };
+  struct Entry {
+    std::uint32_t node;
+    float t;
+  };
   Entry stack[64];
   int top = 0;
   bool found = false;
@@ -158,7 +161,8 @@ bool Bvh::intersect(const Ray& ray, double t_min, Hit& hit) const {
   for (;;) {
     const Node& node = nodes_[current];
     if (node.count > 0) {
-      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) found |= prims_[i].intersect(ray, t_min, hit);
+      for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+        found |= prims_[i].intersect(ray, t_min, hit);
     } else {
       const std::uint32_t left = current + 1, right = node.first;
       float tl, tr;
@@ -175,14 +179,23 @@ bool Bvh::intersect(const Ray& ray, double t_min, Hit& hit) const {
         }
         continue;
       }
-      if (hl) { current = left; continue; }
-      if (hr) { current = right; continue; }
+      if (hl) {
+        current = left;
+        continue;
+      }
+      if (hr) {
+        current = right;
+        continue;
+      }
     }
     // Pop the next node that can still hold a closer hit.
     for (;;) {
       if (top == 0) return found;
       const Entry e = stack[--top];
-      if (e.t <= limit()) { current = e.node; break; }
+      if (e.t <= limit()) {
+        current = e.node;
+        break;
+      }
     }
   }
 }

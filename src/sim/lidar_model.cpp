@@ -7,9 +7,11 @@
 
 namespace cosmo::sim {
 
-#define COSMO_SIM_LIDAR_FIELDS(X)                                                                      \
-  X(beams) X(columns) X(rate_hz) X(fov_up_deg) X(fov_down_deg) X(min_range) X(max_range) X(range_sigma) \
-  X(grazing_cos) X(detection_range) X(dropout) X(intensity_scale) X(foliage_spread) X(clockwise)
+#define COSMO_SIM_LIDAR_FIELDS(X)                                                                                     \
+  X(beams)                                                                                                            \
+  X(columns)                                                                                                          \
+  X(rate_hz) X(fov_up_deg) X(fov_down_deg) X(min_range) X(max_range) X(range_sigma) X(grazing_cos) X(detection_range) \
+      X(dropout) X(intensity_scale) X(foliage_spread) X(clockwise)
 
 LidarModel LidarModel::os1_64() { return LidarModel{}; }
 
@@ -44,9 +46,7 @@ LidarModel LidarModel::fromConfig(const ConfigNode& node) {
   LidarModel m;
   try {
     m = byName(model);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(node.where + ".model: " + e.what());
-  }
+  } catch (const std::exception& e) { throw std::runtime_error(node.where + ".model: " + e.what()); }
 #define X(f) node.read(#f, m.f);
   COSMO_SIM_LIDAR_FIELDS(X)
 #undef X
@@ -57,7 +57,8 @@ LidarModel LidarModel::fromConfig(const ConfigNode& node) {
   node.read("foliage_mean_free_path", m.foliage_mean_free_path);
   if (m.range_sigma_per_m < 0.0 || m.beam_angle_sigma_deg < 0.0 || m.beam_divergence_mrad < 0.0 || m.range_walk < 0.0 ||
       m.foliage_mean_free_path < 0.0)
-    throw std::runtime_error(node.where + ": range_sigma_per_m, beam_angle_sigma_deg, beam_divergence_mrad, range_walk "
+    throw std::runtime_error(node.where +
+                             ": range_sigma_per_m, beam_angle_sigma_deg, beam_divergence_mrad, range_walk "
                              "and foliage_mean_free_path must be >= 0");
   if (m.beams < 1 || m.columns < 1 || !(m.rate_hz > 0) || !(m.max_range > m.min_range))
     throw std::runtime_error(node.where + ": LiDAR needs beams, columns >= 1, rate_hz > 0, max_range > min_range");

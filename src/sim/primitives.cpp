@@ -6,7 +6,8 @@
 
 namespace cosmo::sim {
 
-Primitive Primitive::box(const Eigen::Vector3d& center, const Eigen::Vector3d& half, double yaw, std::uint8_t material) {
+Primitive Primitive::box(const Eigen::Vector3d& center, const Eigen::Vector3d& half, double yaw,
+                         std::uint8_t material) {
   Primitive p;
   p.kind = Kind::Box;
   p.center = center;
@@ -70,8 +71,15 @@ bool intersectBox(const Primitive& p, const Ray& r, double t_min, Hit& hit) {
     const double inv = 1.0 / d[a];
     double ta = (-p.half[a] - o[a]) * inv, tb = (p.half[a] - o[a]) * inv;
     double s = -1.0;  // entering through the -a face
-    if (ta > tb) { std::swap(ta, tb); s = 1.0; }
-    if (ta > t0) { t0 = ta; axis = a; sign = s; }
+    if (ta > tb) {
+      std::swap(ta, tb);
+      s = 1.0;
+    }
+    if (ta > t0) {
+      t0 = ta;
+      axis = a;
+      sign = s;
+    }
     t1 = std::min(t1, tb);
     if (t0 > t1) return false;
   }

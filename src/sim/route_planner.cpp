@@ -14,7 +14,8 @@ namespace {
 bool usable(const PathNetwork& net, int e, bool streets_only) { return !streets_only || net.edges[e].street; }
 
 /// Dijkstra from `target`; `next` (when given) receives each node's neighbour on its shortest way to target.
-std::vector<double> distancesTo(const PathNetwork& net, int target, bool streets_only, std::vector<int>* next = nullptr) {
+std::vector<double> distancesTo(const PathNetwork& net, int target, bool streets_only,
+                                std::vector<int>* next = nullptr) {
   std::vector<double> dist(net.nodes.size(), std::numeric_limits<double>::infinity());
   if (next) next->assign(net.nodes.size(), -1);
   using Item = std::pair<double, int>;
@@ -80,7 +81,10 @@ std::vector<int> planRoute(const PathNetwork& net, const RouteParams& p, std::mt
     std::vector<int> ok;
     for (int u = 0; u < n; ++u)
       for (const auto& [v, e] : net.adjacency[u])
-        if (usable(net, e, p.streets_only)) { ok.push_back(u); break; }
+        if (usable(net, e, p.streets_only)) {
+          ok.push_back(u);
+          break;
+        }
     if (ok.empty()) throw std::invalid_argument("planRoute: no usable edge");
     start = ok[std::uniform_int_distribution<std::size_t>(0, ok.size() - 1)(rng)];
   }
@@ -105,7 +109,10 @@ std::vector<int> planRoute(const PathNetwork& net, const RouteParams& p, std::mt
     }
     if (cand.empty()) {  // dead end: turn back
       for (const auto& [v, e] : net.adjacency[u])
-        if (usable(net, e, p.streets_only)) { step(v, e); return true; }
+        if (usable(net, e, p.streets_only)) {
+          step(v, e);
+          return true;
+        }
       return false;
     }
     const auto k = std::discrete_distribution<std::size_t>(w.begin(), w.end())(rng);
@@ -124,7 +131,11 @@ std::vector<int> planRoute(const PathNetwork& net, const RouteParams& p, std::mt
     for (const auto& [v, e] : net.adjacency[u]) {
       if (!usable(net, e, p.streets_only) || v == prev) continue;
       const double c = net.edgeLength(e) + dist[v];
-      if (c < best) { best = c; best_v = v; best_e = e; }
+      if (c < best) {
+        best = c;
+        best_v = v;
+        best_e = e;
+      }
     }
     if (best_v < 0) break;
     step(best_v, best_e);

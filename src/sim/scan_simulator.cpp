@@ -67,7 +67,8 @@ ScanSimulator::ScanSimulator(const World& world, LidarModel lidar) : world_(worl
     }
 }
 
-Scan ScanSimulator::simulate(const Trajectory& body, const Pose3& T_body_lidar, StampNs stamp, std::uint64_t seed) const {
+Scan ScanSimulator::simulate(const Trajectory& body, const Pose3& T_body_lidar, StampNs stamp,
+                             std::uint64_t seed) const {
   if (body.empty()) throw std::invalid_argument("ScanSimulator: empty trajectory");
   std::vector<Pose3> poses(static_cast<std::size_t>(lidar_.columns));
   for (int c = 0; c < lidar_.columns; ++c) {
@@ -108,7 +109,8 @@ Scan ScanSimulator::simulate(const std::vector<Pose3>& column_poses, StampNs sta
   const std::uint64_t scan_seed = splitmix64(scan_key);
   const auto& materials = materialTable();
   const LidarModel& L = lidar_;
-  const std::vector<Eigen::Vector3d> cast = L.beam_angle_sigma_deg > 0.0 ? castDirections(seed) : std::vector<Eigen::Vector3d>{};
+  const std::vector<Eigen::Vector3d> cast =
+      L.beam_angle_sigma_deg > 0.0 ? castDirections(seed) : std::vector<Eigen::Vector3d>{};
   const std::vector<Eigen::Vector3d>& cast_dirs = cast.empty() ? dirs_ : cast;
   const double half_divergence = 0.5e-3 * L.beam_divergence_mrad;
   const bool volume_foliage = L.foliage_mean_free_path > 0.0;
@@ -144,7 +146,8 @@ Scan ScanSimulator::simulate(const std::vector<Pose3>& column_poses, StampNs sta
           r += L.foliage_spread * m.depth_spread * uniform01(rs);
         if (r < L.min_range || r > L.max_range) continue;
         range[idx] = static_cast<float>(r);
-        intensity[idx] = static_cast<float>(std::min(L.intensity_scale * signal * (0.95 + 0.1 * uniform01(rs)), 65535.0));
+        intensity[idx] =
+            static_cast<float>(std::min(L.intensity_scale * signal * (0.95 + 0.1 * uniform01(rs)), 65535.0));
       }
     }
   });

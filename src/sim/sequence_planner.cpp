@@ -44,10 +44,12 @@ PlannedSequence planSequence(const SimulationParams& params) {
     t.body = makeTrajectory(pts, world.terrain(), t.params.motion, start, rng);
     // Sweeps end every period after the first full sweep; the last one ends inside the trajectory.
     const auto period_ns = static_cast<StampNs>(std::llround(period * 1e9));
-    for (StampNs s = t.body.startStamp() + period_ns; s <= t.body.endStamp(); s += period_ns) t.scan_stamps.push_back(s);
+    for (StampNs s = t.body.startStamp() + period_ns; s <= t.body.endStamp(); s += period_ns)
+      t.scan_stamps.push_back(s);
     t.noise_seed = deriveSeed(params.seed, "lidar/" + t.params.name);
-    t.world = per_trial ? std::make_shared<const World>(layoutWorld(layout, deriveSeed(params.seed, "day/" + t.params.name)))
-                        : seq.world;
+    t.world = per_trial
+                  ? std::make_shared<const World>(layoutWorld(layout, deriveSeed(params.seed, "day/" + t.params.name)))
+                  : seq.world;
     seq.trials.push_back(std::move(t));
   }
   return seq;

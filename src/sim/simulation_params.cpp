@@ -9,7 +9,8 @@
 namespace cosmo::sim {
 
 Pose3 TrialParams::extrinsicPose() const {
-  if (extrinsic.size() != 7) throw std::runtime_error("trial " + name + ": extrinsic needs 7 numbers (x y z qx qy qz qw)");
+  if (extrinsic.size() != 7)
+    throw std::runtime_error("trial " + name + ": extrinsic needs 7 numbers (x y z qx qy qz qw)");
   return makePose({extrinsic[0], extrinsic[1], extrinsic[2]},
                   Eigen::Quaterniond(extrinsic[6], extrinsic[3], extrinsic[4], extrinsic[5]));
 }
@@ -65,22 +66,25 @@ SimulationParams SimulationParams::fromConfig(const ConfigNode& node) {
     t.read("streets_only", tp.route.streets_only);
     t.read("return_fraction", tp.route.return_fraction);
     t.read("waypoints", tp.route.waypoints);
-    if (tp.extrinsic.size() != 7) throw std::runtime_error(t.where + ".extrinsic: expected 7 numbers (x y z qx qy qz qw)");
+    if (tp.extrinsic.size() != 7)
+      throw std::runtime_error(t.where + ".extrinsic: expected 7 numbers (x y z qx qy qz qw)");
     if (!robots.insert(tp.robot).second) throw std::runtime_error(t.where + ".robot: duplicate robot id " + tp.robot);
     if (!names.insert(tp.name).second) throw std::runtime_error(t.where + ".name: duplicate trial name " + tp.name);
     if (!(tp.length > 0) && !(tp.duration > 0)) throw std::runtime_error(t.where + ": length or duration must be > 0");
     p.trials.push_back(tp);
   }
-  if (!robots.count(p.anchor)) throw std::runtime_error(node.where + "anchor: no trial has robot id '" + p.anchor + "'");
+  if (!robots.count(p.anchor))
+    throw std::runtime_error(node.where + "anchor: no trial has robot id '" + p.anchor + "'");
   return p;
 }
 
 std::string SimulationParams::describe() const {
   std::ostringstream os;
   os << std::setprecision(17) << "code=" << kSimCodeVersion << "\nname=" << name << ";source=" << source
-     << ";environment=" << environment << ";seed=" << seed << ";anchor=" << anchor << ";time_offset_sigma=" << time_offset_sigma
-     << ";start_epoch=" << start_epoch << ";trial_epoch_spacing=" << trial_epoch_spacing << ";topic=" << topic
-     << ";frame_id=" << frame_id << "\nworld:" << world.describe() << "\nlidar:" << lidar.describe();
+     << ";environment=" << environment << ";seed=" << seed << ";anchor=" << anchor
+     << ";time_offset_sigma=" << time_offset_sigma << ";start_epoch=" << start_epoch
+     << ";trial_epoch_spacing=" << trial_epoch_spacing << ";topic=" << topic << ";frame_id=" << frame_id
+     << "\nworld:" << world.describe() << "\nlidar:" << lidar.describe();
   for (const auto& t : trials) os << "\ntrial:" << t.describe();
   return os.str();
 }

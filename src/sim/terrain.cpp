@@ -25,7 +25,9 @@ Terrain Terrain::generate(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, 
   const int ny = static_cast<int>(std::ceil((hi.y() - lo.y()) / cell));
   Terrain t(lo, cell, nx, ny, params.material_cell);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
-  struct Wave { double kx, ky, phase, amp; };
+  struct Wave {
+    double kx, ky, phase, amp;
+  };
   std::vector<Wave> waves;
   const int n = std::max(0, params.waves);
   for (int k = 0; k < n; ++k) {
@@ -78,7 +80,8 @@ namespace {
 struct GridWalk {
   int i, j, step_i, step_j;
   double next_i, next_j, dt_i, dt_j;
-  GridWalk(const Ray& ray, double t0, const Eigen::Vector2d& origin, double cell, int i_lo, int i_hi, int j_lo, int j_hi) {
+  GridWalk(const Ray& ray, double t0, const Eigen::Vector2d& origin, double cell, int i_lo, int i_hi, int j_lo,
+           int j_hi) {
     const double inf = std::numeric_limits<double>::infinity();
     const double px = ray.o.x() + t0 * ray.d.x(), py = ray.o.y() + t0 * ray.d.y();
     i = std::clamp(static_cast<int>(std::floor((px - origin.x()) / cell)), i_lo, i_hi);
@@ -109,7 +112,9 @@ struct GridWalk {
 
 namespace {
 // Plane z = c0 + cu * u + cv * v of one of the two triangles of a cell (u, v in [0, 1]).
-struct TrianglePlane { double c0, cu, cv; };
+struct TrianglePlane {
+  double c0, cu, cv;
+};
 inline TrianglePlane lowerPlane(double h00, double h10, double h01) { return {h00, h10 - h00, h01 - h00}; }
 inline TrianglePlane upperPlane(double h10, double h01, double h11) { return {h01 + h10 - h11, h11 - h01, h11 - h10}; }
 /// The triangle of a cell with vertex heights h00, h10, h01, h11 that holds the cell position (u, v).
@@ -246,7 +251,8 @@ void Terrain::setMaterial(double x, double y, std::uint8_t material) {
   materials_[static_cast<std::size_t>(j) * mx_ + i] = material;
 }
 
-void Terrain::paintSegment(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double half_width, std::uint8_t material) {
+void Terrain::paintSegment(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double half_width,
+                           std::uint8_t material) {
   const Eigen::Vector2d lo = a.cwiseMin(b).array() - half_width, hi = a.cwiseMax(b).array() + half_width;
   const int i0 = std::max(0, static_cast<int>(std::floor((lo.x() - origin_.x()) / mat_cell_)));
   const int j0 = std::max(0, static_cast<int>(std::floor((lo.y() - origin_.y()) / mat_cell_)));

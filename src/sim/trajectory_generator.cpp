@@ -10,10 +10,11 @@
 
 namespace cosmo::sim {
 
-#define COSMO_SIM_MOTION_FIELDS(X)                                                                           \
-  X(cruise_speed) X(speed_variation) X(max_accel) X(max_decel) X(max_lateral_accel) X(corner_radius)         \
-  X(lateral_offset) X(body_height) X(axle_half_length) X(track_half_width) X(bob_amplitude) X(bob_frequency) \
-  X(sway_deg) X(start_still) X(end_still) X(rate_hz)
+#define COSMO_SIM_MOTION_FIELDS(X)                                                                                     \
+  X(cruise_speed)                                                                                                      \
+  X(speed_variation)                                                                                                   \
+  X(max_accel) X(max_decel) X(max_lateral_accel) X(corner_radius) X(lateral_offset) X(body_height) X(axle_half_length) \
+      X(track_half_width) X(bob_amplitude) X(bob_frequency) X(sway_deg) X(start_still) X(end_still) X(rate_hz)
 
 MotionParams MotionParams::preset(const std::string& platform) {
   MotionParams m;
@@ -52,9 +53,7 @@ MotionParams MotionParams::fromConfig(const ConfigNode& node, const std::string&
   MotionParams m;
   try {
     m = preset(platform);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(node.where + ": " + e.what());
-  }
+  } catch (const std::exception& e) { throw std::runtime_error(node.where + ": " + e.what()); }
 #define X(f) node.read(#f, m.f);
   COSMO_SIM_MOTION_FIELDS(X)
 #undef X
@@ -92,7 +91,10 @@ std::vector<Vector2d> offsetPolyline(const std::vector<Vector2d>& pts, double of
     const Vector2d dout = i + 1 < pts.size() ? (pts[i + 1] - pts[i]).normalized() : din;
     Vector2d m = right(din) + right(dout);
     const double len = m.norm();
-    if (len < 0.2) { out[i] = pts[i] + offset * right(din); continue; }  // near U-turn: no mitre
+    if (len < 0.2) {
+      out[i] = pts[i] + offset * right(din);
+      continue;
+    }  // near U-turn: no mitre
     m /= len;
     out[i] = pts[i] + m * (offset / std::max(0.3, m.dot(right(din))));
   }
@@ -161,8 +163,10 @@ Trajectory makeTrajectory(const std::vector<Vector2d>& waypoints, const Terrain&
   }
   v.front() = 0.0;
   v.back() = 0.0;
-  for (std::size_t i = 1; i < n; ++i) v[i] = std::min(v[i], std::sqrt(v[i - 1] * v[i - 1] + 2.0 * mp.max_accel * (s[i] - s[i - 1])));
-  for (std::size_t i = n - 1; i-- > 0;) v[i] = std::min(v[i], std::sqrt(v[i + 1] * v[i + 1] + 2.0 * mp.max_decel * (s[i + 1] - s[i])));
+  for (std::size_t i = 1; i < n; ++i)
+    v[i] = std::min(v[i], std::sqrt(v[i - 1] * v[i - 1] + 2.0 * mp.max_accel * (s[i] - s[i - 1])));
+  for (std::size_t i = n - 1; i-- > 0;)
+    v[i] = std::min(v[i], std::sqrt(v[i + 1] * v[i + 1] + 2.0 * mp.max_decel * (s[i + 1] - s[i])));
   // Time at each sample.
   std::vector<double> t(n, mp.start_still);
   for (std::size_t i = 1; i < n; ++i) {

@@ -14,11 +14,13 @@
 
 namespace cosmo::sim {
 
-#define COSMO_SIM_WORLD_FIELDS(X)                                                                              \
-  X(blocks_x) X(blocks_y) X(block_min) X(block_max) X(street_half_width) X(sidewalk_width)                     \
-  X(footpath_half_width) X(footpath_fraction) X(diagonal_fraction) X(building_height_min) X(building_height_max) \
-  X(p_buildings) X(p_row) X(p_park) X(p_parking) X(tree_row_fraction) X(tree_spacing) X(pole_spacing)           \
-  X(parked_car_fraction) X(wall_fraction) X(outer_ring) X(terrain_margin)
+#define COSMO_SIM_WORLD_FIELDS(X)                                                                                   \
+  X(blocks_x)                                                                                                       \
+  X(blocks_y)                                                                                                       \
+  X(block_min) X(block_max) X(street_half_width) X(sidewalk_width) X(footpath_half_width) X(footpath_fraction)      \
+      X(diagonal_fraction) X(building_height_min) X(building_height_max) X(p_buildings) X(p_row) X(p_park)          \
+          X(p_parking) X(tree_row_fraction) X(tree_spacing) X(pole_spacing) X(parked_car_fraction) X(wall_fraction) \
+              X(outer_ring) X(terrain_margin)
 #define COSMO_SIM_CHANGE_FIELDS(X) X(car_change) X(people_per_100m) X(foliage_change)
 #define COSMO_SIM_LOOKALIKE_FIELDS(X) X(terrace_fraction) X(p_open)
 #define COSMO_SIM_TERRAIN_FIELDS(X) X(cell) X(amplitude) X(wavelength) X(waves) X(material_cell)
@@ -37,7 +39,8 @@ WorldParams WorldParams::fromConfig(const ConfigNode& node) {
   COSMO_SIM_LOOKALIKE_FIELDS(X)
 #undef X
   node.read("hedge_fraction", p.hedge_fraction);
-  if (p.hedge_fraction < 0.0 || p.hedge_fraction > 1.0) throw std::runtime_error(node.where + ".hedge_fraction: must be in [0, 1]");
+  if (p.hedge_fraction < 0.0 || p.hedge_fraction > 1.0)
+    throw std::runtime_error(node.where + ".hedge_fraction: must be in [0, 1]");
   return p;
 }
 
@@ -100,8 +103,8 @@ void addBox(const Terrain& terrain, std::vector<Primitive>& prims, const Vector2
   const double bottom = z0 <= 0.0 ? terrain.minHeightAround(c.x(), c.y(), 0.5 * std::hypot(lx, ly)) - 0.3 : g + z0;
   const double top = g + z1;
   if (top <= bottom) return;
-  prims.push_back(Primitive::box({c.x(), c.y(), 0.5 * (bottom + top)}, {0.5 * lx, 0.5 * ly, 0.5 * (top - bottom)},
-                                 yaw, mat));
+  prims.push_back(
+      Primitive::box({c.x(), c.y(), 0.5 * (bottom + top)}, {0.5 * lx, 0.5 * ly, 0.5 * (top - bottom)}, yaw, mat));
 }
 
 void addCar(const Terrain& terrain, std::vector<Primitive>& prims, const ParkedCar& car) {
@@ -119,7 +122,8 @@ class Builder {
     row_tree_ = {0.25, 3.0, 2.3, 1.9};
     row_ = {uni(11.0, 15.0), uni(28.0, 36.0), uni(9.0, 15.0), uni(8.0, 12.0)};
     if (p_.terrace_fraction > 0.0)  // drawn only when used: worlds without terraces stay as they were
-      terrace_ = {uni(9.0, 12.0), uni(10.0, 13.0), uni(10.0, 15.0), uni(0.8, 1.6), uni(3.0, 4.5), uni(1.2, 2.0), uni(2.8, 3.6)};
+      terrace_ = {uni(9.0, 12.0), uni(10.0, 13.0), uni(10.0, 15.0), uni(0.8, 1.6),
+                  uni(3.0, 4.5),  uni(1.2, 2.0),   uni(2.8, 3.6)};
   }
 
   double uni(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
@@ -131,7 +135,8 @@ class Builder {
 
   void tree(const Vector2d& c, const TreeShape& s) {
     const double g = terrain_.minHeightAround(c.x(), c.y(), s.trunk_radius);
-    prims_.push_back(Primitive::cylinder(c.x(), c.y(), g - 0.3, g + s.trunk_height + 0.5 * s.canopy_rz, s.trunk_radius, kBark));
+    prims_.push_back(
+        Primitive::cylinder(c.x(), c.y(), g - 0.3, g + s.trunk_height + 0.5 * s.canopy_rz, s.trunk_radius, kBark));
     canopies_.push_back(Primitive::ellipsoid({c.x(), c.y(), g + s.trunk_height + s.canopy_rz * 0.8},
                                              {s.canopy_rx, s.canopy_rx, s.canopy_rz}, kFoliage));
   }
@@ -176,7 +181,7 @@ class Builder {
     if (kind < 0.45 || std::min(lx, ly) < 20.0) {
       part(0, 0, lx, ly, h);
       if (chance(0.4)) part(0.25 * lx, 0, 0.5 * lx, ly + 3.0, std::min(h, 4.5));  // podium / canopy wing
-    } else if (kind < 0.8) {  // L-shape: two wings sharing a corner
+    } else if (kind < 0.8) {                                                      // L-shape: two wings sharing a corner
       const double w = std::min(uni(10.0, 16.0), 0.5 * std::min(lx, ly));
       const double sx = chance(0.5) ? 1 : -1, sy = chance(0.5) ? 1 : -1;
       part(0, sy * 0.5 * (ly - w), lx, w, h);
@@ -201,7 +206,8 @@ class Builder {
     const int nx = sz.x() > 55.0 ? 2 : 1, ny = sz.y() > 55.0 ? 2 : 1;
     for (int i = 0; i < nx; ++i)
       for (int j = 0; j < ny; ++j) {
-        Rect lot{r.lo + Vector2d(i * sz.x() / nx, j * sz.y() / ny), r.lo + Vector2d((i + 1) * sz.x() / nx, (j + 1) * sz.y() / ny)};
+        Rect lot{r.lo + Vector2d(i * sz.x() / nx, j * sz.y() / ny),
+                 r.lo + Vector2d((i + 1) * sz.x() / nx, (j + 1) * sz.y() / ny)};
         lot.lo.array() += 2.0;
         lot.hi.array() -= 2.0;
         if (chance(0.12)) {  // an open lot: a few trees instead
@@ -220,13 +226,15 @@ class Builder {
     const double x0 = r.center().x() - 0.5 * (n * pitch - row_.gap) + 0.5 * row_.width;
     const int rows = sz.y() > 2 * row_.depth + 10.0 ? 2 : 1;
     for (int k = 0; k < rows; ++k) {
-      const double y = rows == 1 ? r.center().y() : (k == 0 ? r.lo.y() + 0.5 * row_.depth : r.hi.y() - 0.5 * row_.depth);
+      const double y =
+          rows == 1 ? r.center().y() : (k == 0 ? r.lo.y() + 0.5 * row_.depth : r.hi.y() - 0.5 * row_.depth);
       for (int i = 0; i < n; ++i)
         box({x0 + i * pitch, y}, row_.width, std::min(row_.depth, sz.y()), 0.0, row_.height, 0.0, kConcrete);
     }
   }
 
-  void fillTrees(const Rect& r, double density_per_100m2, const std::vector<std::pair<Vector2d, Vector2d>>& avoid = {}) {
+  void fillTrees(const Rect& r, double density_per_100m2,
+                 const std::vector<std::pair<Vector2d, Vector2d>>& avoid = {}) {
     const Vector2d sz = r.size();
     if (sz.minCoeff() <= 0) return;
     const int n = static_cast<int>(sz.x() * sz.y() / 100.0 * density_per_100m2);
@@ -263,7 +271,8 @@ class Builder {
       const Vector2d ab = b - a;
       const double len = ab.norm();
       const Vector2d n = Vector2d(-ab.y(), ab.x()) / len;
-      for (double s = 12.0; s < len - 12.0; s += 20.0) pole(a + ab * (s / len) + 2.2 * n, 4.5, std::atan2(-n.y(), -n.x()));
+      for (double s = 12.0; s < len - 12.0; s += 20.0)
+        pole(a + ab * (s / len) + 2.2 * n, 4.5, std::atan2(-n.y(), -n.x()));
     }
   }
 
@@ -349,7 +358,8 @@ class Builder {
     const double yaw = std::atan2(u.y(), u.x());
     if (!is_street) {
       terrain_.paintSegment(a, b, p_.footpath_half_width, kPaving);
-      for (double s = 15.0; s < len - 10.0; s += 30.0) pole(a + s * u + (p_.footpath_half_width + 0.8) * n, 4.5, yaw + M_PI / 2);
+      for (double s = 15.0; s < len - 10.0; s += 30.0)
+        pole(a + s * u + (p_.footpath_half_width + 0.8) * n, 4.5, yaw + M_PI / 2);
       return;
     }
     const double hw = p_.street_half_width;
@@ -365,9 +375,11 @@ class Builder {
         box(a + (s + 0.5 * l) * u + (hw + 0.08) * off, l, 0.16, 0.0, 0.13, yaw, kConcrete);
       }
       if (chance(p_.tree_row_fraction))
-        for (double s = s0 + 2.0; s < s1 - 1.0; s += p_.tree_spacing) tree(a + s * u + (hw + p_.sidewalk_width + 1.2) * off, row_tree_);
+        for (double s = s0 + 2.0; s < s1 - 1.0; s += p_.tree_spacing)
+          tree(a + s * u + (hw + p_.sidewalk_width + 1.2) * off, row_tree_);
       if (p_.pole_spacing > 0 && side == 1)
-        for (double s = s0 + 5.0; s < s1; s += p_.pole_spacing) pole(a + s * u + (hw + 0.5) * off, 7.0, std::atan2(-off.y(), -off.x()));
+        for (double s = s0 + 5.0; s < s1; s += p_.pole_spacing)
+          pole(a + s * u + (hw + 0.5) * off, 7.0, std::atan2(-off.y(), -off.x()));
       if (chance(p_.parked_car_fraction))
         for (double s = s0 + 4.0; s < s1 - 4.0; s += 6.0)
           if (chance(0.75)) car(a + s * u + (hw - 1.2) * off, yaw + (side > 0 ? 0.0 : M_PI));
@@ -381,7 +393,8 @@ class Builder {
         const double d = hw + p_.sidewalk_width + 2.8;
         for (double s = s0; s < s1; s += 5.0) {
           const double l = std::min(5.0, s1 - s);
-          box(a + (s + 0.5 * l) * u + d * off, l, fence ? 0.06 : 0.3, 0.0, fence ? 1.8 : 2.2, yaw, fence ? kFence : kWall);
+          box(a + (s + 0.5 * l) * u + d * off, l, fence ? 0.06 : 0.3, 0.0, fence ? 1.8 : 2.2, yaw,
+              fence ? kFence : kWall);
         }
       }
     }
@@ -496,7 +509,8 @@ WorldLayout generateLayout(const WorldParams& p, std::uint64_t seed) {
   for (auto& y : ys) y -= cy;
 
   const double pad = p.outer_ring + p.terrain_margin;
-  Terrain terrain = Terrain::generate({xs.front() - pad, ys.front() - pad}, {xs.back() + pad, ys.back() + pad}, p.terrain, rng);
+  Terrain terrain =
+      Terrain::generate({xs.front() - pad, ys.front() - pad}, {xs.back() + pad, ys.back() + pad}, p.terrain, rng);
   std::vector<Primitive> prims;
   std::vector<ParkedCar> cars;
   std::vector<Primitive> canopies;
@@ -507,7 +521,10 @@ WorldLayout generateLayout(const WorldParams& p, std::uint64_t seed) {
   for (int j = 0; j <= by; ++j)
     for (int i = 0; i <= bx; ++i) net.addNode({xs[i], ys[j]});
   // Streets along the grid; some interior ones become footpaths.
-  struct Seg { int a, b; bool street; };
+  struct Seg {
+    int a, b;
+    bool street;
+  };
   std::vector<Seg> segs;
   for (int j = 0; j <= by; ++j)
     for (int i = 0; i < bx; ++i) {

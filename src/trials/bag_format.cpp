@@ -34,8 +34,10 @@ BagFormat detectBagFormat(const std::string& path) {
   if (got == 16 && std::memcmp(head, "SQLite format 3\0", 16) == 0) return BagFormat::Ros2Sqlite;
   if (got >= 8 && std::memcmp(head, "#ROSBAG ", 8) == 0)
     throw std::runtime_error(path + ": ROS 1 bag version '" + printable(head, 12) + "' is not supported (V2.0 only)");
-  throw std::runtime_error(path + ": neither a ROS 1 bag (#ROSBAG V2.0) nor a ROS 2 sqlite3 bag (.db3 or its "
-                           "folder); it starts with '" + printable(head, got) + "'");
+  throw std::runtime_error(path +
+                           ": neither a ROS 1 bag (#ROSBAG V2.0) nor a ROS 2 sqlite3 bag (.db3 or its "
+                           "folder); it starts with '" +
+                           printable(head, got) + "'");
 }
 
 bool ros1ChunksCompressed(const std::string& path) {
@@ -46,8 +48,6 @@ bool ros1ChunksCompressed(const std::string& path) {
   return head.find("compression=bz2") != std::string::npos || head.find("compression=lz4") != std::string::npos;
 }
 
-std::string bagFormatName(BagFormat format) {
-  return format == BagFormat::Ros1 ? "ROS 1 bag" : "ROS 2 sqlite3 bag";
-}
+std::string bagFormatName(BagFormat format) { return format == BagFormat::Ros1 ? "ROS 1 bag" : "ROS 2 sqlite3 bag"; }
 
 }  // namespace cosmo::trials

@@ -39,8 +39,8 @@ class CdrReader {
     return b;
   }
   [[noreturn]] void fail(const char* what, const std::string& why) const {
-    throw std::runtime_error(source_ + ": malformed CDR PointCloud2 at " + what + " (byte " +
-                             std::to_string(pos_) + " of " + std::to_string(size_) + "): " + why);
+    throw std::runtime_error(source_ + ": malformed CDR PointCloud2 at " + what + " (byte " + std::to_string(pos_) +
+                             " of " + std::to_string(size_) + "): " + why);
   }
 
  private:
@@ -50,8 +50,8 @@ class CdrReader {
     if (pos_ > size_) fail(what, "truncated");
   }
   void need(std::size_t n, const char* what) const {
-    if (n > size_ - pos_) fail(what, "truncated (needs " + std::to_string(n) + " bytes, " +
-                                         std::to_string(size_ - pos_) + " left)");
+    if (n > size_ - pos_)
+      fail(what, "truncated (needs " + std::to_string(n) + " bytes, " + std::to_string(size_ - pos_) + " left)");
   }
 
   const std::uint8_t* p_;

@@ -10,9 +10,7 @@ namespace cosmo::trials {
 
 std::string cuMultiTopic(int robot_number) { return "robot" + std::to_string(robot_number) + "/ouster/points"; }
 
-Pose3 cuMultiImuTLidar() {
-  return makePose({-0.058038, 0.015573, 0.049603}, Eigen::Quaterniond(0.0, 0.0, 0.0, 1.0));
-}
+Pose3 cuMultiImuTLidar() { return makePose({-0.058038, 0.015573, 0.049603}, Eigen::Quaterniond(0.0, 0.0, 0.0, 1.0)); }
 
 OusterSweep cuMultiSweep(int beams, int columns, double rate_hz) {
   OusterSweep s;
@@ -44,6 +42,8 @@ void writeCuMultiGroundTruth(const std::string& path, const std::vector<StampedP
 CuMultiBagWriter::CuMultiBagWriter(const std::string& folder, int robot_number)
     : bag_(folder), topic_(bag_.addTopic(cuMultiTopic(robot_number), "sensor_msgs/msg/PointCloud2")) {}
 
-void CuMultiBagWriter::write(const RawCloud& cloud) { bag_.write(topic_, cloud.layout.stamp, encodeCdrPointCloud2(cloud)); }
+void CuMultiBagWriter::write(const RawCloud& cloud) {
+  bag_.write(topic_, cloud.layout.stamp, encodeCdrPointCloud2(cloud));
+}
 
 }  // namespace cosmo::trials

@@ -10,9 +10,13 @@ namespace cosmo::trials {
 
 std::size_t pointTypeSize(std::uint8_t datatype) {
   switch (static_cast<PointType>(datatype)) {
-    case PointType::Int8: case PointType::UInt8: return 1;
-    case PointType::Int16: case PointType::UInt16: return 2;
-    case PointType::Int32: case PointType::UInt32: case PointType::Float32: return 4;
+    case PointType::Int8:
+    case PointType::UInt8: return 1;
+    case PointType::Int16:
+    case PointType::UInt16: return 2;
+    case PointType::Int32:
+    case PointType::UInt32:
+    case PointType::Float32: return 4;
     case PointType::Float64: return 8;
   }
   return 0;
@@ -77,8 +81,7 @@ void checkInside(const CloudLayout& layout, const PointField* f, const std::stri
   if (!f) return;
   const std::size_t size = pointTypeSize(f->datatype);
   if (size == 0)
-    throw std::runtime_error(source + ": field '" + f->name + "' has unknown datatype " +
-                             std::to_string(f->datatype));
+    throw std::runtime_error(source + ": field '" + f->name + "' has unknown datatype " + std::to_string(f->datatype));
   if (static_cast<std::size_t>(f->offset) + size > layout.point_step)
     throw std::runtime_error(source + ": field '" + f->name + "' lies outside point_step " +
                              std::to_string(layout.point_step));
@@ -120,7 +123,10 @@ void readTimes(const CloudLayout& L, const std::uint8_t* data, std::size_t n, bo
   readColumn(data, n, L.point_step, *ft, [&](std::size_t i, double v) { t[i] = v * scale; });
   double t_max = -std::numeric_limits<double>::infinity(), t_min = -t_max;
   for (double ti : t)
-    if (std::isfinite(ti)) { t_max = std::max(t_max, ti); t_min = std::min(t_min, ti); }
+    if (std::isfinite(ti)) {
+      t_max = std::max(t_max, ti);
+      t_min = std::min(t_min, ti);
+    }
   const bool absolute = t_min > 1e6;
   const bool organised_ouster = ft->name == "t" && L.height > 1 && L.width > 1;
   // The sweep end relative to its start: one period for an organised Ouster cloud, else the latest point.

@@ -17,9 +17,7 @@ bool isNumber(const std::string& token) {
     std::size_t used = 0;
     std::stod(token, &used);
     return used == token.size();
-  } catch (const std::exception&) {
-    return false;
-  }
+  } catch (const std::exception&) { return false; }
 }
 
 std::vector<std::string> split(const std::string& line, bool commas) {
@@ -49,7 +47,8 @@ bool allNumbers(const std::vector<std::string>& tokens) {
   throw std::runtime_error(path + ":" + std::to_string(line) +
                            ": not a reference trajectory (expected MCD pose_inW.csv `num,t,x,y,z,qx,qy,qz,qw`, "
                            "CU-Multi `timestamp,x,y,z,qx,qy,qz,qw` CSV, TUM `t x y z qx qy qz qw` or KITTI 12 "
-                           "numbers per line); the line reads: " + text.substr(0, 80));
+                           "numbers per line); the line reads: " +
+                           text.substr(0, 80));
 }
 
 }  // namespace

@@ -119,12 +119,11 @@ std::vector<std::string> ros2BagFiles(const std::string& bag_path) {
       if (info["storage_identifier"] && info["storage_identifier"].as<std::string>() != "sqlite3")
         throw std::runtime_error("storage " + info["storage_identifier"].as<std::string>() +
                                  " is not supported (sqlite3 only)");
-      for (const auto& f : info["relative_file_paths"]) files.push_back((fs::path(bag_path) / f.as<std::string>()).string());
+      for (const auto& f : info["relative_file_paths"])
+        files.push_back((fs::path(bag_path) / f.as<std::string>()).string());
     } catch (const YAML::Exception& e) {
       throw std::runtime_error(meta.string() + ": " + e.what());
-    } catch (const std::runtime_error& e) {
-      throw std::runtime_error(meta.string() + ": " + e.what());
-    }
+    } catch (const std::runtime_error& e) { throw std::runtime_error(meta.string() + ": " + e.what()); }
   }
   if (files.empty()) {
     for (const auto& e : fs::directory_iterator(bag_path))
@@ -143,8 +142,10 @@ std::vector<Ros2Topic> listRos2Topics(const std::string& bag_path) {
     const Db db(file, false);
     for (const auto& ft : topicsOf(db)) {
       auto it = std::find_if(topics.begin(), topics.end(), [&](const Ros2Topic& t) { return t.name == ft.topic.name; });
-      if (it == topics.end()) topics.push_back(ft.topic);
-      else it->messages += ft.topic.messages;
+      if (it == topics.end())
+        topics.push_back(ft.topic);
+      else
+        it->messages += ft.topic.messages;
     }
   }
   return topics;
@@ -187,8 +188,10 @@ Ros2BagReader::Ros2BagReader(const std::string& bag_path, const std::string& top
     sqlite3_int64 id = -1;
     for (const auto& ft : topicsOf(db)) {
       auto it = std::find_if(all.begin(), all.end(), [&](const Ros2Topic& t) { return t.name == ft.topic.name; });
-      if (it == all.end()) all.push_back(ft.topic);
-      else it->messages += ft.topic.messages;
+      if (it == all.end())
+        all.push_back(ft.topic);
+      else
+        it->messages += ft.topic.messages;
       if (withoutSlash(ft.topic.name) == withoutSlash(topic)) {
         id = ft.id;
         I.topic.name = ft.topic.name;
@@ -287,15 +290,15 @@ Ros2BagWriter::Ros2BagWriter(const std::string& folder) : impl_(std::make_unique
 Ros2BagWriter::~Ros2BagWriter() {
   try {
     close();
-  } catch (...) {
-  }
+  } catch (...) {}
 }
 
 int Ros2BagWriter::addTopic(const std::string& name, const std::string& type) {
   Impl& I = *impl_;
   const int id = static_cast<int>(I.topics.size()) + 1;
-  Statement s(*I.db, "INSERT INTO topics (id, name, type, serialization_format, offered_qos_profiles) "
-                     "VALUES (?, ?, ?, 'cdr', '')");
+  Statement s(*I.db,
+              "INSERT INTO topics (id, name, type, serialization_format, offered_qos_profiles) "
+              "VALUES (?, ?, ?, 'cdr', '')");
   sqlite3_bind_int(s.get(), 1, id);
   sqlite3_bind_text(s.get(), 2, name.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_text(s.get(), 3, type.c_str(), -1, SQLITE_TRANSIENT);
@@ -338,9 +341,9 @@ void Ros2BagWriter::close() {
         << "\n        serialization_format: cdr\n        offered_qos_profiles: \"\"\n      message_count: "
         << t.messages << "\n";
   out << "  compression_format: \"\"\n  compression_mode: \"\"\n  relative_file_paths:\n    - " << I.file_name << "\n"
-      << "  files:\n    - path: " << I.file_name << "\n      starting_time:\n        nanoseconds_since_epoch: "
-      << I.first << "\n      duration:\n        nanoseconds: " << duration << "\n      message_count: " << I.messages
-      << "\n";
+      << "  files:\n    - path: " << I.file_name
+      << "\n      starting_time:\n        nanoseconds_since_epoch: " << I.first
+      << "\n      duration:\n        nanoseconds: " << duration << "\n      message_count: " << I.messages << "\n";
   if (!out) throw std::runtime_error((I.folder / "metadata.yaml").string() + ": write failed");
 }
 

@@ -71,8 +71,8 @@ std::string keyedPath(const std::string& dir, const std::string& bag_path, const
 
 std::string scanCachePath(const std::string& dir, const std::string& bag_path, const std::string& topic,
                           bool stamp_at_end) {
-  const std::string key = bagKey(bag_path, topic) + "\n" + (stamp_at_end ? "end" : "start") + "\n" +
-                          std::to_string(kScanCacheVersion);
+  const std::string key =
+      bagKey(bag_path, topic) + "\n" + (stamp_at_end ? "end" : "start") + "\n" + std::to_string(kScanCacheVersion);
   return keyedPath(dir, bag_path, key, ".scans");
 }
 
@@ -194,8 +194,8 @@ bool CachingScanSource::next(Scan& scan) {
   }
   const DecodeCounts c = source_->lastCounts();
   const CloudLayout& L = source_->lastLayout();
-  const auto flags = static_cast<std::uint8_t>((scan.hasIntensity() ? 1 : 0) | (scan.hasTime() ? 2 : 0) |
-                                               (scan.hasRing() ? 4 : 0));
+  const auto flags =
+      static_cast<std::uint8_t>((scan.hasIntensity() ? 1 : 0) | (scan.hasTime() ? 2 : 0) | (scan.hasRing() ? 4 : 0));
   put(out_, static_cast<std::uint64_t>(scan.stamp));
   put(out_, static_cast<std::uint32_t>(scan.size()));
   put(out_, flags);

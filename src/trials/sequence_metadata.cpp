@@ -11,8 +11,8 @@ std::vector<std::pair<std::string, std::string>> sequenceMetadata(const pipeline
   char offset[160];
   std::snprintf(offset, sizeof offset, "[%.3f, %.3f, %.3f]  # m, subtracted from every reference position", o.x(),
                 o.y(), o.z());
-  std::vector<std::pair<std::string, std::string>> lines{{"sequence", config.name}, {"source", config.source},
-                                                         {"reference_offset", offset}};
+  std::vector<std::pair<std::string, std::string>> lines{
+      {"sequence", config.name}, {"source", config.source}, {"reference_offset", offset}};
   for (const auto& t : config.trials)
     lines.push_back({std::string("trial_") + t.robot, t.name + "  # stamp " + (t.stamp_at_end ? "end" : "start")});
   return lines;

@@ -69,7 +69,8 @@ jrl::Dataset knownTruthDataset(std::mt19937_64& rng) {
       if (i == 0)
         e.factors.push_back(jrl::Factor::priorPose3(k, gt[r][0], prior_cov));
       else
-        e.factors.push_back(jrl::Factor::betweenPose3(jrl::symbol(r, i - 1), k, gt[r][i - 1].inverse() * gt[r][i], cov));
+        e.factors.push_back(
+            jrl::Factor::betweenPose3(jrl::symbol(r, i - 1), k, gt[r][i - 1].inverse() * gt[r][i], cov));
       if (i >= 10 && i % 5 == 0) {  // intra-robot closure; every third one a gross outlier
         const int j = i - 10;
         const bool outlier = i % 15 == 0;
@@ -105,7 +106,8 @@ TEST(PoseResidual, LogMatchesTheSe3LogarithmAtAnyAngle) {
       EXPECT_LT((got - want).norm(), 1e-9 * std::max(1.0, want.norm())) << "angle " << angle;
       // The other quaternion sign is the same rotation.
       const Eigen::Quaterniond neg(-q.w(), -q.x(), -q.y(), -q.z());
-      EXPECT_LT((logPose<double>(neg, Eigen::Vector3d(T.translation())) - want).norm(), 1e-9 * std::max(1.0, want.norm()));
+      EXPECT_LT((logPose<double>(neg, Eigen::Vector3d(T.translation())) - want).norm(),
+                1e-9 * std::max(1.0, want.norm()));
     }
   }
 }
@@ -149,7 +151,8 @@ void expectJacobiansMatchDifferences(const ceres::CostFunction& cost, std::vecto
       numeric.col(j) = (rp - rm) / (2.0 * h);
     }
     EXPECT_LT((analytic - numeric).norm(), 1e-5 * std::max(1.0, numeric.norm())) << "block " << k << "\n"
-                                                                                  << analytic << "\n" << numeric;
+                                                                                 << analytic << "\n"
+                                                                                 << numeric;
   }
 }
 
@@ -220,8 +223,7 @@ TEST(PoseResidual, WhitenedBetweenResidualIsTheLabelsDistance) {
 TEST(PoseGraphSolver, InliersRecoverTheKnownTruth) {
   std::mt19937_64 rng(11);
   const jrl::Dataset d = knownTruthDataset(rng);
-  const DatasetCheck c =
-      checkDataset(d, {FactorSelection::All, FactorSelection::AllRobust, FactorSelection::Inliers});
+  const DatasetCheck c = checkDataset(d, {FactorSelection::All, FactorSelection::AllRobust, FactorSelection::Inliers});
   ASSERT_EQ(c.solves.size(), 3u);
   EXPECT_GT(c.init.overall.trans_m, 1.0);
   const auto& inliers = c.solves[2];
@@ -233,8 +235,8 @@ TEST(PoseGraphSolver, InliersRecoverTheKnownTruth) {
   EXPECT_EQ(inliers.error.robots.at('b').poses, 40u);
   // With the gross outliers, least squares is pulled far off the truth.
   EXPECT_GT(c.solves[0].error.overall.trans_m, 0.5);
-  EXPECT_EQ(c.solves[0].solve.factors_used, inliers.solve.factors_used + (*d.outliers).at('a').size() +
-                                                (*d.outliers).at('b').size());
+  EXPECT_EQ(c.solves[0].solve.factors_used,
+            inliers.solve.factors_used + (*d.outliers).at('a').size() + (*d.outliers).at('b').size());
 }
 
 TEST(PoseGraphSolver, NoisySyntheticInliersBeatTheInitialization) {

@@ -31,10 +31,10 @@ TEST(RadioParams, PaperValues) {
 
 TEST(RadioParams, PhiShape) {
   const RadioParams w = RadioParams::wifi();
-  EXPECT_DOUBLE_EQ(w.phi(0.0), 0.7);                                  // capped at P_max near the robot
+  EXPECT_DOUBLE_EQ(w.phi(0.0), 0.7);  // capped at P_max near the robot
   EXPECT_NEAR(w.phi(30.0), 1.1 * (std::pow(0.1, 30.0 / 70.0) - 0.1), 1e-12);
-  EXPECT_NEAR(w.phi(70.0), 0.0, 1e-12);                               // zero at r_max
-  EXPECT_DOUBLE_EQ(w.phi(500.0), 0.0);                                // clamped, never negative
+  EXPECT_NEAR(w.phi(70.0), 0.0, 1e-12);                                       // zero at r_max
+  EXPECT_DOUBLE_EQ(w.phi(500.0), 0.0);                                        // clamped, never negative
   for (double d = 0; d < 100; d += 0.5) EXPECT_GE(w.phi(d), w.phi(d + 0.5));  // non-increasing
   const RadioParams p = RadioParams::proRadio();
   EXPECT_DOUBLE_EQ(p.phi(10.0), 0.8);
@@ -61,9 +61,7 @@ TEST(RadioParams, ShippedConfigsMatchPresets) {
 
 TEST(RadioParams, BadConfigNamesFileAndKey) {
   const auto path = std::filesystem::temp_directory_path() / ("cosmo_comm_bad_" + std::to_string(::getpid()) + ".yaml");
-  {
-    std::ofstream(path) << "comm:\n  timeout_mode: sometimes\n";
-  }
+  { std::ofstream(path) << "comm:\n  timeout_mode: sometimes\n"; }
   try {
     RadioParams::fromConfig(ConfigNode::load(path.string()));
     FAIL() << "no exception";
@@ -71,13 +69,9 @@ TEST(RadioParams, BadConfigNamesFileAndKey) {
     EXPECT_NE(std::string(e.what()).find("timeout_mode"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find(path.filename().string()), std::string::npos) << e.what();
   }
-  {
-    std::ofstream(path) << "comm:\n  p_max: 1.5\n";
-  }
+  { std::ofstream(path) << "comm:\n  p_max: 1.5\n"; }
   EXPECT_THROW(RadioParams::fromConfig(ConfigNode::load(path.string())), std::invalid_argument);
-  {
-    std::ofstream(path) << "comm:\n  bandwidth_kBps: fast\n";
-  }
+  { std::ofstream(path) << "comm:\n  bandwidth_kBps: fast\n"; }
   EXPECT_THROW(RadioParams::fromConfig(ConfigNode::load(path.string())), std::runtime_error);
   std::filesystem::remove(path);
   EXPECT_THROW(RadioParams::byName("carrier-pigeon"), std::invalid_argument);

@@ -60,7 +60,8 @@ TEST(RadioSimulator, ConnectivityFrequencyMatchesPhi) {
       RadioSimulator sim = endlessPair(p, 11 + static_cast<std::uint64_t>(1000 * frac));
       sim.setRobotState('b', {d, 0, 0}, true);
       const auto before = sim.stats();
-      stepUntil(sim, [] { return false; }, n);
+      stepUntil(
+          sim, [] { return false; }, n);
       const double samples = sim.stats().link_samples - before.link_samples;
       const double freq = (sim.stats().link_successes - before.link_successes) / samples;
       const double phi = p.phi(d);
@@ -77,7 +78,8 @@ TEST(RadioSimulator, CleanLinkThroughputIsBandwidthTimesPmax) {
     RadioSimulator sim = endlessPair(p, 5);
     const int n = 5000;
     const double before = sim.activeCommunications().front().bytes_delivered;
-    stepUntil(sim, [] { return false; }, n);
+    stepUntil(
+        sim, [] { return false; }, n);
     const double rate = (sim.activeCommunications().front().bytes_delivered - before) / (n * p.step);
     const double expected = p.bandwidthBps() * p.p_max;
     const double sigma = p.bandwidthBps() * std::sqrt(p.p_max * (1 - p.p_max) / n);
@@ -119,7 +121,8 @@ TEST(RadioSimulator, OverlappingCommunicationsShareBandwidth) {
   const int n = 5000;
   std::vector<double> before;
   for (const auto& c : sim.activeCommunications()) before.push_back(c.bytes_delivered);
-  stepUntil(sim, [] { return false; }, n);
+  stepUntil(
+      sim, [] { return false; }, n);
   const double sigma = w.bandwidthBps() / 2 * std::sqrt(w.p_max * (1 - w.p_max) / n);
   for (std::size_t i = 0; i < 2; ++i) {
     const double rate = (sim.activeCommunications()[i].bytes_delivered - before[i]) / (n * w.step);
@@ -158,7 +161,8 @@ TEST(RadioSimulator, PairMovingApartTimesOut) {
   const double last_progress = sim.activeCommunications().front().last_progress;
   const double moved_at = sim.nextStepTime();
   sim.setRobotState('b', {150, 0, 0}, true);  // phi = 0
-  const auto ended = stepUntil(sim, [&] { return sim.stats().timed_out > 0; }, 1000);
+  const auto ended = stepUntil(
+      sim, [&] { return sim.stats().timed_out > 0; }, 1000);
   ASSERT_EQ(ended.size(), 1u);
   EXPECT_EQ(ended[0].outcome, Transfer::Outcome::TimedOut);
   EXPECT_NEAR(ended[0].end, last_progress + p.timeout, 1e-6);
@@ -166,7 +170,8 @@ TEST(RadioSimulator, PairMovingApartTimesOut) {
   EXPECT_LT(ended[0].bytes_delivered, static_cast<double>(ended[0].bytes));
   EXPECT_FALSE(sim.wasDelivered('a', 'b', 0));
   // Far apart nothing starts again.
-  stepUntil(sim, [] { return false; }, 200);
+  stepUntil(
+      sim, [] { return false; }, 200);
   EXPECT_EQ(sim.stats().initiated, 1u);
 
   RadioParams total = certainLink();
@@ -175,7 +180,8 @@ TEST(RadioSimulator, PairMovingApartTimesOut) {
   sim2.setRobotState('a', {0, 0, 0}, true);
   sim2.setRobotState('b', {3, 0, 0}, true);
   sim2.offerKeyframe('a', 0, 10000000);  // 5 s of a clean link
-  const auto ended2 = stepUntil(sim2, [&] { return sim2.stats().timed_out > 0; }, 1000);
+  const auto ended2 = stepUntil(
+      sim2, [&] { return sim2.stats().timed_out > 0; }, 1000);
   ASSERT_EQ(ended2.size(), 1u);
   EXPECT_NEAR(ended2[0].end - ended2[0].start, total.timeout, 1e-6);
 }
@@ -186,11 +192,13 @@ TEST(RadioSimulator, OffRobotsDoNotCommunicate) {
   sim.setRobotState('a', {0, 0, 0}, true);
   sim.setRobotState('b', {1, 0, 0}, false);
   for (char r : {'a', 'b', 'c'}) sim.offerKeyframe(r, 0, 1000);
-  stepUntil(sim, [] { return false; }, 100);
+  stepUntil(
+      sim, [] { return false; }, 100);
   EXPECT_EQ(sim.stats().initiated, 0u);
   EXPECT_FALSE(sim.isOn('c'));
   sim.setRobotState('b', {1, 0, 0}, true);  // b comes on; c never does
-  stepUntil(sim, [] { return false; }, 100);
+  stepUntil(
+      sim, [] { return false; }, 100);
   EXPECT_TRUE(sim.wasDelivered('a', 'b', 0));
   EXPECT_TRUE(sim.wasDelivered('b', 'a', 0));
   EXPECT_FALSE(sim.wasDelivered('a', 'c', 0));
@@ -207,7 +215,8 @@ TEST(RadioSimulator, SenderChoiceAndCompleteDelivery) {
   const auto first = sim.step(sim.nextStepTime());
   ASSERT_EQ(first.size(), 1u);
   EXPECT_EQ(first[0].sender, 'a');
-  stepUntil(sim, [] { return false; }, 100);
+  stepUntil(
+      sim, [] { return false; }, 100);
   std::set<std::pair<char, std::size_t>> seen;
   for (const Transfer& x : sim.transferLog()) {
     EXPECT_EQ(x.outcome, Transfer::Outcome::Delivered);
@@ -290,8 +299,8 @@ TEST(RadioSimulator, DeterministicPerSeed) {
   for (const Transfer& x : a)
     for (const Transfer& y : a) {
       if (&x == &y) continue;
-      const bool share = x.sender == y.sender || x.sender == y.receiver || x.receiver == y.sender ||
-                         x.receiver == y.receiver;
+      const bool share =
+          x.sender == y.sender || x.sender == y.receiver || x.receiver == y.sender || x.receiver == y.receiver;
       const bool overlap = x.start <= y.end - 1e-9 && y.start <= x.end - 1e-9;
       EXPECT_FALSE(share && overlap) << x.sender << x.receiver << " " << y.sender << y.receiver;
     }

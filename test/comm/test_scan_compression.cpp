@@ -19,7 +19,8 @@ Scan syntheticScan(int rows, int cols) {
     for (int c = 0; c < cols; ++c) {
       const float az = 2.0f * static_cast<float>(M_PI) * c / cols, el = -0.3f + 0.6f * r / rows;
       const float range = 10.0f + 5.0f * std::sin(3 * az) + noise(rng);
-      s.points.emplace_back(range * std::cos(el) * std::cos(az), range * std::cos(el) * std::sin(az), range * std::sin(el));
+      s.points.emplace_back(range * std::cos(el) * std::cos(az), range * std::cos(el) * std::sin(az),
+                            range * std::sin(el));
     }
   return s;
 }
@@ -65,5 +66,6 @@ TEST(ScanCompression, RealScansRoundTripAndRatio) {
   EXPECT_LT(ratio, 0.95);
   const Scan r = decompressScan(bytes);
   ASSERT_EQ(r.size(), s.size());
-  for (std::size_t i = 0; i < s.size(); i += 97) EXPECT_EQ(std::memcmp(r.points[i].data(), s.points[i].data(), 12), 0) << i;
+  for (std::size_t i = 0; i < s.size(); i += 97)
+    EXPECT_EQ(std::memcmp(r.points[i].data(), s.points[i].data(), 12), 0) << i;
 }

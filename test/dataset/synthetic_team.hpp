@@ -55,15 +55,16 @@ struct SyntheticTeam {
 
 inline Matrix6 diagonalCovariance(double sigma_rot, double sigma_trans) {
   Matrix6 c = Matrix6::Zero();
-  c.diagonal() << Eigen::Vector3d::Constant(sigma_rot * sigma_rot), Eigen::Vector3d::Constant(sigma_trans * sigma_trans);
+  c.diagonal() << Eigen::Vector3d::Constant(sigma_rot * sigma_rot),
+      Eigen::Vector3d::Constant(sigma_trans * sigma_trans);
   return c;
 }
 
 /// Ground truth of robot r: a circle (radius 12 m) with a gentle vertical wave, one keyframe per second.
 inline Pose3 circlePose(double phase, double offset_x) {
   const double R = 12.0;
-  return makePose(offset_x + R * std::cos(phase), R * std::sin(phase), 0.3 * std::sin(3 * phase), 0.01 * std::sin(phase),
-                  0.02 * std::cos(2 * phase), phase + M_PI / 2);
+  return makePose(offset_x + R * std::cos(phase), R * std::sin(phase), 0.3 * std::sin(3 * phase),
+                  0.01 * std::sin(phase), 0.02 * std::cos(2 * phase), phase + M_PI / 2);
 }
 
 /// A "big" error: what a wrong registration gives.
@@ -115,7 +116,8 @@ inline SyntheticTeam makeTeam(const Matrix6& odo_cov, const Matrix6& lc_cov, std
   using jrl::symbol;
   // Intra-robot closures of a after one lap: key1 = the new pose, computed at its keyframe; every third is
   // an outlier.
-  for (std::size_t i = 26; i < 40; i += 2) add('a', team.stamps['a'][i], symbol('a', i), symbol('a', i - 25), i % 3 == 0, i);
+  for (std::size_t i = 26; i < 40; i += 2)
+    add('a', team.stamps['a'][i], symbol('a', i), symbol('a', i - 25), i % 3 == 0, i);
   // Intra-robot closure given with the older pose first: normalised to key1 = a30.
   add('a', team.stamps['a'][30] + 10, symbol('a', 5), symbol('a', 30), false, 30);
   // Inter-robot closures of a computed half a second after keyframe i, about an older own pose.
@@ -140,7 +142,8 @@ inline SyntheticTeam makeTeam(const Matrix6& odo_cov, const Matrix6& lc_cov, std
 /// Feed a team to a recorder (keyframes, then loop closures, in the given order).
 inline void feed(DatasetRecorder& rec, const SyntheticTeam& team, bool with_reference = true) {
   for (const auto& k : team.keyframes)
-    rec.addKeyframe(k.robot, k.index, k.stamp, k.odometry, with_reference ? std::optional<Pose3>(k.truth) : std::nullopt);
+    rec.addKeyframe(k.robot, k.index, k.stamp, k.odometry,
+                    with_reference ? std::optional<Pose3>(k.truth) : std::nullopt);
   for (const auto& c : team.closures) rec.addLoopClosure(c.lc);
 }
 

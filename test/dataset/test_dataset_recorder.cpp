@@ -32,9 +32,7 @@ NoiseModels models() {
   return m;
 }
 
-double poseDistance(const Pose3& a, const Pose3& b) {
-  return (a.matrix() - b.matrix()).cwiseAbs().maxCoeff();
-}
+double poseDistance(const Pose3& a, const Pose3& b) { return (a.matrix() - b.matrix()).cwiseAbs().maxCoeff(); }
 
 class RecorderTest : public ::testing::Test {
  protected:
@@ -90,8 +88,7 @@ TEST_F(RecorderTest, LoopClosuresInTheirEntries) {
     // Normalised keys: key1 owned (the newer pose for intra-robot closures).
     jrl::Key k1 = c.lc.key1, k2 = c.lc.key2;
     Pose3 m = c.lc.measurement;
-    const bool swap = jrl::robotOf(k1) != owner ||
-                      (jrl::robotOf(k2) == owner && jrl::indexOf(k2) > jrl::indexOf(k1));
+    const bool swap = jrl::robotOf(k1) != owner || (jrl::robotOf(k2) == owner && jrl::indexOf(k2) > jrl::indexOf(k1));
     if (swap) {
       std::swap(k1, k2);
       m = m.inverse(Eigen::Isometry);
@@ -176,7 +173,8 @@ TEST_F(RecorderTest, KeySetsAndInitialization) {
     EXPECT_EQ(init_keys, referenced) << r;
     // Ground truth = reference poses (teammates' keys included).
     for (const jrl::Key k : referenced)
-      EXPECT_LT(poseDistance(jrl::pose3At(ds.groundtruth->at(r), k), team.truth[jrl::robotOf(k)][jrl::indexOf(k)]), 1e-12);
+      EXPECT_LT(poseDistance(jrl::pose3At(ds.groundtruth->at(r), k), team.truth[jrl::robotOf(k)][jrl::indexOf(k)]),
+                1e-12);
     // Dead reckoning from the prior.
     Pose3 dr = team.truth[r][0];
     for (const auto& k : team.keyframes) {
@@ -189,11 +187,15 @@ TEST_F(RecorderTest, KeySetsAndInitialization) {
   const auto& init_b = ds.initialization->at('b');
   const jrl::Factor& first = ds.measurements.at('b')[8].factors.at(1);
   ASSERT_EQ(first.keys, (std::vector<jrl::Key>{symbol('b', 8), symbol('a', 7)}));
-  EXPECT_LT(poseDistance(jrl::pose3At(init_b, symbol('a', 7)), jrl::pose3At(init_b, symbol('b', 8)) * first.pose3()), 1e-9);
+  EXPECT_LT(poseDistance(jrl::pose3At(init_b, symbol('a', 7)), jrl::pose3At(init_b, symbol('b', 8)) * first.pose3()),
+            1e-9);
   const jrl::Factor& second = ds.measurements.at('b')[9].factors.at(1);
-  EXPECT_GT(poseDistance(jrl::pose3At(init_b, symbol('a', 7)), jrl::pose3At(init_b, symbol('b', 9)) * second.pose3()), 1e-6);
+  EXPECT_GT(poseDistance(jrl::pose3At(init_b, symbol('a', 7)), jrl::pose3At(init_b, symbol('b', 9)) * second.pose3()),
+            1e-6);
   // And it differs from a's own dead-reckoned estimate of a7.
-  EXPECT_GT(poseDistance(jrl::pose3At(init_b, symbol('a', 7)), jrl::pose3At(ds.initialization->at('a'), symbol('a', 7))), 1e-6);
+  EXPECT_GT(
+      poseDistance(jrl::pose3At(init_b, symbol('a', 7)), jrl::pose3At(ds.initialization->at('a'), symbol('a', 7))),
+      1e-6);
 }
 
 TEST_F(RecorderTest, DeterministicWhateverTheArrivalOrder) {

@@ -111,24 +111,20 @@ TEST(NoiseModels, ProvenanceAndEstimationRecordRoundTrip) {
   EXPECT_EQ(back.estimated_from->loop_closures_left_out, 3u);
   EXPECT_EQ(back.estimated_from->max_translation_error, 0.4);
   EXPECT_EQ(back.estimated_from->max_rotation_error, 0.03);
-  EXPECT_NE(back.describe().find("estimated from night_04: 238 odometry factors, 119 loop closures"),
-            std::string::npos) << back.describe();
+  EXPECT_NE(back.describe().find("estimated from night_04: 238 odometry factors, 119 loop closures"), std::string::npos)
+      << back.describe();
   // An environment whose models are unknown says so instead of handing out numbers.
   try {
     NoiseModels::fromConfig(parse("environment: far\nunknown: \"not measured\"\n"));
     FAIL() << "no error";
-  } catch (const NoiseModelsUnknown& e) {
-    EXPECT_EQ(e.reason, "not measured");
-  }
+  } catch (const NoiseModelsUnknown& e) { EXPECT_EQ(e.reason, "not measured"); }
 }
 
 TEST(NoiseModels, BadConfigsNameFileAndKey) {
   auto message = [](const std::string& text) {
     try {
       NoiseModels::fromConfig(parse(text));
-    } catch (const std::runtime_error& e) {
-      return std::string(e.what());
-    }
+    } catch (const std::runtime_error& e) { return std::string(e.what()); }
     return std::string("no error");
   };
   EXPECT_NE(message("odometry:\n  covariance: [1, 2, 3]\n").find("test.yaml: odometry.covariance: expected 36"),
@@ -140,7 +136,8 @@ TEST(NoiseModels, BadConfigsNameFileAndKey) {
   EXPECT_NE(message(odometry + "loop_closure:\n  nothing: 1\n").find("loop_closure: expected 'covariance'"),
             std::string::npos);
   EXPECT_NE(message(odometry).find("test.yaml: loop_closure: missing"), std::string::npos) << message(odometry);
-  std::string asym = "odometry:\n  covariance: [1,0.5,0,0,0,0, 0,1,0,0,0,0, 0,0,1,0,0,0, 0,0,0,1,0,0, 0,0,0,0,1,0, 0,0,0,0,0,1]\n";
+  std::string asym =
+      "odometry:\n  covariance: [1,0.5,0,0,0,0, 0,1,0,0,0,0, 0,0,1,0,0,0, 0,0,0,1,0,0, 0,0,0,0,1,0, 0,0,0,0,0,1]\n";
   EXPECT_NE(message(asym).find("not symmetric"), std::string::npos);
   EXPECT_THROW(NoiseModels::load("/nonexistent/noise.yaml"), std::runtime_error);
 }
@@ -168,8 +165,8 @@ TEST(NoiseModels, ShippedModelsAreTheReleasedCosmoBenchCovariances) {
   for (const char* env : {"ntu", "kth", "tuhh"}) {
     const NoiseModels m = NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/" + env + ".yaml");
     EXPECT_FALSE(m.provenance.empty()) << env;
-    for (const auto& [key, cov] : {std::pair{"odometry_covariance", m.odometry},
-                                   std::pair{"loop_closure_covariance", m.loop_closure}}) {
+    for (const auto& [key, cov] :
+         {std::pair{"odometry_covariance", m.odometry}, std::pair{"loop_closure_covariance", m.loop_closure}}) {
       const auto& v = ref.at(env).at(key);
       ASSERT_EQ(v.size(), 36u);
       for (int i = 0; i < 36; ++i) EXPECT_EQ(cov(i / 6, i % 6), v[i].get<double>()) << env << " " << key << " " << i;

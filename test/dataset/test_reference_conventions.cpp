@@ -38,8 +38,10 @@ DatasetRecorder rerecord(const jrl::Dataset& ref, OutlierRule rule) {
         const jrl::Factor& f = ref.measurements.at(r)[e].factors[j];
         if (!f.isBetweenPose3()) continue;
         const Matrix6 c = f.covarianceMatrix();
-        if (isOdometry(f, r, e, j)) noise.odometry = c, have_odo = true;
-        else noise.loop_closure = c, have_lc = true;
+        if (isOdometry(f, r, e, j))
+          noise.odometry = c, have_odo = true;
+        else
+          noise.loop_closure = c, have_lc = true;
       }
   EXPECT_TRUE(have_odo && have_lc);
   DatasetRecorder rec(ref.name, ref.robots, noise, rule);
@@ -73,7 +75,7 @@ TEST(OutlierRule, ResidualAndDistance) {
   Matrix6 cov = Matrix6::Zero();
   cov.diagonal() << 1e-4, 1e-4, 1e-4, 1e-2, 1e-2, 1e-2;
   const double d2 = (e.head<3>().squaredNorm() / 1e-4) + (e.tail<3>().squaredNorm() / 1e-2);
-  EXPECT_NEAR(chi2Distance(m, truth, cov), d2, 1e-9);  // 14 + 14 = 28
+  EXPECT_NEAR(chi2Distance(m, truth, cov), d2, 1e-9);             // 14 + 14 = 28
   EXPECT_TRUE(isOutlier(m, truth, cov, OutlierRule::Squared));    // 28 > 12.592
   EXPECT_FALSE(isOutlier(m, truth, cov, OutlierRule::Fidelity));  // sqrt(28) = 5.3 <= 12.592
   EXPECT_FALSE(exceedsRule(158.0, OutlierRule::Fidelity));
@@ -160,9 +162,11 @@ TEST(ReferenceFile, RecorderReproducesItsConventions) {
     // Ground truth identical, initialization within the reference's own rounding.
     ASSERT_EQ(ref.groundtruth->at(r).size(), ds.groundtruth->at(r).size()) << r;
     for (const auto& [key, value] : ref.groundtruth->at(r)) {
-      EXPECT_LT(poseDistance(jrl::pose3At(ds.groundtruth->at(r), key), jrl::pose3At(ref.groundtruth->at(r), key)), 1e-12);
+      EXPECT_LT(poseDistance(jrl::pose3At(ds.groundtruth->at(r), key), jrl::pose3At(ref.groundtruth->at(r), key)),
+                1e-12);
       const double d = (jrl::pose3At(ds.initialization->at(r), key).translation() -
-                        jrl::pose3At(ref.initialization->at(r), key).translation()).norm();
+                        jrl::pose3At(ref.initialization->at(r), key).translation())
+                           .norm();
       init_mismatch += d > 1e-6;
     }
   }
@@ -227,9 +231,7 @@ TEST(TinyExample, RecorderGivesTheSameDataset) {
         EXPECT_EQ(a[e].factors[j].keys, b[e].factors[j].keys);
         EXPECT_LT(poseDistance(a[e].factors[j].pose3(), b[e].factors[j].pose3()), 1e-12);
         const bool coupled = r == 'b' && e == 1 && j == 1;  // the example's one closure with an rz-tx term
-        if (!coupled) {
-          EXPECT_EQ(a[e].factors[j].covariance, b[e].factors[j].covariance) << r << e << j;
-        }
+        if (!coupled) { EXPECT_EQ(a[e].factors[j].covariance, b[e].factors[j].covariance) << r << e << j; }
       }
     }
     for (const auto* maps : {&example.groundtruth, &example.initialization}) {

@@ -37,15 +37,65 @@ std::vector<std::string> seeds() {
   return out;
 }
 
-const std::vector<std::string> kValues = {
-    "\"s\"", "null", "[]", "{}", "true", "-1", "1.5", "1e999", "18446744073709551616", "0", "-0.0", "\"a\"",
-    "[1,2]", "[[0,0]]", "97", "{\"type\":\"Scalar\",\"value\":1}", "6989586621679009792", "1e-320", "-1e308"};
-const std::vector<std::string> kNames = {
-    "key", "key1", "key2", "type", "prior", "measurement", "covariance", "stamp", "measurements", "rotation",
-    "translation", "robots", "name", "groundtruth", "initialization", "outlier_factors",
-    "potential_outlier_factors", "Pose3", "Pose2", "Point2", "Point3", "Vector", "Scalar", "Rot2", "Unit3",
-    "BearingRange", "PriorFactorPose2", "BetweenFactorPoint3", "RangeFactor3D", "BearingRangeFactorPose3",
-    "BearingRangeFactor2D", "a", "b", "x", "data", "value", "bearing", "range", "theta", ""};
+const std::vector<std::string> kValues = {"\"s\"",
+                                          "null",
+                                          "[]",
+                                          "{}",
+                                          "true",
+                                          "-1",
+                                          "1.5",
+                                          "1e999",
+                                          "18446744073709551616",
+                                          "0",
+                                          "-0.0",
+                                          "\"a\"",
+                                          "[1,2]",
+                                          "[[0,0]]",
+                                          "97",
+                                          "{\"type\":\"Scalar\",\"value\":1}",
+                                          "6989586621679009792",
+                                          "1e-320",
+                                          "-1e308"};
+const std::vector<std::string> kNames = {"key",
+                                         "key1",
+                                         "key2",
+                                         "type",
+                                         "prior",
+                                         "measurement",
+                                         "covariance",
+                                         "stamp",
+                                         "measurements",
+                                         "rotation",
+                                         "translation",
+                                         "robots",
+                                         "name",
+                                         "groundtruth",
+                                         "initialization",
+                                         "outlier_factors",
+                                         "potential_outlier_factors",
+                                         "Pose3",
+                                         "Pose2",
+                                         "Point2",
+                                         "Point3",
+                                         "Vector",
+                                         "Scalar",
+                                         "Rot2",
+                                         "Unit3",
+                                         "BearingRange",
+                                         "PriorFactorPose2",
+                                         "BetweenFactorPoint3",
+                                         "RangeFactor3D",
+                                         "BearingRangeFactorPose3",
+                                         "BearingRangeFactor2D",
+                                         "a",
+                                         "b",
+                                         "x",
+                                         "data",
+                                         "value",
+                                         "bearing",
+                                         "range",
+                                         "theta",
+                                         ""};
 
 std::string mutate(std::string s, std::mt19937_64& rng) {
   auto pick = [&](std::size_t n) { return n == 0 ? std::size_t{0} : static_cast<std::size_t>(rng() % n); };
@@ -128,8 +178,7 @@ TEST(JrlFuzz, MutatedDocumentsParseOrThrowRuntimeError) {
       ++rejected;
       ASSERT_NE(std::string(e.what()).find("fuzz"), std::string::npos) << e.what();
     } catch (const std::exception& e) {
-      FAIL() << "iteration " << i << ": unexpected " << typeid(e).name() << ": " << e.what() << "\ninput:\n"
-             << input;
+      FAIL() << "iteration " << i << ": unexpected " << typeid(e).name() << ": " << e.what() << "\ninput:\n" << input;
     }
   }
   // Both outcomes must actually be exercised.

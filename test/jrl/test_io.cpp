@@ -31,9 +31,7 @@ std::string tinyPath() { return std::string(COSMO_SOURCE_DIR) + "/test/jrl/data/
 std::string parseError(const std::string& text) {
   try {
     parseJrl(text, "bad.jrl");
-  } catch (const JrlError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
+  } catch (const JrlError& e) { return e.what(); } catch (const std::exception& e) {
     ADD_FAILURE() << "not a JrlError: " << e.what();
     return "";
   }
@@ -102,9 +100,7 @@ TEST(JrlIo, WriteJrlIsAtomicAndReadable) {
   try {
     readJrl((dir / "missing.jrl").string());
     FAIL();
-  } catch (const JrlError& e) {
-    EXPECT_NE(std::string(e.what()).find("missing.jrl"), std::string::npos) << e.what();
-  }
+  } catch (const JrlError& e) { EXPECT_NE(std::string(e.what()).find("missing.jrl"), std::string::npos) << e.what(); }
   fs::remove_all(dir);
 }
 
@@ -228,9 +224,9 @@ TEST(JrlIo, AllSixteenFactorTypesRoundTrip) {
 }
 
 TEST(JrlErrors, CovarianceCountNamesThePlace) {
-  const std::string bad = tinyWith(
-      "\"covariance\":[0.001,0.0,0.0,0.0,0.0,0.0,0.0,0.001,0.0,0.0,0.0,0.0,0.0,0.0,0.001,0.0005,",
-      "\"covariance\":[0.0,0.0,0.0,0.0,0.0,0.0,0.001,0.0,0.0,0.0,0.0,0.0,0.0,0.001,0.0005,");
+  const std::string bad =
+      tinyWith("\"covariance\":[0.001,0.0,0.0,0.0,0.0,0.0,0.0,0.001,0.0,0.0,0.0,0.0,0.0,0.0,0.001,0.0005,",
+               "\"covariance\":[0.0,0.0,0.0,0.0,0.0,0.0,0.001,0.0,0.0,0.0,0.0,0.0,0.0,0.001,0.0005,");
   const std::string what = parseError(bad);
   EXPECT_NE(what.find("bad.jrl: measurements.b[1].measurements[1].covariance: expected 36 numbers, got 35"),
             std::string::npos)
@@ -252,29 +248,40 @@ TEST(JrlErrors, RejectsBadInputWithItsPath) {
        "measurements.a[0].measurements[0].key: expected an integer key, got string"},
       {"\"key\":6989586621679009792,\"prior\"", "\"key\":-1,\"prior\"",
        "measurements.a[0].measurements[0].key: expected a non-negative integer key"},
-      {"\"key\":6989586621679009792,\"prior\"", "\"prior\"", "measurements.a[0].measurements[0]: missing field \"key\""},
+      {"\"key\":6989586621679009792,\"prior\"", "\"prior\"",
+       "measurements.a[0].measurements[0]: missing field \"key\""},
       {"\"stamp\":1700000000500000000", "\"stamp\":1700000000.5", "measurements.a[1].stamp: expected an integer stamp"},
       {"\"stamp\":1700000000500000000", "\"stamp\":-1", "measurements.a[1].stamp: expected a non-negative integer"},
       {"\"stamp\":1700000000500000000", "\"stamp_\":1", "measurements.a[1]: missing field \"stamp\""},
       {"\"rotation\":[1.0,0.0,0.0,0.0],\"translation\":[0.0,0.0,0.0],\"type\":\"Pose3\"},\"type\":\"Prior",
        "\"rotation\":[1.0,0.0,0.1,0.0],\"translation\":[0.0,0.0,0.0],\"type\":\"Pose3\"},\"type\":\"Prior",
        "measurements.a[0].measurements[0].prior.rotation: quaternion [w,x,y,z] is not unit"},
-      {"\"translation\":[2.0,0.0,0.0]", "\"translation\":[2.0,null,0.0]", "groundtruth.a[1].translation[1]: expected a number, got null"},
-      {"\"translation\":[2.0,0.0,0.0]", "\"translation\":[2.0,0.0]", "groundtruth.a[1].translation: expected 3 numbers, got 2"},
-      {"\"translation\":[2.0,0.0,0.0]", "\"translation\":[2.0,\"0\",0.0]", "groundtruth.a[1].translation[1]: expected a number, got string"},
-      {"\"translation\":[2.0,0.0,0.0]", "\"translation\":[2.0,1e999,0.0]", "invalid JSON: number overflow parsing '1e999'"},
-      {"\"type\":\"PriorFactorPose3\"", "\"type\":\"PriorFactorPose4\"", "measurements.a[0].measurements[0].type: unknown factor type \"PriorFactorPose4\""},
-      {"\"translation\":[2.0,0.0,0.0],\"type\":\"Pose3\"", "\"translation\":[2.0,0.0,0.0],\"type\":\"Rot3\"", "groundtruth.a[1].type: unknown value type \"Rot3\""},
+      {"\"translation\":[2.0,0.0,0.0]", "\"translation\":[2.0,null,0.0]",
+       "groundtruth.a[1].translation[1]: expected a number, got null"},
+      {"\"translation\":[2.0,0.0,0.0]", "\"translation\":[2.0,0.0]",
+       "groundtruth.a[1].translation: expected 3 numbers, got 2"},
+      {"\"translation\":[2.0,0.0,0.0]", "\"translation\":[2.0,\"0\",0.0]",
+       "groundtruth.a[1].translation[1]: expected a number, got string"},
+      {"\"translation\":[2.0,0.0,0.0]", "\"translation\":[2.0,1e999,0.0]",
+       "invalid JSON: number overflow parsing '1e999'"},
+      {"\"type\":\"PriorFactorPose3\"", "\"type\":\"PriorFactorPose4\"",
+       "measurements.a[0].measurements[0].type: unknown factor type \"PriorFactorPose4\""},
+      {"\"translation\":[2.0,0.0,0.0],\"type\":\"Pose3\"", "\"translation\":[2.0,0.0,0.0],\"type\":\"Rot3\"",
+       "groundtruth.a[1].type: unknown value type \"Rot3\""},
       {"{\"key\":6989586621679009793,\"rotation\":[1.0,0.0,0.0,0.0],\"translation\":[2.0,0.0,0.0]",
        "{\"key\":6989586621679009792,\"rotation\":[1.0,0.0,0.0,0.0],\"translation\":[2.0,0.0,0.0]",
        "groundtruth.a[1]: duplicate key a0"},
       {"\"name\":\"tiny_example\",", "", "missing field \"name\""},
       {"\"name\":\"tiny_example\",", "\"name\":7,", "name: expected a string, got integer 7"},
       {"\"outlier_factors\":{\"a\":[[2,1]]", "\"outlier_factors\":{\"a\":null", "outlier_factors.a: expected an array"},
-      {"\"outlier_factors\":{\"a\":[[2,1]]", "\"outlier_factors\":{\"a\":[[2,1,0]]", "outlier_factors.a[0]: expected an [entry, measurement] pair"},
-      {"\"outlier_factors\":{\"a\":[[2,1]]", "\"outlier_factors\":{\"a\":[[2,1.5]]", "outlier_factors.a[0][1]: expected an integer measurement index"},
-      {"\"outlier_factors\":{\"a\":[[2,1]],\"b\":[]}", "\"outlier_factors\":[[2,1]]", "outlier_factors: expected an object keyed by robot id"},
-      {"\"measurement\":{\"rotation\":[1.0,0.0,0.0,0.0],\"translation\":[2.25,0.0,0.0],\"type\":\"Pose3\"}", "\"measurement\":{\"rotation\":[1.0,0.0,0.0,0.0],\"type\":\"Pose3\"}",
+      {"\"outlier_factors\":{\"a\":[[2,1]]", "\"outlier_factors\":{\"a\":[[2,1,0]]",
+       "outlier_factors.a[0]: expected an [entry, measurement] pair"},
+      {"\"outlier_factors\":{\"a\":[[2,1]]", "\"outlier_factors\":{\"a\":[[2,1.5]]",
+       "outlier_factors.a[0][1]: expected an integer measurement index"},
+      {"\"outlier_factors\":{\"a\":[[2,1]],\"b\":[]}", "\"outlier_factors\":[[2,1]]",
+       "outlier_factors: expected an object keyed by robot id"},
+      {"\"measurement\":{\"rotation\":[1.0,0.0,0.0,0.0],\"translation\":[2.25,0.0,0.0],\"type\":\"Pose3\"}",
+       "\"measurement\":{\"rotation\":[1.0,0.0,0.0,0.0],\"type\":\"Pose3\"}",
        "measurements.a[1].measurements[0].measurement: missing field \"translation\""},
       {"\"measurements\":{\"a\":[", "\"measurements\":{\"a\":[7,", "measurements.a[0]: expected an entry object"},
   };

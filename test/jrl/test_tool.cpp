@@ -85,7 +85,8 @@ TEST(CosmoJrlTool, SolvePlotAndExport) {
   if (toolPath().empty()) GTEST_SKIP() << "cosmo_jrl is not built beside this test";
   auto [rc, out] = run("solve --json " + kTiny);
   EXPECT_EQ(rc, 0) << out;
-  for (const char* key : {"\"init_ate_m\":", "\"all_ate_m\":", "\"robust_ate_m\":", "\"inliers_ate_m\":", "\"robots\":{\"a\":{"})
+  for (const char* key :
+       {"\"init_ate_m\":", "\"all_ate_m\":", "\"robust_ate_m\":", "\"inliers_ate_m\":", "\"robots\":{\"a\":{"})
     EXPECT_NE(out.find(key), std::string::npos) << key << "\n" << out;
   std::tie(rc, out) = run("solve " + kTiny);
   EXPECT_EQ(rc, 0);
@@ -97,8 +98,8 @@ TEST(CosmoJrlTool, SolvePlotAndExport) {
   EXPECT_EQ(rc, 0) << out;
   EXPECT_TRUE(fs::exists(dir / "tiny_example.trajectories.svg"));
   EXPECT_TRUE(fs::exists(dir / "tiny_example.frontend.svg"));
-  std::tie(rc, out) = run("export " + kTiny + " --g2o " + (dir / "g.g2o").string() + " --tum " + (dir / "tum").string() +
-                          " --labels " + (dir / "labels.csv").string());
+  std::tie(rc, out) = run("export " + kTiny + " --g2o " + (dir / "g.g2o").string() + " --tum " +
+                          (dir / "tum").string() + " --labels " + (dir / "labels.csv").string());
   EXPECT_EQ(rc, 0) << out;
   EXPECT_TRUE(fs::exists(dir / "g.g2o"));
   EXPECT_TRUE(fs::exists(dir / "tum" / "tiny_example_b_groundtruth.tum"));

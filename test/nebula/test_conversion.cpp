@@ -56,7 +56,8 @@ ros_glue::NebulaConversion convert(const fs::path& dir, NoiseSource noise = Nois
 }
 
 SyntheticTeamParams teamOf(std::size_t robots) {
-  const std::vector<std::pair<std::string, char>> all{{"husky1", 'a'}, {"husky3", 'c'}, {"husky4", 'd'}, {"spot1", 'e'}};
+  const std::vector<std::pair<std::string, char>> all{
+      {"husky1", 'a'}, {"husky3", 'c'}, {"husky4", 'd'}, {"spot1", 'e'}};
   SyntheticTeamParams p;
   p.robots.assign(all.begin(), all.begin() + static_cast<long>(robots));
   return p;
@@ -118,8 +119,10 @@ TEST(NebulaConversion, BagsOfTwoToFourRobotsGiveValidLabelledJrl) {
         }
       }
       // Groundtruth is the reference; initialization starts there and dead-reckons.
-      EXPECT_TRUE(jrl::pose3At(ds.groundtruth->at(ch), jrl::symbol(ch, 7)).isApprox(f->team.truth.at(jrl::symbol(ch, 7))));
-      EXPECT_TRUE(jrl::pose3At(ds.initialization->at(ch), jrl::symbol(ch, 0)).isApprox(f->team.truth.at(jrl::symbol(ch, 0))));
+      EXPECT_TRUE(
+          jrl::pose3At(ds.groundtruth->at(ch), jrl::symbol(ch, 7)).isApprox(f->team.truth.at(jrl::symbol(ch, 7))));
+      EXPECT_TRUE(
+          jrl::pose3At(ds.initialization->at(ch), jrl::symbol(ch, 0)).isApprox(f->team.truth.at(jrl::symbol(ch, 0))));
     }
     expectLabelsMatchTruth(f->team, ds);
     EXPECT_EQ(c.report.intra, f->team.intra);
@@ -164,7 +167,8 @@ TEST(NebulaConversion, EstimatedNoiseModelsLabelTheWrongClosures) {
   }
   expectLabelsMatchTruth(f->team, c.dataset);
   // One constant model per kind.
-  EXPECT_EQ(c.dataset.measurements.at('d')[5].factors[0].covarianceMatrix(), Eigen::MatrixXd(c.report.models->odometry));
+  EXPECT_EQ(c.dataset.measurements.at('d')[5].factors[0].covarianceMatrix(),
+            Eigen::MatrixXd(c.report.models->odometry));
 }
 
 TEST(NebulaConversion, G2oFoldersGiveTheSameGraphWithIndexStamps) {
@@ -194,7 +198,8 @@ TEST(NebulaConversion, TruncatedMessageNamesBagTopicAndField) {
   } catch (const std::runtime_error& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("rosbag/husky3.bag /husky3/lamp/pose_graph_incremental #1: PoseGraph.edges length at byte"),
-              std::string::npos) << what;
+              std::string::npos)
+        << what;
     EXPECT_NE(what.find("needs at least"), std::string::npos) << what;
   }
 }
@@ -221,7 +226,8 @@ TEST(NebulaConversion, AnotherMd5sumIsReported) {
     FAIL();
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("the connection's md5sum 0123456789abcdef0123456789abcdef is not"),
-              std::string::npos) << e.what();
+              std::string::npos)
+        << e.what();
     EXPECT_NE(std::string(e.what()).find(poseGraphMd5()), std::string::npos) << e.what();
   }
 }
@@ -308,15 +314,18 @@ TEST(NebulaTool, WritesAValidJrlWithStatsMetadataAndModels) {
   if (nebulaTool().empty()) GTEST_SKIP() << "cosmo_nebula is not built beside this test";
   const auto f = writeFixture("tool", teamOf(3), 31);
   const fs::path out = f->dir / "out";
-  const auto [code, text] = runTool("'" + f->dir.string() + "' --out '" + out.string() + "' --name tunnel --estimate-noise-models");
+  const auto [code, text] =
+      runTool("'" + f->dir.string() + "' --out '" + out.string() + "' --name tunnel --estimate-noise-models");
   ASSERT_EQ(code, 0) << text;
-  EXPECT_NE(text.find("robots: a=husky1 (80 poses) c=husky3 (80 poses) d=husky4 (80 poses)"), std::string::npos) << text;
+  EXPECT_NE(text.find("robots: a=husky1 (80 poses) c=husky3 (80 poses) d=husky4 (80 poses)"), std::string::npos)
+      << text;
   EXPECT_NE(text.find("ignored edges: ARTIFACT"), std::string::npos) << text;
   const jrl::Dataset ds = jrl::readJrl((out / "tunnel.jrl").string());
   EXPECT_TRUE(jrl::validate(ds).empty());
   expectLabelsMatchTruth(f->team, ds);
   EXPECT_NE(readText(out / "tunnel.nebula.yaml").find("robots:\n  a: husky1\n  c: husky3\n  d: husky4\n"),
-            std::string::npos) << readText(out / "tunnel.nebula.yaml");
+            std::string::npos)
+      << readText(out / "tunnel.nebula.yaml");
   EXPECT_NE(readText(out / "tunnel.stats.txt").find("IRLC"), std::string::npos);
   EXPECT_TRUE(fs::exists(out / "tunnel.stats.json"));
   // The estimated models, given back, reproduce the same file.

@@ -70,18 +70,14 @@ TEST(G2o, ErrorsNameFileAndLine) {
     std::istringstream in(text);
     try {
       parseG2o(in, "result.g2o");
-    } catch (const std::runtime_error& e) {
-      return std::string(e.what());
-    }
+    } catch (const std::runtime_error& e) { return std::string(e.what()); }
     return std::string("no error");
   };
-  EXPECT_EQ(error("VERTEX_SE3:QUAT 1 0 0 0 0 0 0 1\nVERTEX_SE3:QUAT 2 0 0 0 0 0\n"),
-            "result.g2o:2: missing field qz");
+  EXPECT_EQ(error("VERTEX_SE3:QUAT 1 0 0 0 0 0 0 1\nVERTEX_SE3:QUAT 2 0 0 0 0 0\n"), "result.g2o:2: missing field qz");
   EXPECT_EQ(error("VERTEX_SE3:QUAT 1 0 0 0 0 0 0 2\n"), "result.g2o:1: quaternion norm 2.000000 is not 1");
   EXPECT_EQ(error("VERTEX_SE3:QUAT -3 0 0 0 0 0 0 1\n"), "result.g2o:1: key: '-3' is not a key");
   EXPECT_EQ(error("VERTEX_SE3:QUAT 1 0 0 0 0 0 0 1\nVERTEX_SE3:QUAT 1 0 0 0 0 0 0 1\n"),
             "result.g2o:2: vertex 1 appears twice");
-  EXPECT_EQ(error("EDGE_SE3:QUAT 1 2 0 0 0 0 0 0 1 " + std::string(21 * 2, ' ') + "\n").substr(0, 13),
-            "result.g2o:1:");
+  EXPECT_EQ(error("EDGE_SE3:QUAT 1 2 0 0 0 0 0 0 1 " + std::string(21 * 2, ' ') + "\n").substr(0, 13), "result.g2o:1:");
   EXPECT_EQ(error("VERTEX_SE3:QUAT 1 nan 0 0 0 0 0 1\n"), "result.g2o:1: x: 'nan' is not a finite number");
 }

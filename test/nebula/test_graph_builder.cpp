@@ -46,9 +46,7 @@ PoseGraph chain(char c, std::size_t n, StampNs t0 = kT0) {
 std::string buildError(const GraphBuilder& b) {
   try {
     b.build();
-  } catch (const GraphError& e) {
-    return e.what();
-  }
+  } catch (const GraphError& e) { return e.what(); }
   return "no error";
 }
 
@@ -99,7 +97,7 @@ TEST(GraphBuilder, UnknownTypesAndDanglingClosuresAreCountedWarnings) {
   g.edges.push_back(edge(symbol('c', 0), symbol('c', 2), kOdom));               // odometry skipping a pose
   b.addMessage(g, "husky3", "a.bag #0");
   PoseGraph again;
-  again.nodes.push_back(node(symbol('c', 1), kT0 + 5));                    // another stamp
+  again.nodes.push_back(node(symbol('c', 1), kT0 + 5));                     // another stamp
   again.edges.push_back(edge(symbol('c', 0), symbol('c', 1), kOdom, 2.0));  // another measurement
   b.addMessage(again, "husky3", "a.bag #1");
   const NebulaGraph out = b.build();
@@ -169,7 +167,7 @@ TEST(GraphBuilder, TwoRobotsWithOneCharacterIsAnError) {
 TEST(JrlAssembly, ClosureGoesToTheLaterPoseAndKeysStay) {
   GraphBuilder b;
   b.addMessage(chain('c', 5), "husky3", "c.bag");
-  PoseGraph d = chain('d', 5, kT0 + 500'000'000ull);  // d_i is half a second after c_i
+  PoseGraph d = chain('d', 5, kT0 + 500'000'000ull);                            // d_i is half a second after c_i
   d.edges.push_back(edge(symbol('d', 1), symbol('c', 3), kInterRobotBetween));  // c3 is later: stored in c's entry 3
   d.edges.push_back(edge(symbol('d', 4), symbol('c', 0), kLoopClose));          // d4 is later: stays as it is
   b.addMessage(d, "husky4", "d.bag");

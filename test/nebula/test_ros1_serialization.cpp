@@ -150,9 +150,7 @@ TEST(Ros1Serialization, MutatedBytesDecodeOrThrowNeverCrash) {
     try {
       decodePoseGraph(mutated);
       ++decoded;
-    } catch (const DecodeError&) {
-      ++refused;
-    }
+    } catch (const DecodeError&) { ++refused; }
   }
   EXPECT_EQ(decoded + refused, 3000u);
   EXPECT_GT(refused, 0u);

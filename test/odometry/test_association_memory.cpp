@@ -30,7 +30,8 @@ Scene makeScene(std::uint64_t seed) {
   }
   for (int i = 0; i < 600; ++i) s.planes.push_back({u(rng), u(rng), -1.5 + n(rng)});
   for (int i = 0; i < 200; ++i) s.planes.push_back({u(rng), 6.0 + n(rng), -1.5 + h(rng)});
-  for (int i = 0; i < 200; ++i) s.edges.push_back(s.map_edges[static_cast<std::size_t>(i) * 3] + Eigen::Vector3d(n(rng), n(rng), 0.0));
+  for (int i = 0; i < 200; ++i)
+    s.edges.push_back(s.map_edges[static_cast<std::size_t>(i) * 3] + Eigen::Vector3d(n(rng), n(rng), 0.0));
   return s;
 }
 
@@ -68,9 +69,7 @@ TEST(AssociationMemory, ReusedConstraintsEqualAFreshAssociation) {
     associateFeaturesRemembering(s.edges, s.planes, map, T, params, remembered, memory, 1, true);
     associateFeatures(s.edges, s.planes, map, T, params, fresh);
     expectSameConstraints(remembered, fresh);
-    if (step <= 0.003) {
-      EXPECT_GT(memory.reused - reused_before, s.edges.size() / 2) << step;
-    }
+    if (step <= 0.003) { EXPECT_GT(memory.reused - reused_before, s.edges.size() / 2) << step; }
   }
 }
 

@@ -191,8 +191,8 @@ TEST(LoamParams, DefaultsAreThePaperValuesAndConfigOverrides) {
 }
 
 TEST(VoxelFilter, KeepsTheFirstPointOfEachVoxel) {
-  const std::vector<Eigen::Vector3d> pts{{0.05, 0.05, 0.05}, {0.15, 0.1, 0.0}, {0.25, 0.0, 0.0}, {-0.05, 0.0, 0.0},
-                                         {0.31, 0.0, 0.0},   {std::nan(""), 0.0, 0.0}};
+  const std::vector<Eigen::Vector3d> pts{{0.05, 0.05, 0.05}, {0.15, 0.1, 0.0}, {0.25, 0.0, 0.0},
+                                         {-0.05, 0.0, 0.0},  {0.31, 0.0, 0.0}, {std::nan(""), 0.0, 0.0}};
   EXPECT_EQ(voxelFilterIndices(pts, 0.2), (std::vector<std::uint32_t>{0, 2, 3}));
   EXPECT_EQ(voxelFilterIndices(pts, 0.0).size(), pts.size());
 }

@@ -59,8 +59,9 @@ TEST(KdTree3, MatchesBruteForceOnClusteredPoints) {
   ASSERT_EQ(tree.size(), pts.size());
   std::vector<std::size_t> idx;
   for (int trial = 0; trial < 3000; ++trial) {
-    const Eigen::Vector3d q = trial % 2 ? pts[static_cast<std::size_t>(trial) % 7000] + Eigen::Vector3d(small(rng), 0.0, 0.0)
-                                        : Eigen::Vector3d(u(rng), u(rng), 0.1 * u(rng));
+    const Eigen::Vector3d q = trial % 2
+                                  ? pts[static_cast<std::size_t>(trial) % 7000] + Eigen::Vector3d(small(rng), 0.0, 0.0)
+                                  : Eigen::Vector3d(u(rng), u(rng), 0.1 * u(rng));
     const int k = 1 + trial % 8;
     const double max_dist = trial % 3 == 0 ? 0.2 : 4.0;
     tree.knn(q, k, max_dist, idx);

@@ -45,7 +45,8 @@ void runDistortedSweeps(const SyntheticScene& scene, const SyntheticLidar& lidar
   LoamOdometry odom(params);
   for (int k = 0; k < n; ++k) {
     const double t_end = 0.1 * k;
-    const Scan s = simulateSweep(scene, lidar, toStampNs(1.0 + t_end), [&](double dt) { return pose_at(t_end + dt); }, &rng);
+    const Scan s = simulateSweep(
+        scene, lidar, toStampNs(1.0 + t_end), [&](double dt) { return pose_at(t_end + dt); }, &rng);
     const OdometryResult r = odom.update(s);
     EXPECT_TRUE(r.ok) << "scan " << k << ": " << r.warning;
     est.push_back(r.pose);
@@ -190,15 +191,17 @@ TEST(LoamSynthetic, AcceleratingTrialDoesNotOscillate) {
   lidar.range_noise = 0.02;
   std::mt19937_64 rng(7);
   auto x_at = [](double t) { return t < 1.0 ? 0.0 : 0.5 * 0.8 * (t - 1.0) * (t - 1.0); };
-  auto pose_at = [&](double t) { return makePose(x_at(t), 0.3 * std::sin(0.4 * t), 0.0, 0.0, 0.0, 0.03 * std::sin(0.6 * t)); };
+  auto pose_at = [&](double t) {
+    return makePose(x_at(t), 0.3 * std::sin(0.4 * t), 0.0, 0.0, 0.0, 0.03 * std::sin(0.6 * t));
+  };
   std::vector<Pose3> est, gt;
   const int n = 50;
   runDistortedSweeps(scene, lidar, rng, pose_at, n, est, gt);
   double len_est = 0.0, len_gt = 0.0;
   for (int k = 1; k < n; ++k) {
     const Pose3 de = est[k - 1].inverse() * est[k], dg = gt[k - 1].inverse() * gt[k];
-    EXPECT_LT(translationError(de, dg), 0.03) << "step " << k << ": " << de.translation().norm() << " m vs "
-                                              << dg.translation().norm() << " m";
+    EXPECT_LT(translationError(de, dg), 0.03)
+        << "step " << k << ": " << de.translation().norm() << " m vs " << dg.translation().norm() << " m";
     len_est += de.translation().norm();
     len_gt += dg.translation().norm();
   }
@@ -257,7 +260,8 @@ TEST(LoamSynthetic, MapInsertGateKeepsAStandingStartRegistered) {
   Pose3 prev = Pose3::Identity();
   for (int k = 0; k < 25; ++k) {
     const double t_end = 0.1 * k;
-    const Scan s = simulateSweep(scene, lidar, toStampNs(1.0 + t_end), [&](double dt) { return pose_at(t_end + dt); }, &rng);
+    const Scan s = simulateSweep(
+        scene, lidar, toStampNs(1.0 + t_end), [&](double dt) { return pose_at(t_end + dt); }, &rng);
     const OdometryResult r = odom.update(s);
     EXPECT_TRUE(r.ok) << "scan " << k << ": " << r.warning;
     const Pose3 gt_step = pose_at(t_end - 0.1).inverse() * pose_at(t_end);

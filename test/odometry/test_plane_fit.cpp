@@ -22,8 +22,11 @@ std::vector<Eigen::Vector3d> groundAndWallFoot() {
 std::vector<Eigen::Vector3d> flatPatch(double noise, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> n(-noise, noise);
-  return {{10.0, 0.0, -1.5 + n(rng)}, {10.2, 0.15, -1.5 + n(rng)}, {9.9, 0.3, -1.5 + n(rng)},
-          {10.1, 0.45, -1.5 + n(rng)}, {10.3, 0.2, -1.5 + n(rng)}};
+  return {{10.0, 0.0, -1.5 + n(rng)},
+          {10.2, 0.15, -1.5 + n(rng)},
+          {9.9, 0.3, -1.5 + n(rng)},
+          {10.1, 0.45, -1.5 + n(rng)},
+          {10.3, 0.2, -1.5 + n(rng)}};
 }
 
 /// The paper's fit rules only: both of our neighbour tests off.

@@ -27,7 +27,7 @@ TEST(SymmetricEigen3, MatchesEigenOnPointScatters) {
   for (int trial = 0; trial < 3000; ++trial) {
     // Axis scales: blob, plane (thin along one axis), line (long along one axis).
     const int kind = trial % 3;
-    const Eigen::Vector3d scale = kind == 0 ? Eigen::Vector3d(1.0, 0.7, 0.4)
+    const Eigen::Vector3d scale = kind == 0   ? Eigen::Vector3d(1.0, 0.7, 0.4)
                                   : kind == 1 ? Eigen::Vector3d(1.0, 0.5, 0.003)
                                               : Eigen::Vector3d(1.0, 0.02, 0.01);
     const Eigen::Matrix3d R = Eigen::Quaterniond::UnitRandom().toRotationMatrix();

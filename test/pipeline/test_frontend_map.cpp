@@ -46,10 +46,10 @@ TEST(FrontendMap, ClosuresJoinKnownKeyframesAndCarryTheirLabels) {
   map.addKeyframe(keyframe(0, at(0, 0), at(0, 0)));
   map.addKeyframe(keyframe(1, at(2, 0), at(2, 0)));
   map.addTeammateKeyframe('b', 4, at(2, 1));
-  map.addClosure(closure('a', 1, 'b', 4, at(0, 1)));            // the truth: inlier
-  map.addClosure(closure('a', 0, 'b', 4, at(9, 9, 1.0)));       // far off: outlier
-  map.addClosure(closure('a', 0, 'a', 1, at(2, 0), false));     // rejected
-  map.addClosure(closure('a', 0, 'c', 2, at(0, 0)));            // c2 unknown: not shown
+  map.addClosure(closure('a', 1, 'b', 4, at(0, 1)));         // the truth: inlier
+  map.addClosure(closure('a', 0, 'b', 4, at(9, 9, 1.0)));    // far off: outlier
+  map.addClosure(closure('a', 0, 'a', 1, at(2, 0), false));  // rejected
+  map.addClosure(closure('a', 0, 'c', 2, at(0, 0)));         // c2 unknown: not shown
   const std::vector<ClosureSegment> shown = map.closures();
   ASSERT_EQ(shown.size(), 3u);
   EXPECT_EQ(shown[0].label, ClosureLabel::Inlier);

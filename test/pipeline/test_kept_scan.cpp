@@ -76,23 +76,23 @@ TEST(KeptScan, ComesBackBitForBitOnceReleasedAndHoldsNoPointsMeanwhile) {
   auto spill = std::make_shared<SpillFile>();
   Scan original = team()[0].scans[3];  // points, intensity, time, ring
   ASSERT_TRUE(original.hasTime());
-  original.points[0].x() = -0.0f;      // bit patterns, not values, must survive
+  original.points[0].x() = -0.0f;  // bit patterns, not values, must survive
   const std::size_t bytes = scanBytes(original);
   auto held = std::make_shared<const Scan>(original);
   KeptScan kept(held, spill);
   EXPECT_TRUE(kept.spilled());
   EXPECT_EQ(kept.bytes(), bytes);
-  EXPECT_EQ(kept.bytesInMemory(), bytes);      // its producer still holds it
-  EXPECT_EQ(kept.get().get(), held.get());     // in use: the same object, not a copy
+  EXPECT_EQ(kept.bytesInMemory(), bytes);   // its producer still holds it
+  EXPECT_EQ(kept.get().get(), held.get());  // in use: the same object, not a copy
   held.reset();
-  EXPECT_EQ(kept.bytesInMemory(), 0u);         // released: only the file has it
+  EXPECT_EQ(kept.bytesInMemory(), 0u);  // released: only the file has it
   const std::shared_ptr<const Scan> back = kept.get();
   EXPECT_EQ(back->stamp, original.stamp);
   EXPECT_TRUE(sameArray(back->points, original.points));
   EXPECT_TRUE(sameArray(back->intensity, original.intensity));
   EXPECT_TRUE(sameArray(back->time, original.time));
   EXPECT_TRUE(sameArray(back->ring, original.ring));
-  EXPECT_EQ(kept.get().get(), back.get());     // read once while in use
+  EXPECT_EQ(kept.get().get(), back.get());  // read once while in use
   // without a spill file it is held
   KeptScan in_memory(std::make_shared<const Scan>(original), nullptr);
   EXPECT_FALSE(in_memory.spilled());
@@ -167,7 +167,7 @@ TEST(RobotFrontend, KeepsOnlyTheLatestKeyframeScanInMemoryWithTheSameClosures) {
   EXPECT_GT(f.scan_bytes_spilled, (fa.keyframes().size() - 1) * largest / 2);
   const FrontendFootprint fbf = fb.footprint(seen);  // a's scans b received are a's KeptScans: counted already
   EXPECT_EQ(fbf.teammate_scans, 0u);
-  EXPECT_LE(fbf.scan_bytes_in_memory, largest);     // b's latest
+  EXPECT_LE(fbf.scan_bytes_in_memory, largest);  // b's latest
   EXPECT_EQ(fb.featureCache().footprint().bytes_in_memory, 0u);
   EXPECT_GT(fb.featureCache().footprint().bytes_spilled, 0u);
   // in memory: every keyframe scan is held

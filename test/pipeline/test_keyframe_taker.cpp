@@ -18,8 +18,10 @@ constexpr StampNs kSecond = 1000000000ULL;
 Scan sweep(StampNs stamp) {
   Scan s;
   s.stamp = stamp;
-  s.points = {{10.0f, 0.0f, 0.0f}, {10.0f, 0.0f, 0.0f},
-              {std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f}, {0.5f, 0.0f, 0.0f}};
+  s.points = {{10.0f, 0.0f, 0.0f},
+              {10.0f, 0.0f, 0.0f},
+              {std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f},
+              {0.5f, 0.0f, 0.0f}};
   s.time = {-0.1f, 0.0f, -0.05f, 0.0f};
   return s;
 }

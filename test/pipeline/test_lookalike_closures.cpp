@@ -50,7 +50,8 @@ TEST(LookalikeClosures, ATerracedStreetYieldsAcceptedWrongPlaceClosuresLabelledO
   const test::SyntheticTrial trial = terracedStreetTrial();
   std::vector<TrialSpan> spans{{trial.robot, trial.scans.front().stamp, trial.scans.back().stamp}};
   const SequenceTiming timing = SequenceTiming::synchronize(spans, trial.robot, 0.0, 1);
-  std::map<char, Trajectory> refs{{trial.robot, toSensorReference(trial.body, trial.extrinsic, timing.of(trial.robot))}};
+  std::map<char, Trajectory> refs{
+      {trial.robot, toSensorReference(trial.body, trial.extrinsic, timing.of(trial.robot))}};
   TeamRunParams params;
   params.frontend = FrontendParams::loadDir(defaultConfigDir());
   params.noise = NoiseModels::load(defaultConfigDir() + "/noise_models/synthetic.yaml");
@@ -74,5 +75,6 @@ TEST(LookalikeClosures, ATerracedStreetYieldsAcceptedWrongPlaceClosuresLabelledO
     EXPECT_TRUE(isOutlier(m.measurement, m.truth, params.noise.loop_closure)) << "closure off by " << error << " m";
   }
   EXPECT_GE(wrong, 1u);
-  std::printf("terraced street: %zu accepted loop closures, %zu of them off by > 2 m\n", sets.loop_closures.size(), wrong);
+  std::printf("terraced street: %zu accepted loop closures, %zu of them off by > 2 m\n", sets.loop_closures.size(),
+              wrong);
 }

@@ -69,7 +69,8 @@ void expectSectionListsEveryParameter(const ConfigNode& section, const std::vect
     EXPECT_TRUE(in_file.count(key)) << section.where << " lacks the parameter " << key;
     known.insert(key);
   }
-  for (const std::string& key : in_file) EXPECT_TRUE(known.count(key)) << section.where << "." << key << " is read by nobody";
+  for (const std::string& key : in_file)
+    EXPECT_TRUE(known.count(key)) << section.where << "." << key << " is read by nobody";
 }
 
 /// Every listed key of the file's section holds the struct's default.
@@ -116,9 +117,7 @@ template <class Params>
 std::string errorOf(const std::string& text) {
   try {
     Params::fromConfig(parse(text));
-  } catch (const std::exception& e) {
-    return e.what();
-  }
+  } catch (const std::exception& e) { return e.what(); }
   return "(no error)";
 }
 
@@ -154,8 +153,8 @@ TEST(ParameterLists, FrontendFileStructAndReaderAgree) {
 }
 
 TEST(ParameterLists, RadioFilesHoldTheirPresetsAndTheReaderAgrees) {
-  for (const auto& [file, preset] : {std::pair{"comm/wifi.yaml", RadioParams::wifi()},
-                                      std::pair{"comm/proradio.yaml", RadioParams::proRadio()}}) {
+  for (const auto& [file, preset] :
+       {std::pair{"comm/wifi.yaml", RadioParams::wifi()}, std::pair{"comm/proradio.yaml", RadioParams::proRadio()}}) {
     const ConfigNode section = shippedSection(file, {"comm"});
     expectFileStructAndReaderAgree(section, preset, {"preset", "timeout_mode", "size_model"});
     const RadioParams read = RadioParams::fromConfig(section);

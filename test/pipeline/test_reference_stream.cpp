@@ -21,8 +21,7 @@ TEST(ReferenceStream, TheLeadBeforeTheFirstScanThenWhatCameSinceThePreviousOne) 
   ReferenceStream stream(20 * kMs, 100 * kMs);
   EXPECT_EQ(stream.beforeScan('a', ref, 1300 * kMs),
             (std::vector<StampNs>{1210 * kMs, 1230 * kMs, 1250 * kMs, 1270 * kMs, 1290 * kMs, 1300 * kMs}));
-  EXPECT_EQ(stream.beforeScan('a', ref, 1350 * kMs),
-            (std::vector<StampNs>{1310 * kMs, 1330 * kMs, 1350 * kMs}));
+  EXPECT_EQ(stream.beforeScan('a', ref, 1350 * kMs), (std::vector<StampNs>{1310 * kMs, 1330 * kMs, 1350 * kMs}));
   EXPECT_EQ(stream.beforeScan('b', ref, 1350 * kMs).size(), 6u);  // each robot its own
 }
 

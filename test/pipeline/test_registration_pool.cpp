@@ -39,10 +39,13 @@ TEST(FeatureCache, ComputesAScanOnceWhenManyThreadsAskAtOnce) {
   std::vector<std::thread> threads;
   for (std::size_t i = 0; i < got.size(); ++i)
     threads.emplace_back([&, i] {
-      got[i] = cache.get(scan, [&](const Scan& s) {
-        ++computed;
-        return registration.prepare(s);
-      }).get();
+      got[i] = cache
+                   .get(scan,
+                        [&](const Scan& s) {
+                          ++computed;
+                          return registration.prepare(s);
+                        })
+                   .get();
     });
   for (auto& t : threads) t.join();
   EXPECT_EQ(computed.load(), 1);
@@ -84,7 +87,7 @@ TEST(RegistrationPool, ResultsAreTheInlineResultsBitForBitAndErrorsReachTheCalle
       EXPECT_EQ(r.reason, inline_results[i].reason);
     }
     EXPECT_THROW(failing.get(), std::runtime_error);
-    EXPECT_EQ(cache->size(), 8u);  // every scan's features once
+    EXPECT_EQ(cache->size(), 8u);                  // every scan's features once
     EXPECT_EQ(pool.jobsDone(), pairs.size() + 1);  // counted before its result arrives
   }
 }
@@ -105,8 +108,6 @@ TEST(RegistrationPool, StopsWithJobsStillQueued) {
   if (never.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
     try {
       never.get();
-    } catch (const std::future_error& e) {
-      EXPECT_EQ(e.code(), std::future_errc::broken_promise);
-    }
+    } catch (const std::future_error& e) { EXPECT_EQ(e.code(), std::future_errc::broken_promise); }
   }
 }

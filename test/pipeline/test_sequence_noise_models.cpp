@@ -45,9 +45,7 @@ SequenceConfig sequenceWith(const std::string& environment, const std::string& n
 std::string missingMessage(const SequenceConfig& s, const std::string& config_dir) {
   try {
     loadSequenceNoiseModels(s, config_dir);
-  } catch (const NoiseModelsMissing& e) {
-    return e.what();
-  }
+  } catch (const NoiseModelsMissing& e) { return e.what(); }
   return "no NoiseModelsMissing";
 }
 
@@ -101,9 +99,9 @@ TEST(SequenceNoiseModels, ASequenceWithoutNoiseModelsStopsWithTheWayToMakeThem) 
   EXPECT_NE(ntu.provenance.find("COSMO-Bench"), std::string::npos);
   EXPECT_EQ(loadSequenceNoiseModels(sequenceWith("ntu", config_dir + "/noise_models/kth.yaml"), config_dir).environment,
             "kth");
-  EXPECT_EQ(loadSequenceNoiseModels(sequenceWith("ntu", ""), config_dir, config_dir + "/noise_models/tuhh.yaml")
-                .environment,
-            "tuhh");
+  EXPECT_EQ(
+      loadSequenceNoiseModels(sequenceWith("ntu", ""), config_dir, config_dir + "/noise_models/tuhh.yaml").environment,
+      "tuhh");
   EXPECT_EQ(loadRunNoiseModels("", "", config_dir + "/sim/ci.yaml", config_dir).environment, "synthetic");
   EXPECT_EQ(findTrial(sequenceWith("", ""), "b").name, "walk_2");
   EXPECT_EQ(findTrial(sequenceWith("", ""), "walk_1").robot, 'a');

@@ -62,7 +62,8 @@ trials:
 }
 
 TEST(SequenceConfig, ErrorsNameFileAndField) {
-  const auto bad_anchor = writeTemp("seq_bad_anchor.yaml", "name: x\nanchor: z\ntrials:\n  - robot: a\n    bag: a.bag\n");
+  const auto bad_anchor =
+      writeTemp("seq_bad_anchor.yaml", "name: x\nanchor: z\ntrials:\n  - robot: a\n    bag: a.bag\n");
   try {
     SequenceConfig::load(bad_anchor);
     FAIL() << "no throw";
@@ -77,10 +78,12 @@ TEST(SequenceConfig, ErrorsNameFileAndField) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("trials[0].bag"), std::string::npos) << e.what();
   }
-  const auto dup = writeTemp("seq_dup.yaml", "name: x\ntrials:\n  - {robot: a, bag: a.bag}\n  - {robot: a, bag: b.bag}\n");
+  const auto dup =
+      writeTemp("seq_dup.yaml", "name: x\ntrials:\n  - {robot: a, bag: a.bag}\n  - {robot: a, bag: b.bag}\n");
   EXPECT_THROW(SequenceConfig::load(dup), std::runtime_error);
   EXPECT_THROW(SequenceConfig::load("/nonexistent/seq.yaml"), std::runtime_error);
-  const auto bad_extr = writeTemp("seq_bad_extr.yaml", "name: x\ntrials:\n  - {robot: a, bag: a.bag, extrinsic: [1, 2]}\n");
+  const auto bad_extr =
+      writeTemp("seq_bad_extr.yaml", "name: x\ntrials:\n  - {robot: a, bag: a.bag, extrinsic: [1, 2]}\n");
   EXPECT_THROW(SequenceConfig::load(bad_extr), std::runtime_error);
 }
 
@@ -141,9 +144,10 @@ TEST(SequenceTiming, StampsStayPositiveForTrialsStampedFromZero) {
   const auto timing = SequenceTiming::synchronize(spans, 'a', 40.0, 1);
   EXPECT_GE(timing.start(), 1000000000ULL);
   // relative offsets are unchanged by the global shift
-  const auto loose = SequenceTiming::synchronize(
-      {{'a', 1000000000000ULL, 1060000000000ULL}, {'b', 1000000000000ULL, 1060000000000ULL},
-       {'c', 1000000000000ULL, 1060000000000ULL}}, 'a', 40.0, 1);
+  const auto loose = SequenceTiming::synchronize({{'a', 1000000000000ULL, 1060000000000ULL},
+                                                  {'b', 1000000000000ULL, 1060000000000ULL},
+                                                  {'c', 1000000000000ULL, 1060000000000ULL}},
+                                                 'a', 40.0, 1);
   EXPECT_EQ(timing.of('b').offset_ns - timing.of('a').offset_ns, loose.of('b').offset_ns - loose.of('a').offset_ns);
 }
 
@@ -155,9 +159,9 @@ TEST(SequenceTiming, BadInputThrows) {
 
 TEST(SequenceConfig, TheTwelveCosmoBenchSequencesLoad) {
   const std::vector<std::pair<std::string, std::size_t>> expected{
-      {"ntu_r3_00", 3}, {"ntu_r3_01", 3}, {"ntu_r3_02", 3}, {"ntu_r4_00", 4}, {"ntu_r5_00", 5}, {"kth_r3_00", 3},
-      {"kth_r3_01", 3}, {"kth_r4_00", 4}, {"tuhh_r3_00", 3}, {"tuhh_r3_01", 3}, {"kittredge_loop", 4},
-      {"main_campus", 4}};
+      {"ntu_r3_00", 3},  {"ntu_r3_01", 3},  {"ntu_r3_02", 3},      {"ntu_r4_00", 4},
+      {"ntu_r5_00", 5},  {"kth_r3_00", 3},  {"kth_r3_01", 3},      {"kth_r4_00", 4},
+      {"tuhh_r3_00", 3}, {"tuhh_r3_01", 3}, {"kittredge_loop", 4}, {"main_campus", 4}};
   for (const auto& [name, robots] : expected) {
     const auto cfg = SequenceConfig::load(std::string(COSMO_SOURCE_DIR) + "/config/sequences/" + name + ".yaml");
     EXPECT_EQ(cfg.name, name);

@@ -43,7 +43,7 @@ TEST(TeamRadio, RunsEveryStepUpToTAndDeliversAtTheStepStamp) {
   std::vector<std::pair<StampNs, Transfer>> ended;
   const auto on_transfer = [&](StampNs stamp, const Transfer& t) { ended.emplace_back(stamp, t); };
 
-  EXPECT_EQ(advanceRadio(radio, origin, origin - 1, state, on_transfer), 0u);  // before the origin: nothing
+  EXPECT_EQ(advanceRadio(radio, origin, origin - 1, state, on_transfer), 0u);             // before the origin: nothing
   EXPECT_EQ(advanceRadio(radio, origin, origin + 250000000ULL, state, on_transfer), 3u);  // 0, 0.1, 0.2 s
   ASSERT_EQ(asked.size(), 3u);
   EXPECT_EQ(asked[0], origin);

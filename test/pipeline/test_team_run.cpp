@@ -152,7 +152,7 @@ TEST(OdometryRunAhead, HandsOverInTheTeamsStreamOrderWithItsDroppedScans) {
     ASSERT_TRUE(ahead.next(s));
     EXPECT_EQ(s.robot, robot);
     EXPECT_EQ(s.stamp, scan.stamp);
-    EXPECT_FALSE(s.odometry.ok);  // empty scans: motion-model fallback, never a throw
+    EXPECT_FALSE(s.odometry.ok);                   // empty scans: motion-model fallback, never a throw
     EXPECT_EQ(s.keyframe_scan != nullptr, n < 2);  // each robot's first scan is its keyframe 0 (ties: 'a' first)
     ++n;
   }

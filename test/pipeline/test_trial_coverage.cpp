@@ -43,8 +43,8 @@ std::vector<Scan> endStamped(int n) {
   std::vector<Scan> scans;
   for (int k = 0; k < n; ++k) {
     const double t_end = 0.1 * k;
-    scans.push_back(simulateSweep(scene, smallLidar(), toStampNs(kT0 + t_end),
-                                  [&](double dt) { return truePose(t_end + dt); }));
+    scans.push_back(
+        simulateSweep(scene, smallLidar(), toStampNs(kT0 + t_end), [&](double dt) { return truePose(t_end + dt); }));
   }
   return scans;
 }
@@ -97,8 +97,8 @@ TEST(StampConvention, DewarpPutsBothCopiesOnTheSameWorldPoints) {
     for (std::size_t i = 0; i < de.size(); i += 97) {
       const Pose3 at_point =
           pose_at(end[k].stamp - static_cast<StampNs>(std::llround(-static_cast<double>(end[k].time[i]) * 1e9)));
-      truth_err = std::max(truth_err, (te * de.points[i].cast<double>() -
-                                       at_point * end[k].points[i].cast<double>()).norm());
+      truth_err =
+          std::max(truth_err, (te * de.points[i].cast<double>() - at_point * end[k].points[i].cast<double>()).norm());
     }
     EXPECT_LT(truth_err, 1e-3);
   }

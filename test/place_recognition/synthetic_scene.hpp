@@ -26,8 +26,7 @@ class SyntheticScene {
       if (i % 4 == 0) {  // a wall next to every fourth pillar
         const double a = angle(rng), l = len(rng), wh = height(rng) * 0.5;
         for (double s = 0.0; s <= l; s += 0.5)
-          for (double z = 0.0; z <= wh; z += 0.5)
-            points_.emplace_back(cx + s * std::cos(a), cy + s * std::sin(a), z);
+          for (double z = 0.0; z <= wh; z += 0.5) points_.emplace_back(cx + s * std::cos(a), cy + s * std::sin(a), z);
       }
     }
   }

@@ -17,11 +17,11 @@ QueryOutcome outcome(bool has, double distance, double match_sep, double nearest
 
 TEST(RevisitEvaluation, CountsDetectionsTruePositivesAndRevisits) {
   const std::vector<QueryOutcome> o = {
-      outcome(true, 0.10, 1.0, 1.0),    // true detection
-      outcome(true, 0.20, 30.0, 2.0),   // wrong place while a revisit exists
-      outcome(true, 0.40, 3.0, 3.0),    // true but above 0.3
-      outcome(true, 0.15, 8.0, 8.0),    // true only at 10 m
-      outcome(false, 1.0, 0.0, -1.0),   // nothing searchable
+      outcome(true, 0.10, 1.0, 1.0),   // true detection
+      outcome(true, 0.20, 30.0, 2.0),  // wrong place while a revisit exists
+      outcome(true, 0.40, 3.0, 3.0),   // true but above 0.3
+      outcome(true, 0.15, 8.0, 8.0),   // true only at 10 m
+      outcome(false, 1.0, 0.0, -1.0),  // nothing searchable
   };
   const PrPoint a = precisionRecallAt(o, 0.3, 5.0);
   EXPECT_EQ(a.detections, 3u);

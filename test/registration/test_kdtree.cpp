@@ -86,7 +86,8 @@ std::vector<float> featureRows(std::size_t n, std::mt19937& rng) {
         w[static_cast<std::size_t>(bin(rng))] += c;
         total += c;
       }
-      for (int j = 0; j < 11; ++j) rows[i * 33 + static_cast<std::size_t>(b * 11 + j)] = std::round(100.f * w[j] / total / 2.5f) * 2.5f;
+      for (int j = 0; j < 11; ++j)
+        rows[i * 33 + static_cast<std::size_t>(b * 11 + j)] = std::round(100.f * w[j] / total / 2.5f) * 2.5f;
     }
   return rows;
 }

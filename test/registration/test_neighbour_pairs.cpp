@@ -23,10 +23,10 @@ std::vector<Eigen::Vector3f> randomCloud(std::size_t n, std::uint32_t seed) {
   std::uniform_real_distribution<float> u(-6.f, 6.f);
   std::vector<Eigen::Vector3f> pts;
   for (std::size_t i = 0; i < n; ++i) pts.emplace_back(u(rng), u(rng), 0.5f * u(rng));
-  pts.emplace_back(1.5f, 0.f, 0.f);   // exactly on cell boundaries (radius 1.5)
+  pts.emplace_back(1.5f, 0.f, 0.f);  // exactly on cell boundaries (radius 1.5)
   pts.emplace_back(0.f, 0.f, 0.f);
   pts.emplace_back(-1.5f, 0.f, 0.f);
-  pts.push_back(pts[3]);              // a duplicate point
+  pts.push_back(pts[3]);  // a duplicate point
   return pts;
 }
 }  // namespace
@@ -151,8 +151,8 @@ TEST(FastFeatures, MatchDefinition) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(0.f, 4.f), noise(-0.02f, 0.02f);
   std::vector<Eigen::Vector3f> pts;
-  for (int k = 0; k < 700; ++k) pts.emplace_back(u(rng), u(rng), noise(rng));           // ground
-  for (int k = 0; k < 400; ++k) pts.emplace_back(noise(rng), u(rng), 0.5f * u(rng));    // wall
+  for (int k = 0; k < 700; ++k) pts.emplace_back(u(rng), u(rng), noise(rng));               // ground
+  for (int k = 0; k < 400; ++k) pts.emplace_back(noise(rng), u(rng), 0.5f * u(rng));        // wall
   for (int k = 0; k < 300; ++k) pts.emplace_back(u(rng), noise(rng) + 4.f, 0.5f * u(rng));  // wall
   for (auto& p : pts) p += Eigen::Vector3f(3.f, -2.f, -1.5f);
   FastFeatureParams p;
@@ -168,8 +168,8 @@ TEST(FastFeatures, MatchDefinition) {
   double worst = 0.0, total = 0.0;
   for (std::size_t c = 0; c < f.keypoints.size(); ++c) {
     const auto i = static_cast<std::size_t>(f.kept[static_cast<std::size_t>(f.keypoints[c])]);
-    const Eigen::VectorXf ref = referenceFpfh(pts, nrm, valid, i, static_cast<float>(p.spfh_radius),
-                                              static_cast<float>(p.fpfh_radius));
+    const Eigen::VectorXf ref =
+        referenceFpfh(pts, nrm, valid, i, static_cast<float>(p.spfh_radius), static_cast<float>(p.fpfh_radius));
     const double diff = (ref - f.features.col(static_cast<Eigen::Index>(c))).cwiseAbs().sum();  // of 300
     worst = std::max(worst, diff);
     total += diff;

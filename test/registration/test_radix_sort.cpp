@@ -25,7 +25,8 @@ TEST(RadixSort, PackedVoxelKeysWithDuplicates) {
   std::uniform_real_distribution<double> u(-80.0, 80.0), h(-3.0, 20.0);
   Keyed v;
   for (std::uint32_t i = 0; i < 20000; ++i)
-    v.emplace_back(packVoxelKey(voxelCoord(u(rng), 1 / 1.5), voxelCoord(u(rng), 1 / 1.5), voxelCoord(h(rng), 1 / 1.5)), i);
+    v.emplace_back(packVoxelKey(voxelCoord(u(rng), 1 / 1.5), voxelCoord(u(rng), 1 / 1.5), voxelCoord(h(rng), 1 / 1.5)),
+                   i);
   expectSameAsStdSort(v);
 }
 

@@ -34,7 +34,7 @@ TEST(VoxelDownsample, MatchesReference) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> wide(-40.f, 40.f), local(-0.5f, 0.5f);
   std::vector<Eigen::Vector3f> pts;
-  for (int k = 0; k < 3000; ++k) pts.emplace_back(wide(rng), wide(rng), 0.1f * wide(rng));  // mostly own voxels
+  for (int k = 0; k < 3000; ++k) pts.emplace_back(wide(rng), wide(rng), 0.1f * wide(rng));    // mostly own voxels
   for (int k = 0; k < 3000; ++k) pts.emplace_back(local(rng), local(rng) + 3.f, local(rng));  // dense
   for (const auto& [min_r, max_r] : {std::pair{0.0, 0.0}, std::pair{1.0, 30.0}}) {
     const auto got = voxelDownsample(pts, 0.3, min_r, max_r);

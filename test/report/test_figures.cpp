@@ -38,8 +38,8 @@ TEST(ReportFigures, TinyExampleTrajectoriesFigure) {
   EXPECT_EQ(count(svg, "<polyline"), 2u);  // one reference trajectory per robot
   // Two loop closures: the outlier dashed (plus the legend's dashed sample), the inlier solid.
   EXPECT_EQ(count(svg, "stroke-dasharray"), 2u);
-  for (const char* text : {">tiny_example<", ">tiny_example.jrl<", ">trials<", ">LC<", ">IRLC<",
-                           "1 (100.0 % outliers)", "1 (0.0 % outliers)", " m</text>", "x [m]", "y [m]"})
+  for (const char* text : {">tiny_example<", ">tiny_example.jrl<", ">trials<", ">LC<", ">IRLC<", "1 (100.0 % outliers)",
+                           "1 (0.0 % outliers)", " m</text>", "x [m]", "y [m]"})
     EXPECT_NE(svg.find(text), std::string::npos) << text;
   EXPECT_EQ(svg, report::trajectoriesSvg(d, {"tiny_example.jrl"}));
 }
@@ -48,7 +48,7 @@ TEST(ReportFigures, TinyExampleFrontendFigure) {
   const jrl::Dataset d = jrl::readJrl(kTiny);
   const std::string svg = report::frontendSvg(d);
   EXPECT_EQ(count(svg, "<polyline"), 6u);  // reference and odometry per robot, reference again in (b)
-  EXPECT_EQ(count(svg, "<circle"), 5u);  // a dot per keyframe (own poses)
+  EXPECT_EQ(count(svg, "<circle"), 5u);    // a dot per keyframe (own poses)
   EXPECT_EQ(count(svg, "stroke-dasharray"), 2u);
   EXPECT_EQ(svg, report::frontendSvg(d));
 }
@@ -63,8 +63,8 @@ TEST(ReportFigures, FiveRobotsTwoThousandClosuresStayReadable) {
   ASSERT_GT(s.lc_count + s.irlc_count, 1900u);
   const std::string svg = report::trajectoriesSvg(d);
   EXPECT_EQ(count(svg, "<polyline"), 5u);
-  EXPECT_EQ(count(svg, "<line"), s.lc_count + s.irlc_count + 3u /*scale bar*/ + 8u /*legend*/ +
-                                      count(svg, "stroke=\"#dddddd\""));
+  EXPECT_EQ(count(svg, "<line"),
+            s.lc_count + s.irlc_count + 3u /*scale bar*/ + 8u /*legend*/ + count(svg, "stroke=\"#dddddd\""));
   // Every robot has its own colour.
   std::set<std::string> colors;
   const std::regex re("<polyline fill=\"none\" stroke-linejoin=\"round\" stroke=\"(#[0-9a-f]{6})\"");

@@ -85,8 +85,11 @@ TEST(PointCloud, AbsoluteEpochTimesKeepMicroseconds) {
   // Velodyne-style float64 `time` in epoch seconds, 0.1 s sweep ending 1 ms after the stamp.
   const std::size_t n = 1000;
   const double stamp = 1700000000.5;
-  auto m = packed(n, {{"x", sensor_msgs::PointField::FLOAT64, 8}, {"y", sensor_msgs::PointField::FLOAT64, 8},
-                      {"z", sensor_msgs::PointField::FLOAT64, 8}, {"time", sensor_msgs::PointField::FLOAT64, 8}},
+  auto m = packed(n,
+                  {{"x", sensor_msgs::PointField::FLOAT64, 8},
+                   {"y", sensor_msgs::PointField::FLOAT64, 8},
+                   {"z", sensor_msgs::PointField::FLOAT64, 8},
+                   {"time", sensor_msgs::PointField::FLOAT64, 8}},
                   [&](uint8_t* p, std::size_t i, std::size_t k) {
                     const double v = k < 3 ? 1.0 + k + 0.001 * i : stamp - 0.099 + 0.1 * i / (n - 1);
                     std::memcpy(p, &v, 8);
@@ -102,13 +105,22 @@ TEST(PointCloud, AbsoluteEpochTimesKeepMicroseconds) {
 }
 
 TEST(PointCloud, IntegerAndNarrowFieldsConvert) {
-  auto m = packed(4, {{"x", sensor_msgs::PointField::FLOAT32, 4}, {"y", sensor_msgs::PointField::FLOAT32, 4},
-                      {"z", sensor_msgs::PointField::FLOAT32, 4}, {"intensity", sensor_msgs::PointField::UINT8, 1},
-                      {"ring", sensor_msgs::PointField::INT16, 2}},
+  auto m = packed(4,
+                  {{"x", sensor_msgs::PointField::FLOAT32, 4},
+                   {"y", sensor_msgs::PointField::FLOAT32, 4},
+                   {"z", sensor_msgs::PointField::FLOAT32, 4},
+                   {"intensity", sensor_msgs::PointField::UINT8, 1},
+                   {"ring", sensor_msgs::PointField::INT16, 2}},
                   [](uint8_t* p, std::size_t i, std::size_t k) {
-                    if (k < 3) { const float v = -1.5f * (i + 1); std::memcpy(p, &v, 4); }
+                    if (k < 3) {
+                      const float v = -1.5f * (i + 1);
+                      std::memcpy(p, &v, 4);
+                    }
                     if (k == 3) *p = static_cast<uint8_t>(200 + i);
-                    if (k == 4) { const int16_t v = static_cast<int16_t>(i == 3 ? -2 : 30 + i); std::memcpy(p, &v, 2); }
+                    if (k == 4) {
+                      const int16_t v = static_cast<int16_t>(i == 3 ? -2 : 30 + i);
+                      std::memcpy(p, &v, 2);
+                    }
                   });
   const Scan r = fromPointCloud2(m);
   ASSERT_EQ(r.size(), 4u);
@@ -124,9 +136,14 @@ TEST(PointCloud, DecodingIntoAUsedScanReplacesEveryField) {
   // not leave the previous scan's fields behind.
   Scan s = fromPointCloud2(toPointCloud2(sweep(50), "lidar"));
   ASSERT_TRUE(s.hasTime() && s.hasRing() && s.hasIntensity());
-  auto m = packed(3, {{"x", sensor_msgs::PointField::FLOAT32, 4}, {"y", sensor_msgs::PointField::FLOAT32, 4},
-                      {"z", sensor_msgs::PointField::FLOAT32, 4}},
-                  [](uint8_t* p, std::size_t i, std::size_t k) { const float v = 1.0f * i + k; std::memcpy(p, &v, 4); });
+  auto m = packed(3,
+                  {{"x", sensor_msgs::PointField::FLOAT32, 4},
+                   {"y", sensor_msgs::PointField::FLOAT32, 4},
+                   {"z", sensor_msgs::PointField::FLOAT32, 4}},
+                  [](uint8_t* p, std::size_t i, std::size_t k) {
+                    const float v = 1.0f * i + k;
+                    std::memcpy(p, &v, 4);
+                  });
   cosmo::ros_glue::decodePointCloud2(m, m.data.data(), m.data.size(), true, "test", s);
   ASSERT_EQ(s.size(), 3u);
   EXPECT_EQ(s.points[2], Eigen::Vector3f(2.0f, 3.0f, 4.0f));

@@ -38,16 +38,19 @@ TEST(CommBroker, FarScansNeverDeliveredCloseOnesAre) {
     const std::string ns = std::string("/") + r;
     pose_pub[r] = nh.advertise<geometry_msgs::PoseStamped>(ns + "/reference_pose", 10);
     kf_pub[r] = nh.advertise<cosmo::Keyframe>(ns + "/keyframe_scans", 100);
-    subs.push_back(nh.subscribe<cosmo::Keyframe>(ns + "/received_scans", 100,
-                                                 [&received, r](const cosmo::Keyframe::ConstPtr& m) { received[r].push_back(*m); }));
+    subs.push_back(nh.subscribe<cosmo::Keyframe>(
+        ns + "/received_scans", 100,
+        [&received, r](const cosmo::Keyframe::ConstPtr& m) { received[r].push_back(*m); }));
   }
   std::string last_stats;
   bool saw_link = false;
-  subs.push_back(nh.subscribe<std_msgs::String>("/comm/stats", 10, [&](const std_msgs::String::ConstPtr& m) { last_stats = m->data; }));
-  subs.push_back(nh.subscribe<visualization_msgs::MarkerArray>("/comm/links", 10, [&](const visualization_msgs::MarkerArray::ConstPtr& m) {
-    for (const auto& mk : m->markers)
-      if (mk.action == visualization_msgs::Marker::ADD && !mk.points.empty()) saw_link = true;
-  }));
+  subs.push_back(nh.subscribe<std_msgs::String>("/comm/stats", 10,
+                                                [&](const std_msgs::String::ConstPtr& m) { last_stats = m->data; }));
+  subs.push_back(nh.subscribe<visualization_msgs::MarkerArray>(
+      "/comm/links", 10, [&](const visualization_msgs::MarkerArray::ConstPtr& m) {
+        for (const auto& mk : m->markers)
+          if (mk.action == visualization_msgs::Marker::ADD && !mk.points.empty()) saw_link = true;
+      }));
 
   // Wait for the broker to connect (wall clock: sim time does not run yet).
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(30.0);

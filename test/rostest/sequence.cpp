@@ -129,9 +129,9 @@ TEST(SequenceLaunch, LockstepJrlIsByteIdenticalToTheOfflineDriver) {
   const std::string out_dir = std::filesystem::path(jrl_path).parent_path().string() + "_offline";
   std::filesystem::remove_all(out_dir);
   std::ostringstream cmd;
-  cmd << shellQuote(siblingProgram("cosmo_generate")) << " " << shellQuote(sequence) << " --seed " << seed
-      << " --comm " << comm << " --config-dir " << shellQuote(config_dir) << " --noise-models " << shellQuote(noise_models) << " --out " << shellQuote(out_dir)
-      << " --quiet" << (odometry == "reference" ? " --reference-odometry" : "");
+  cmd << shellQuote(siblingProgram("cosmo_generate")) << " " << shellQuote(sequence) << " --seed " << seed << " --comm "
+      << comm << " --config-dir " << shellQuote(config_dir) << " --noise-models " << shellQuote(noise_models)
+      << " --out " << shellQuote(out_dir) << " --quiet" << (odometry == "reference" ? " --reference-odometry" : "");
   if (max_seconds > 0) cmd << " --max-seconds " << max_seconds;
   cmd << " > " << shellQuote(out_dir + ".log") << " 2>&1";
   const ros::WallTime start = ros::WallTime::now();

@@ -29,10 +29,12 @@ TEST(TeamOfSix, EveryFrontendRunsAndTheJrlHasSixRobots) {
   std::vector<ros::Subscriber> subs;
   for (char r : kRobots) {
     keyframes[r] = 0;
-    subs.push_back(nh.subscribe<cosmo::RecorderKeyframe>(std::string("/") + r + "/keyframes_meas", 1000,
-                                                         [&keyframes, r](const cosmo::RecorderKeyframe::ConstPtr&) { ++keyframes[r]; }));
+    subs.push_back(nh.subscribe<cosmo::RecorderKeyframe>(
+        std::string("/") + r + "/keyframes_meas", 1000,
+        [&keyframes, r](const cosmo::RecorderKeyframe::ConstPtr&) { ++keyframes[r]; }));
   }
-  subs.push_back(nh.subscribe<std_msgs::Empty>("/player/done", 1, [&](const std_msgs::Empty::ConstPtr&) { done = true; }));
+  subs.push_back(
+      nh.subscribe<std_msgs::Empty>("/player/done", 1, [&](const std_msgs::Empty::ConstPtr&) { done = true; }));
   const ros::WallTime start = ros::WallTime::now();
   while (ros::ok() && !done && (ros::WallTime::now() - start).toSec() < 360.0) {
     ros::spinOnce();

@@ -102,8 +102,6 @@ TEST(RayCasting, BvhMatchesBruteForce) {
     bool hb = false;
     for (const auto& p : prims) hb |= p.intersect(ray, 1e-6, b);
     ASSERT_EQ(ha, hb) << "ray " << k;
-    if (ha) {
-      ASSERT_NEAR(a.t, b.t, 1e-9) << "ray " << k;
-    }
+    if (ha) { ASSERT_NEAR(a.t, b.t, 1e-9) << "ray " << k; }
   }
 }

@@ -87,9 +87,7 @@ TEST(ScanSimulator, RingAndTimeFields) {
   // Ring-major order, time increasing within a ring.
   for (std::size_t i = 1; i < s.size(); ++i) {
     ASSERT_GE(s.ring[i], s.ring[i - 1]);
-    if (s.ring[i] == s.ring[i - 1]) {
-      ASSERT_GT(s.time[i], s.time[i - 1]);
-    }
+    if (s.ring[i] == s.ring[i - 1]) { ASSERT_GT(s.time[i], s.time[i - 1]); }
   }
 }
 
@@ -152,11 +150,10 @@ TEST(ScanSimulator, DeskewedPointsLieOnSurfacesWithinNoise) {
     EXPECT_GT(mean, 0.002) << t.params.name;
     EXPECT_LT(mean, 0.016) << t.params.name;
     // Without per-point poses the motion distortion shows.
-    if (t.params.platform == "atv") {
-      EXPECT_GT(mean_static, 2.0 * mean) << t.params.name;
-    }
-    std::printf("%s: mean point-to-surface distance %.4f m (%.4f m without per-point poses), RMS range residual %.4f m\n",
-                t.params.name.c_str(), mean, mean_static, rms_along);
+    if (t.params.platform == "atv") { EXPECT_GT(mean_static, 2.0 * mean) << t.params.name; }
+    std::printf(
+        "%s: mean point-to-surface distance %.4f m (%.4f m without per-point poses), RMS range residual %.4f m\n",
+        t.params.name.c_str(), mean, mean_static, rms_along);
     RecordProperty(t.params.name + "_mean_surface_distance_mm", static_cast<int>(1000 * mean));
   }
 }
@@ -232,7 +229,8 @@ TEST(WorldLayout, EveryTrialSeesTheSameBuildingsAndItsOwnClutter) {
   ASSERT_GT(layout.canopies.size(), 10u);
   // As generated: every car (two boxes each) and every canopy, no people.
   const World generated = layoutWorld(layout);
-  EXPECT_EQ(generated.objects().primitives().size(), layout.fixed.size() + 2 * layout.cars.size() + layout.canopies.size());
+  EXPECT_EQ(generated.objects().primitives().size(),
+            layout.fixed.size() + 2 * layout.cars.size() + layout.canopies.size());
   const World a = layoutWorld(layout, 1), a_again = layoutWorld(layout, 1), b = layoutWorld(layout, 2);
   const auto& pa = a.objects().primitives();
   const auto& pb = b.objects().primitives();
@@ -251,8 +249,9 @@ TEST(WorldLayout, EveryTrialSeesTheSameBuildingsAndItsOwnClutter) {
   EXPECT_NE(pa.size(), pb.size());
   EXPECT_EQ(pa.size(), a_again.objects().primitives().size());
   std::size_t people = 0;
-  for (const Primitive& p : pa) people += p.kind == Primitive::Kind::Cylinder && p.material == kBark && p.half.x() >= 0.2 &&
-                                           2.0 * p.half.z() < 2.1 && 2.0 * p.half.z() > 1.6;
+  for (const Primitive& p : pa)
+    people += p.kind == Primitive::Kind::Cylinder && p.material == kBark && p.half.x() >= 0.2 &&
+              2.0 * p.half.z() < 2.1 && 2.0 * p.half.z() > 1.6;
   EXPECT_GT(people, 5u);
 }
 

@@ -75,8 +75,10 @@ TEST(SensorPhysics, ACanopyReturnsFromInsideItsVolumeAndLetsSomeRaysThroughDeter
   int through = 0;
   for (double d : depths) {
     EXPECT_GT(d, -1e-3);
-    if (d < 4.0 + 1e-3) inside.push_back(d);  // within the canopy (its diameter); beyond: the wall behind it
-    else ++through;
+    if (d < 4.0 + 1e-3)
+      inside.push_back(d);  // within the canopy (its diameter); beyond: the wall behind it
+    else
+      ++through;
   }
   ASSERT_GT(inside.size(), 50u);
   double mean = 0.0;
@@ -106,7 +108,8 @@ TEST(SensorPhysics, RangeWalkMakesWeakReturnsLongerThanStrongOnes) {
   for (const auto& pf : scan.points) {
     const Eigen::Vector3d p = pf.cast<double>();
     if (std::abs(p.z()) > 2.0) continue;
-    if (p.x() > 19.0 && std::abs(p.y()) > 6.0 && std::abs(p.y()) < 9.0) near_bias.push_back(p.norm() - 20.0 * p.norm() / p.x());
+    if (p.x() > 19.0 && std::abs(p.y()) > 6.0 && std::abs(p.y()) < 9.0)
+      near_bias.push_back(p.norm() - 20.0 * p.norm() / p.x());
     if (std::abs(p.y()) > 3.0) continue;
     if (p.x() < -59.0) far_bias.push_back(p.norm() - 60.0 * p.norm() / -p.x());
   }

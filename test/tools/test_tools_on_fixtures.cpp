@@ -102,10 +102,10 @@ struct Fixture {
     fs::create_directories(dir);
     const fs::path sim_config = root / "tools_fixture.sim.yaml";
     std::ofstream(sim_config) << kSimConfig;
-    const ToolRun r = runTool("cosmo_simulate",
-                              "--config '" + sim_config.string() + "' --layout " + layout + " --no-cache --out '" +
-                                  dir.string() + "'",
-                              "COSMO_SCAN_CACHE=off");
+    const ToolRun r = runTool(
+        "cosmo_simulate",
+        "--config '" + sim_config.string() + "' --layout " + layout + " --no-cache --out '" + dir.string() + "'",
+        "COSMO_SCAN_CACHE=off");
     if (r.status != 0) throw std::runtime_error("cosmo_simulate failed:\n" + r.output);
     sequence = dir / "tools_fixture.yaml";
     params = sim::SimulationParams::load(sim_config.string());
@@ -144,10 +144,10 @@ class ToolsOnFixtures : public ::testing::Test {
 
   /// cosmo_generate on `f` into `out` (reference odometry unless `loam`); the JRL's path.
   static fs::path generate(const Fixture& f, const fs::path& out, const std::string& cache, bool loam = false) {
-    const ToolRun r = runTool("cosmo_generate",
-                              "'" + f.sequence.string() + "' --out '" + out.string() + "' --quiet" +
-                                  (loam ? "" : " --reference-odometry"),
-                              "COSMO_SCAN_CACHE='" + cache + "'");
+    const ToolRun r = runTool(
+        "cosmo_generate",
+        "'" + f.sequence.string() + "' --out '" + out.string() + "' --quiet" + (loam ? "" : " --reference-odometry"),
+        "COSMO_SCAN_CACHE='" + cache + "'");
     EXPECT_EQ(r.status, 0) << r.output;
     return out / "tools_fixture_wifi.jrl";
   }

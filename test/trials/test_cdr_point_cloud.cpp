@@ -42,9 +42,7 @@ std::string errorOf(const std::vector<std::uint8_t>& m) {
   try {
     Scan s;
     decodeCdrPointCloud2(m.data(), m.size(), true, "bag robot1/ouster/points", s);
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
+  } catch (const std::runtime_error& e) { return e.what(); }
   return "";
 }
 
@@ -87,19 +85,18 @@ TEST(CdrPointCloud, HandEncodedMessageHasTheDocumentedAlignment) {
   c.layout.fields = {{"x", 0, 7, 1}};
   c.layout.point_step = 4;
   const auto m = encodeCdrPointCloud2(c);
-  const std::vector<std::uint8_t> expected = {
-      0, 1, 0, 0,              // encapsulation
-      7, 0, 0, 0, 9, 0, 0, 0,  // stamp
-      3, 0, 0, 0, 'a', 'b', 0, 0,  // frame_id + 1 pad byte
-      1, 0, 0, 0, 0, 0, 0, 0,  // height, width
-      1, 0, 0, 0,              // 1 field
-      2, 0, 0, 0, 'x', 0, 0, 0,  // name "x" + 2 pad
-      0, 0, 0, 0, 7, 0, 0, 0,  // offset 0, datatype 7 + 3 pad
-      1, 0, 0, 0,              // count
-      0, 0, 0, 0,              // is_bigendian + 3 pad
-      4, 0, 0, 0, 0, 0, 0, 0,  // point_step, row_step
-      0, 0, 0, 0,              // data length 0
-      0};                      // is_dense
+  const std::vector<std::uint8_t> expected = {0, 1, 0, 0,                  // encapsulation
+                                              7, 0, 0, 0, 9,   0,   0, 0,  // stamp
+                                              3, 0, 0, 0, 'a', 'b', 0, 0,  // frame_id + 1 pad byte
+                                              1, 0, 0, 0, 0,   0,   0, 0,  // height, width
+                                              1, 0, 0, 0,                  // 1 field
+                                              2, 0, 0, 0, 'x', 0,   0, 0,  // name "x" + 2 pad
+                                              0, 0, 0, 0, 7,   0,   0, 0,  // offset 0, datatype 7 + 3 pad
+                                              1, 0, 0, 0,                  // count
+                                              0, 0, 0, 0,                  // is_bigendian + 3 pad
+                                              4, 0, 0, 0, 0,   0,   0, 0,  // point_step, row_step
+                                              0, 0, 0, 0,                  // data length 0
+                                              0};                          // is_dense
   EXPECT_EQ(m, expected);
 }
 

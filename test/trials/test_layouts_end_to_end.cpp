@@ -100,11 +100,15 @@ struct LayoutTrial {
     }
     for (std::size_t k = 0; k < t.scan_stamps.size() && k < kSeconds * rate_hz; ++k) {
       const Scan scan = simulator.simulate(t.body, T_body_lidar, t.scan_stamps[k], t.noise_seed);
-      if (own) own->write("/os_cloud_node/points", scan, "os_sensor");
-      else writer->write(scan);
+      if (own)
+        own->write("/os_cloud_node/points", scan, "os_sensor");
+      else
+        writer->write(scan);
     }
-    if (own) own->close();
-    else w = writer->finish(t.body, T_body_lidar);
+    if (own)
+      own->close();
+    else
+      w = writer->finish(t.body, T_body_lidar);
     config = (dir / "seq.yaml").string();
     std::ofstream out(config);
     out.precision(17);
@@ -207,11 +211,13 @@ TEST(LayoutsEndToEnd, McdAndCosmoLayoutsOfOneTrialGiveTheSameKeyframes) {
     const auto& kb = b.keyframes[i];
     // the same scan: MCD's header stamp is the sweep end, one column after the simulator's last column's stamp
     const double column_ns = 1e9 / (10.0 * kColumns);
-    const auto apart = static_cast<long long>(a.timing.of('a').toRecorded(ka.stamp) - b.timing.of('a').toRecorded(kb.stamp));
+    const auto apart =
+        static_cast<long long>(a.timing.of('a').toRecorded(ka.stamp) - b.timing.of('a').toRecorded(kb.stamp));
     EXPECT_LE(std::llabs(apart), static_cast<long long>(column_ns) + 1) << "keyframe " << i;
     ASSERT_TRUE(ka.reference && kb.reference) << "keyframe " << i;
     EXPECT_LT((ka.reference->translation() - kb.reference->translation()).norm(), 1e-3) << "keyframe " << i;
-    const double deg = Eigen::AngleAxisd(ka.reference->linear().transpose() * kb.reference->linear()).angle() * 180.0 / M_PI;
+    const double deg =
+        Eigen::AngleAxisd(ka.reference->linear().transpose() * kb.reference->linear()).angle() * 180.0 / M_PI;
     EXPECT_LT(deg, 0.01) << "keyframe " << i;
   }
 }

@@ -31,9 +31,7 @@ struct TempDir {
 std::string errorOf(const std::string& path) {
   try {
     readReference(path);
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
+  } catch (const std::runtime_error& e) { return e.what(); }
   return "";
 }
 

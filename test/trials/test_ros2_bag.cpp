@@ -64,9 +64,7 @@ fs::path writeBag(const fs::path& dir) {
 std::string errorOf(const std::function<void()>& f) {
   try {
     f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
+  } catch (const std::exception& e) { return e.what(); }
   return "";
 }
 

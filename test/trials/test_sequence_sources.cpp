@@ -35,12 +35,16 @@ std::string writeTemp(const std::string& name, const std::string& text) {
 struct ScopedEnv {
   ScopedEnv(const char* name, const char* value) : name_(name) {
     if (const char* old = std::getenv(name)) old_ = old, had_ = true;
-    if (value) setenv(name, value, 1);
-    else unsetenv(name);
+    if (value)
+      setenv(name, value, 1);
+    else
+      unsetenv(name);
   }
   ~ScopedEnv() {
-    if (had_) setenv(name_, old_.c_str(), 1);
-    else unsetenv(name_);
+    if (had_)
+      setenv(name_, old_.c_str(), 1);
+    else
+      unsetenv(name_);
   }
   const char* name_;
   std::string old_;
@@ -60,16 +64,18 @@ noise_models: ../noise_models/ntu.yaml
 )";
 
 /// Row-major 3 x 4 T_body_lidar from real_data_formats.md (MCD calibration, as evalio / ceva / slict give it).
-constexpr double kAtv[12] = {0.9999346552051229,   0.003477624535771754, -0.010889970036688295, -0.060649229060416594,
-                             0.003587143302461965, -0.9999430279821171,  0.010053516443599904,  -0.012837544242408117,
-                             -0.010854387257665576, -0.01009192338171122, -0.999890161647627,   -0.020492606896077407};
-constexpr double kHandheld[12] = {0.9999135040741837,   -0.011166365511073898, -0.006949579221822984, -0.04894521120494695,
-                                  -0.011356389542502144, -0.9995453006865824,   -0.02793249526856565,  -0.03126929060348084,
-                                  -0.006634514801117132, 0.02800900135032654,   -0.999585653686922,    -0.01755515794222565};
+constexpr double kAtv[12] = {0.9999346552051229,    0.003477624535771754, -0.010889970036688295, -0.060649229060416594,
+                             0.003587143302461965,  -0.9999430279821171,  0.010053516443599904,  -0.012837544242408117,
+                             -0.010854387257665576, -0.01009192338171122, -0.999890161647627,    -0.020492606896077407};
+constexpr double kHandheld[12] = {0.9999135040741837,   -0.011166365511073898, -0.006949579221822984,
+                                  -0.04894521120494695, -0.011356389542502144, -0.9995453006865824,
+                                  -0.02793249526856565, -0.03126929060348084,  -0.006634514801117132,
+                                  0.02800900135032654,  -0.999585653686922,    -0.01755515794222565};
 
 void expectPoseIsMatrix(const Pose3& p, const double* m, const std::string& where) {
   for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(p.linear()(r, c), m[4 * r + c], 1e-9) << where << " R(" << r << "," << c << ")";
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(p.linear()(r, c), m[4 * r + c], 1e-9) << where << " R(" << r << "," << c << ")";
     EXPECT_NEAR(p.translation()(r), m[4 * r + 3], 1e-12) << where << " t(" << r << ")";
   }
 }
@@ -111,7 +117,8 @@ TEST(StampKey, StartEndDefaultAndErrors) {
   const auto cfg = SequenceConfig::load(writeTemp("stamp_ok.yaml", kTwoTrials));
   EXPECT_TRUE(cfg.trials[0].stamp_at_end);  // default: end
   EXPECT_FALSE(cfg.trials[1].stamp_at_end);
-  const std::string bad = writeTemp("stamp_bad.yaml", "name: x\ntrials:\n  - robot: a\n    bag: a.bag\n    stamp: middle\n");
+  const std::string bad =
+      writeTemp("stamp_bad.yaml", "name: x\ntrials:\n  - robot: a\n    bag: a.bag\n    stamp: middle\n");
   try {
     SequenceConfig::load(bad);
     FAIL() << "expected an error";
@@ -123,10 +130,12 @@ TEST(StampKey, StartEndDefaultAndErrors) {
 
 TEST(ReferenceOffset, OneOffsetPerSequenceFromTheAnchor) {
   // two robots in one UTM frame (CU-Multi): the anchor's first position, rounded, comes off both
-  writeTemp("utm/r1.csv", "num,t,x,y,z,qx,qy,qz,qw\n1,100.0,477146.28,4428491.09,1630.57,0,0,0,1\n"
-                          "2,100.1,477147.28,4428491.09,1630.57,0,0,0,1\n");
-  writeTemp("utm/r2.csv", "num,t,x,y,z,qx,qy,qz,qw\n1,200.0,477000.50,4428400.25,1629.00,0,0,0,1\n"
-                          "2,200.1,477001.50,4428400.25,1629.00,0,0,0,1\n");
+  writeTemp("utm/r1.csv",
+            "num,t,x,y,z,qx,qy,qz,qw\n1,100.0,477146.28,4428491.09,1630.57,0,0,0,1\n"
+            "2,100.1,477147.28,4428491.09,1630.57,0,0,0,1\n");
+  writeTemp("utm/r2.csv",
+            "num,t,x,y,z,qx,qy,qz,qw\n1,200.0,477000.50,4428400.25,1629.00,0,0,0,1\n"
+            "2,200.1,477001.50,4428400.25,1629.00,0,0,0,1\n");
   const std::string path = writeTemp("utm/seq.yaml", R"(
 name: utm
 anchor: b
@@ -147,12 +156,13 @@ trials:
   const Trajectory a = loadSensorReference(cfg.trial('a'), timing, offset);
   const Trajectory b = loadSensorReference(cfg.trial('b'), timing, offset);
   // the robots keep their relative placement (one frame), near the origin
-  EXPECT_NEAR((a.poses()[0].pose.translation() - b.poses()[0].pose.translation()).norm(),
-              (Eigen::Vector3d(477146.28, 4428491.09, 1630.57) - Eigen::Vector3d(477000.50, 4428400.25, 1629.00)).norm(),
-              1e-6);
+  EXPECT_NEAR(
+      (a.poses()[0].pose.translation() - b.poses()[0].pose.translation()).norm(),
+      (Eigen::Vector3d(477146.28, 4428491.09, 1630.57) - Eigen::Vector3d(477000.50, 4428400.25, 1629.00)).norm(), 1e-6);
   EXPECT_LT(b.poses()[0].pose.translation().norm(), 1.0);
 
-  const std::string fixed = writeTemp("utm/fixed.yaml", "name: f\nreference_offset: [1, 2, 3]\ntrials:\n  - robot: a\n    bag: a.bag\n");
+  const std::string fixed =
+      writeTemp("utm/fixed.yaml", "name: f\nreference_offset: [1, 2, 3]\ntrials:\n  - robot: a\n    bag: a.bag\n");
   EXPECT_EQ(sequenceReferenceOffset(SequenceConfig::load(fixed)), Eigen::Vector3d(1, 2, 3));
   const std::string none = writeTemp("utm/none.yaml", "name: n\ntrials:\n  - robot: a\n    bag: a.bag\n");
   EXPECT_EQ(sequenceReferenceOffset(SequenceConfig::load(none)), Eigen::Vector3d::Zero());

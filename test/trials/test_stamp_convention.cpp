@@ -45,7 +45,8 @@ std::vector<Scan> decodedSweeps(int n, bool stamp_at_end) {
   std::vector<Scan> out;
   for (int k = 0; k < n; ++k) {
     const double t_end = 0.1 * k;
-    const Scan sim = simulateSweep(scene, lidar, toStampNs(kT0 + t_end), [&](double dt) { return truePose(t_end + dt); });
+    const Scan sim =
+        simulateSweep(scene, lidar, toStampNs(kT0 + t_end), [&](double dt) { return truePose(t_end + dt); });
     const trials::RawCloud cloud = trials::organisedOusterCloud(sim, sweepOf(stamp_at_end));
     Scan s;
     trials::decodeCloud(cloud.layout, cloud.data.data(), cloud.data.size(), stamp_at_end, "test", s);

@@ -134,8 +134,10 @@ void expectScansAsWritten(const Fixture& f, const pipeline::TrialConfig& trial, 
     // Stamped at the sweep end whatever the bag's convention (the header stamp, or a start stamp plus the
     // period), one column past the last column: each point keeps its true absolute time.
     const StampNs header = trials::ousterHeaderStamp(truth.stamp, sweep);
-    if (sweep.stamp_at_end) EXPECT_EQ(s.stamp, header);
-    else EXPECT_NEAR(static_cast<double>(s.stamp - header), 1e9 / sweep.rate_hz, 2.0);
+    if (sweep.stamp_at_end)
+      EXPECT_EQ(s.stamp, header);
+    else
+      EXPECT_NEAR(static_cast<double>(s.stamp - header), 1e9 / sweep.rate_hz, 2.0);
     ASSERT_EQ(s.size(), truth.size());
     const double shift = static_cast<double>(static_cast<std::int64_t>(truth.stamp - s.stamp)) * 1e-9;
     EXPECT_NEAR(shift, -column, 2e-9);

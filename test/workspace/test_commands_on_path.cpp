@@ -84,8 +84,9 @@ TEST(CommandsOnPath, EveryToolIsFoundByNameAndAnswersHelp) {
   // one shell for all: per tool "<tool> <path or -> <exit status of --help> <usage printed: 0/1>"
   std::string script = "for t in";
   for (const auto& tool : tools) script += " " + tool;
-  script += "; do p=$(command -v $t || echo -); h=$($t --help 2>&1); s=$?; "
-            "u=$(echo \"$h\" | grep -ci usage); echo \"$t $p $s $u\"; done";
+  script +=
+      "; do p=$(command -v $t || echo -); h=$($t --help 2>&1); s=$?; "
+      "u=$(echo \"$h\" | grep -ci usage); echo \"$t $p $s $u\"; done";
   const Result r = inSourcedShell(script);
   ASSERT_EQ(r.status, 0) << r.output;
   std::istringstream lines(r.output);
@@ -94,7 +95,8 @@ TEST(CommandsOnPath, EveryToolIsFoundByNameAndAnswersHelp) {
     int status = -1, usage = 0;
     lines >> status >> usage;
     seen.insert(tool);
-    EXPECT_EQ(path, kDevel + "/bin/" + tool) << tool << " is not on the PATH after sourcing " << kDevel << "/setup.bash";
+    EXPECT_EQ(path, kDevel + "/bin/" + tool)
+        << tool << " is not on the PATH after sourcing " << kDevel << "/setup.bash";
     EXPECT_EQ(status, 0) << tool << " --help exits with " << status;
     EXPECT_GT(usage, 0) << tool << " --help prints no usage";
   }

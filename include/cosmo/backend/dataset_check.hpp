@@ -15,7 +15,7 @@ namespace cosmo::backend {
 
 struct SelectionCheck {
   FactorSelection selection = FactorSelection::All;
-  SolveResult solve;            ///< poses included
+  SolveResult solve;  ///< poses included
   jrl::TrajectoryError error;
 };
 

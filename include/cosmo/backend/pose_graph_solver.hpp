@@ -30,13 +30,13 @@ struct SolverOptions {
 };
 
 struct SolveResult {
-  jrl::PoseMap poses;              ///< the optimised value of every key in the factors used
+  jrl::PoseMap poses;  ///< the optimised value of every key in the factors used
   std::size_t factors_used = 0;
-  double initial_cost = 0.0;       ///< Ceres' cost 0.5 * sum rho(|whitened residual|^2) at the initialization
+  double initial_cost = 0.0;  ///< Ceres' cost 0.5 * sum rho(|whitened residual|^2) at the initialization
   double final_cost = 0.0;
   int iterations = 0;
-  bool converged = false;          ///< a convergence tolerance was met (not the iteration limit, not a failure)
-  std::string termination;         ///< Ceres' message
+  bool converged = false;   ///< a convergence tolerance was met (not the iteration limit, not a failure)
+  std::string termination;  ///< Ceres' message
 };
 
 /// Optimise `graph` from graph.initialization. Throws std::runtime_error when a key has no initialization, a

@@ -53,8 +53,7 @@ inline Matrix6 whitener(const Matrix6& covariance) {
 
 /// Log(E) of E = (q, t) and Jr⁻¹(Log(E)), the derivative of Log(E · Exp(δ)) by δ at δ = 0 (Exp to first order,
 /// (q ⊗ [δw/2, 1], t + R δv), has the exact first derivative).
-inline void logPoseAndJacobian(const Eigen::Quaterniond& q, const Eigen::Vector3d& t, Vector6& log,
-                               Matrix66& jr_inv) {
+inline void logPoseAndJacobian(const Eigen::Quaterniond& q, const Eigen::Vector3d& t, Vector6& log, Matrix66& jr_inv) {
   using J = ceres::Jet<double, 6>;
   const Eigen::Quaternion<J> dq(J(1.0), 0.5 * J(0.0, 0), 0.5 * J(0.0, 1), 0.5 * J(0.0, 2));
   const Eigen::Matrix<J, 3, 1> dv(J(0.0, 3), J(0.0, 4), J(0.0, 5));

@@ -32,7 +32,8 @@ inline std::vector<ScanPair> snippetPairs(const std::string& root_str, bool all_
   // KITTI 00: LiDAR poses from the camera ground truth and Tr.
   {
     const fs::path k = root / "kitti00";
-    const auto lidar = kittiPosesToLidar(readKittiPoses(need(k / "poses.txt")), readKittiCalibTr(need(k / "calib.txt")));
+    const auto lidar =
+        kittiPosesToLidar(readKittiPoses(need(k / "poses.txt")), readKittiCalibTr(need(k / "calib.txt")));
     auto bin = [&](int i) {
       std::ostringstream s;
       s << std::setw(6) << std::setfill('0') << i << ".bin";
@@ -45,7 +46,8 @@ inline std::vector<ScanPair> snippetPairs(const std::string& root_str, bool all_
       // source = the later frame j, target = frame i: T_target_source = T_i^-1 T_j.
       p.source = bin(ij[1]);
       p.target = bin(ij[0]);
-      p.T_target_source = lidar.at(static_cast<std::size_t>(ij[0])).inverse() * lidar.at(static_cast<std::size_t>(ij[1]));
+      p.T_target_source =
+          lidar.at(static_cast<std::size_t>(ij[0])).inverse() * lidar.at(static_cast<std::size_t>(ij[1]));
       pairs.push_back(p);
     }
   }

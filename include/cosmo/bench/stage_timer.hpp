@@ -44,7 +44,7 @@ class StageTimer : public StageObserver {
 };
 
 /// Stage names in pipeline order.
-inline const char* const kRegistrationStages[] = {"downsample", "neighbours", "normals", "spfh",  "fpfh",
-                                                   "matching",   "pruning",    "solve",   "refine", "gate"};
+inline const char* const kRegistrationStages[] = {"downsample", "neighbours", "normals", "spfh",   "fpfh",
+                                                  "matching",   "pruning",    "solve",   "refine", "gate"};
 
 }  // namespace cosmo

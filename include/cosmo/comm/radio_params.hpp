@@ -57,7 +57,8 @@ struct RadioParams {
   /// "wifi" or "proradio" (also "pro-radio", "pro_radio"); throws std::invalid_argument otherwise.
   static RadioParams byName(const std::string& name);
 
-  /// The YAML keys, one per member (common/param_list.hpp); `preset`, `timeout_mode` and `size_model` are read by fromConfig.
+  /// The YAML keys, one per member (common/param_list.hpp); `preset`, `timeout_mode` and `size_model` are read by
+  /// fromConfig.
   template <class Visitor>
   void visit(Visitor&& v) {
     v("bandwidth_kBps", bandwidth_kBps);

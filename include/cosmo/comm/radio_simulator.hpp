@@ -42,25 +42,25 @@ struct ActiveCommunication {
   char receiver = 0;
   std::size_t keyframe = 0;
   double start = 0.0;
-  std::size_t bytes = 0;            ///< payload size
-  double bytes_delivered = 0.0;     ///< integrated so far
-  double last_progress = 0.0;       ///< time of the last step that delivered bytes
-  double distance = 0.0;            ///< distance (m) at the last step
-  int interference = 1;             ///< I_ab at the last step
-  double throughput_Bps = 0.0;      ///< bytes per second in the last step (0 when the sample failed)
+  std::size_t bytes = 0;         ///< payload size
+  double bytes_delivered = 0.0;  ///< integrated so far
+  double last_progress = 0.0;    ///< time of the last step that delivered bytes
+  double distance = 0.0;         ///< distance (m) at the last step
+  int interference = 1;          ///< I_ab at the last step
+  double throughput_Bps = 0.0;   ///< bytes per second in the last step (0 when the sample failed)
 };
 
 /// Summary counters of a run.
 struct RadioStats {
   std::uint64_t steps = 0;
-  std::uint64_t init_attempts = 0;     ///< connectivity samples of pairs trying to start
-  std::uint64_t initiated = 0;         ///< communications started
+  std::uint64_t init_attempts = 0;  ///< connectivity samples of pairs trying to start
+  std::uint64_t initiated = 0;      ///< communications started
   std::uint64_t delivered = 0;
   std::uint64_t timed_out = 0;
-  std::uint64_t link_samples = 0;      ///< connectivity samples of active communications (step 2)
+  std::uint64_t link_samples = 0;  ///< connectivity samples of active communications (step 2)
   std::uint64_t link_successes = 0;
-  double bytes_delivered = 0.0;        ///< payload bytes of delivered transfers
-  double bytes_transmitted = 0.0;      ///< all bytes that got through, also of transfers that timed out
+  double bytes_delivered = 0.0;    ///< payload bytes of delivered transfers
+  double bytes_transmitted = 0.0;  ///< all bytes that got through, also of transfers that timed out
   std::uint64_t keyframes_offered = 0;
 };
 

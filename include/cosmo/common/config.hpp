@@ -1,7 +1,8 @@
 #pragma once
 // Reading parameters from YAML config files (config/*.yaml). A missing key keeps the default; a key of the
-// wrong type throws std::runtime_error naming the file and the key, e.g. "config/loam.yaml: odometry.max_icf_iterations:
-// expected int"; so does a key no reader knows (a typo would otherwise be ignored: see common/param_list.hpp).
+// wrong type throws std::runtime_error naming the file and the key, e.g. "config/loam.yaml:
+// odometry.max_icf_iterations: expected int"; so does a key no reader knows (a typo would otherwise be ignored: see
+// common/param_list.hpp).
 #include <yaml-cpp/yaml.h>
 
 #include <stdexcept>
@@ -32,8 +33,8 @@ struct ConfigNode {
     try {
       value = node[key].as<T>();
     } catch (const YAML::Exception&) {
-      throw std::runtime_error(where + (where.empty() || where.back() == ' ' ? "" : ".") + key + ": cannot read value '" +
-                               YAML::Dump(node[key]) + "' as the expected type");
+      throw std::runtime_error(where + (where.empty() || where.back() == ' ' ? "" : ".") + key +
+                               ": cannot read value '" + YAML::Dump(node[key]) + "' as the expected type");
     }
   }
 };

@@ -26,7 +26,8 @@ inline bool voxelCoordInRange(std::int64_t c, std::int64_t margin = 0) {
 /// The key of offset coordinates (each in [0, 2^21); wider values are wrapped to 21 bits).
 inline std::uint64_t packVoxelKey(std::int64_t x, std::int64_t y, std::int64_t z) {
   return ((static_cast<std::uint64_t>(x) & kVoxelKeyAxisMask) << 42) |
-         ((static_cast<std::uint64_t>(y) & kVoxelKeyAxisMask) << 21) | (static_cast<std::uint64_t>(z) & kVoxelKeyAxisMask);
+         ((static_cast<std::uint64_t>(y) & kVoxelKeyAxisMask) << 21) |
+         (static_cast<std::uint64_t>(z) & kVoxelKeyAxisMask);
 }
 
 }  // namespace cosmo

@@ -63,15 +63,15 @@ struct RecorderCounts {
 
 /// What the last build() did.
 struct BuildReport {
-  bool labelled = false;           ///< groundtruth and outlier_factors written
-  std::string labels_note;         ///< why not, when !labelled
+  bool labelled = false;    ///< groundtruth and outlier_factors written
+  std::string labels_note;  ///< why not, when !labelled
   std::size_t entries = 0;
   std::size_t odometry = 0;
-  std::size_t intra = 0;           ///< intra-robot loop closures written
-  std::size_t inter = 0;           ///< inter-robot loop closures written
-  std::size_t outliers = 0;        ///< labelled outliers (0 when !labelled)
-  std::size_t keyframes_pending = 0;      ///< keyframes after a gap in their robot's indices
-  std::size_t loop_closures_pending = 0;  ///< loop closures touching keys not written
+  std::size_t intra = 0;                       ///< intra-robot loop closures written
+  std::size_t inter = 0;                       ///< inter-robot loop closures written
+  std::size_t outliers = 0;                    ///< labelled outliers (0 when !labelled)
+  std::size_t keyframes_pending = 0;           ///< keyframes after a gap in their robot's indices
+  std::size_t loop_closures_pending = 0;       ///< loop closures touching keys not written
   std::vector<char> robots_without_keyframes;  ///< left out of `robots`
 };
 
@@ -94,8 +94,9 @@ class DatasetRecorder {
   jrl::Dataset build() const { return build(nullptr); }
   jrl::Dataset build(BuildReport* report) const;
   /// build() and write the JRL to `path` atomically (temp + rename), then the metadata (metadataPath(path)) and
-  /// the `cosmo_jrl stats` table (statsPath(path)) next to it. Returns the build report; the dataset written goes to `*built` when given.
-  /// Throws std::runtime_error naming the path on I/O failure (an existing file is left untouched).
+  /// the `cosmo_jrl stats` table (statsPath(path)) next to it. Returns the build report; the dataset written goes to
+  /// `*built` when given. Throws std::runtime_error naming the path on I/O failure (an existing file is left
+  /// untouched).
   BuildReport write(const std::string& path, jrl::Dataset* built = nullptr) const;
   /// "<path without .jrl>.recorder.yaml".
   static std::string metadataPath(const std::string& jrl_path);

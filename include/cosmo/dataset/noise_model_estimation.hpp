@@ -52,9 +52,9 @@ NoiseModelEstimate estimateNoiseModels(const std::vector<MeasurementWithTruth>& 
                                        const std::vector<MeasurementWithTruth>& loop_closures,
                                        const NoiseModelEstimationParams& params = {});
 
-/// Odometry (BetweenFactorPose3 <r>(i-1) -> <r>i as measurement 0 of its entry) and loop closures (every other BetweenFactorPose3) of a JRL
-/// dataset with their reference values from its groundtruth; only `robot`'s measurements when given, all
-/// robots' otherwise. Throws std::runtime_error when the dataset has no groundtruth or a key lacks one.
+/// Odometry (BetweenFactorPose3 <r>(i-1) -> <r>i as measurement 0 of its entry) and loop closures (every other
+/// BetweenFactorPose3) of a JRL dataset with their reference values from its groundtruth; only `robot`'s measurements
+/// when given, all robots' otherwise. Throws std::runtime_error when the dataset has no groundtruth or a key lacks one.
 struct MeasurementSets {
   std::vector<MeasurementWithTruth> odometry;
   std::vector<MeasurementWithTruth> loop_closures;

@@ -37,12 +37,12 @@ namespace cosmo {
 
 /// What an estimated model was computed from (the YAML's `estimated_from`).
 struct NoiseModelRecord {
-  std::string trial;                    ///< the run: trial name, or the JRL it was read from
-  std::size_t odometry_factors = 0;     ///< odometry measurements used
-  std::size_t loop_closures = 0;        ///< good loop closures used
+  std::string trial;                       ///< the run: trial name, or the JRL it was read from
+  std::size_t odometry_factors = 0;        ///< odometry measurements used
+  std::size_t loop_closures = 0;           ///< good loop closures used
   std::size_t loop_closures_left_out = 0;  ///< loop closures over the thresholds
-  double max_translation_error = 0.5;   ///< m, the "good" threshold
-  double max_rotation_error = 0.05;     ///< rad
+  double max_translation_error = 0.5;      ///< m, the "good" threshold
+  double max_rotation_error = 0.05;        ///< rad
 };
 
 /// Thrown when a noise-model file says that its environment's models are unknown (`unknown: why`).
@@ -53,12 +53,12 @@ struct NoiseModelsUnknown : std::runtime_error {
 };
 
 struct NoiseModels {
-  Matrix6 odometry = defaultOdometry();      ///< covariance of BetweenFactorPose3 <r>(i-1) -> <r>i
-  Matrix6 loop_closure = defaultLoopClosure();  ///< covariance of every loop closure (intra and inter)
-  std::string environment = "synthetic";     ///< informative label written to / read from the YAML
-  std::string provenance;                    ///< where the values come from (YAML `provenance`)
+  Matrix6 odometry = defaultOdometry();            ///< covariance of BetweenFactorPose3 <r>(i-1) -> <r>i
+  Matrix6 loop_closure = defaultLoopClosure();     ///< covariance of every loop closure (intra and inter)
+  std::string environment = "synthetic";           ///< informative label written to / read from the YAML
+  std::string provenance;                          ///< where the values come from (YAML `provenance`)
   std::optional<NoiseModelRecord> estimated_from;  ///< how they were estimated (YAML `estimated_from`)
-  std::string source;                        ///< the file they were loaded from (not written; "" when built in code)
+  std::string source;  ///< the file they were loaded from (not written; "" when built in code)
 
   /// Read a config node (the root of a config/noise_models/*.yaml). Both sections are required; a missing or
   /// malformed one (wrong count, not symmetric, not positive definite, NaN) throws naming file and key; a file

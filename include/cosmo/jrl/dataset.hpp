@@ -53,7 +53,7 @@ struct Pose3Value {
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();
   Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
 
-  cosmo::Pose3 toPose() const;                       ///< rotation normalised
+  cosmo::Pose3 toPose() const;                        ///< rotation normalised
   static Pose3Value fromPose(const cosmo::Pose3& T);  ///< quaternion from the rotation matrix, normalised
 };
 
@@ -166,9 +166,7 @@ struct Entry {
 struct FactorId {
   std::size_t entry = 0;
   std::size_t measurement = 0;
-  bool operator<(const FactorId& o) const {
-    return entry != o.entry ? entry < o.entry : measurement < o.measurement;
-  }
+  bool operator<(const FactorId& o) const { return entry != o.entry ? entry < o.entry : measurement < o.measurement; }
   bool operator==(const FactorId& o) const { return entry == o.entry && measurement == o.measurement; }
 };
 

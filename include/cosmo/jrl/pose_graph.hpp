@@ -21,19 +21,17 @@ const char* factorKindName(FactorKind kind);
 
 struct PoseFactor {
   FactorKind kind = FactorKind::Prior;
-  char robot = 0;        ///< the robot whose measurement list holds the factor
-  FactorId id;           ///< its [entry, measurement] there
-  StampNs stamp = 0;     ///< the entry's stamp
-  Key key1 = 0;          ///< the prior's key, or the between factor's key1
-  Key key2 = 0;          ///< between factors only (== key1 for priors)
+  char robot = 0;                                    ///< the robot whose measurement list holds the factor
+  FactorId id;                                       ///< its [entry, measurement] there
+  StampNs stamp = 0;                                 ///< the entry's stamp
+  Key key1 = 0;                                      ///< the prior's key, or the between factor's key1
+  Key key2 = 0;                                      ///< between factors only (== key1 for priors)
   cosmo::Pose3 measured = cosmo::Pose3::Identity();  ///< prior, or T_key1^-1 * T_key2
-  Matrix6 covariance = Matrix6::Identity();            ///< rotation first
+  Matrix6 covariance = Matrix6::Identity();          ///< rotation first
   bool potential_outlier = false;
   bool outlier = false;
 
-  bool isLoopClosure() const {
-    return kind == FactorKind::LoopClosure || kind == FactorKind::InterRobotLoopClosure;
-  }
+  bool isLoopClosure() const { return kind == FactorKind::LoopClosure || kind == FactorKind::InterRobotLoopClosure; }
 };
 
 using PoseMap = std::map<Key, cosmo::Pose3>;

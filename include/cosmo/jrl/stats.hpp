@@ -24,9 +24,7 @@ struct DatasetStats {
   std::size_t lc_count = 0, lc_outliers = 0, irlc_count = 0, irlc_outliers = 0;
 
   double lcOutlierPercent() const { return lc_count ? 100.0 * double(lc_outliers) / double(lc_count) : 0.0; }
-  double irlcOutlierPercent() const {
-    return irlc_count ? 100.0 * double(irlc_outliers) / double(irlc_count) : 0.0;
-  }
+  double irlcOutlierPercent() const { return irlc_count ? 100.0 * double(irlc_outliers) / double(irlc_count) : 0.0; }
   long durationRoundedS() const;  ///< rounded to the second
 };
 

@@ -12,8 +12,8 @@
 namespace cosmo::jrl {
 
 struct PoseErrorRmse {
-  double trans_m = 0.0;    ///< sqrt(mean |t_E|^2)
-  double rot_rad = 0.0;    ///< sqrt(mean angle(E)^2)
+  double trans_m = 0.0;  ///< sqrt(mean |t_E|^2)
+  double rot_rad = 0.0;  ///< sqrt(mean angle(E)^2)
   std::size_t poses = 0;
 };
 

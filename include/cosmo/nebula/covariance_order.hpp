@@ -16,7 +16,8 @@ enum class CovarianceOrder { TranslationFirst, RotationFirst };
 Matrix6 swapTranslationRotation(const Matrix6& m);
 
 /// A message's 36 numbers (row by row, in `order`) as a JRL covariance (rotation first).
-Matrix6 toJrlCovariance(const std::array<double, 36>& values, CovarianceOrder order = CovarianceOrder::TranslationFirst);
+Matrix6 toJrlCovariance(const std::array<double, 36>& values,
+                        CovarianceOrder order = CovarianceOrder::TranslationFirst);
 /// A JRL covariance as 36 numbers in LAMP's translation-first order (what a LAMP message would carry).
 std::array<double, 36> toLampCovariance(const Matrix6& jrl_covariance);
 

@@ -17,7 +17,7 @@ namespace cosmo::nebula {
 
 struct G2oEdge {
   std::uint64_t key1 = 0, key2 = 0;
-  Pose3 measurement = Pose3::Identity();  ///< T_key1^-1 * T_key2
+  Pose3 measurement = Pose3::Identity();     ///< T_key1^-1 * T_key2
   Matrix6 covariance = Matrix6::Identity();  ///< rotation first (the inverse information, blocks swapped)
   std::size_t line = 0;
 };

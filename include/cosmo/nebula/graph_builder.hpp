@@ -63,9 +63,9 @@ struct Warnings {
 
 struct NebulaGraph {
   std::map<char, RobotGraph> robots;
-  std::vector<Between> loop_closures;                 ///< sorted by (key1, key2, type)
-  std::map<std::string, std::size_t> ignored_edges;   ///< per type name
-  std::map<char, std::size_t> other_nodes;            ///< nodes whose character is no robot's
+  std::vector<Between> loop_closures;                ///< sorted by (key1, key2, type)
+  std::map<std::string, std::size_t> ignored_edges;  ///< per type name
+  std::map<char, std::size_t> other_nodes;           ///< nodes whose character is no robot's
   Warnings warnings;
   std::size_t messages = 0, nodes_read = 0, edges_read = 0, repeated_nodes = 0, repeated_edges = 0;
 };

@@ -20,7 +20,8 @@ namespace cosmo {
 /// `max_steps` steps; directions with too little information keep their value (solution remapping). Sets the
 /// result's sweep_rotation; `previous` is returned unchanged when it has no constraints.
 FeatureRegistrationResult refineContinuousRotation(const LoamFeatures& features, FeatureRegistrationResult previous,
-                                            const LoamParams& params, const Pose3& previous_pose,
-                                            const Pose3& predicted_delta, double period, double tie, int max_steps);
+                                                   const LoamParams& params, const Pose3& previous_pose,
+                                                   const Pose3& predicted_delta, double period, double tie,
+                                                   int max_steps);
 
 }  // namespace cosmo

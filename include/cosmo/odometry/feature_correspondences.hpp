@@ -19,7 +19,7 @@ struct FeatureConstraint {
   Eigen::Vector3d normal;  ///< unit normal in the odometry frame
   double offset = 0.0;     ///< r = normal . (T * point) - offset
   bool edge = false;
-  std::size_t feature = 0;      ///< index in the edge (edge) or planar feature list
+  std::size_t feature = 0;  ///< index in the edge (edge) or planar feature list
 };
 
 struct LinearConstraint {
@@ -37,8 +37,8 @@ std::optional<LinearConstraint> fitPlaneConstraint(const std::vector<Eigen::Vect
 
 /// Line fitted to map edge points: the constraint for a query q is the distance of q to it.
 struct MapLine {
-  Eigen::Vector3d mean;       ///< centroid of the neighbours
-  Eigen::Vector3d direction;  ///< unit, largest eigenvector of their scatter
+  Eigen::Vector3d mean;               ///< centroid of the neighbours
+  Eigen::Vector3d direction;          ///< unit, largest eigenvector of their scatter
   Eigen::Vector3d normal_if_on_line;  ///< unit, perpendicular to direction (used when q lies on the line)
 };
 /// The line through `neighbours` under the fit rules of fitLineConstraint (nullopt when rejected).
@@ -54,12 +54,12 @@ LinearConstraint lineConstraint(const MapLine& line, const Eigen::Vector3d& q);
 struct AssociationMemory {
   struct Entry {
     Eigen::Vector3d query = Eigen::Vector3d::Zero();  ///< map-frame query point of the last search
-    double reuse_radius = -1.0;                        ///< (m); < 0: nothing remembered
-    bool fitted = false;                               ///< the fit was accepted
-    Eigen::Vector3d a = Eigen::Vector3d::Zero();       ///< line: mean; plane: normal
-    Eigen::Vector3d b = Eigen::Vector3d::Zero();       ///< line: direction
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();       ///< line: normal_if_on_line
-    double offset = 0.0;                               ///< plane offset
+    double reuse_radius = -1.0;                       ///< (m); < 0: nothing remembered
+    bool fitted = false;                              ///< the fit was accepted
+    Eigen::Vector3d a = Eigen::Vector3d::Zero();      ///< line: mean; plane: normal
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();      ///< line: direction
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();      ///< line: normal_if_on_line
+    double offset = 0.0;                              ///< plane offset
   };
   std::vector<Entry> edges, planes;  ///< by feature index in the full (not subsampled) lists
   /// Forgets everything and sizes the memory for the given feature counts.
@@ -69,10 +69,10 @@ struct AssociationMemory {
 
 /// associateFeatures (stride 1) with a memory: feature i of the given lists is feature i * memory_stride of
 /// the memory (the lists may be subsamples); `remember`: store new searches (costs a (k+1)-th neighbour).
-void associateFeaturesRemembering(const std::vector<Eigen::Vector3d>& edges,
-                                  const std::vector<Eigen::Vector3d>& planes, const LocalFeatureMap& map,
-                                  const Pose3& T, const LoamParams& params, std::vector<FeatureConstraint>& out,
-                                  AssociationMemory& memory, std::size_t memory_stride, bool remember);
+void associateFeaturesRemembering(const std::vector<Eigen::Vector3d>& edges, const std::vector<Eigen::Vector3d>& planes,
+                                  const LocalFeatureMap& map, const Pose3& T, const LoamParams& params,
+                                  std::vector<FeatureConstraint>& out, AssociationMemory& memory,
+                                  std::size_t memory_stride, bool remember);
 
 /// Constraints for the features (sensor frame) at the pose `T`; every `stride`-th feature only.
 void associateFeatures(const std::vector<Eigen::Vector3d>& edges, const std::vector<Eigen::Vector3d>& planes,

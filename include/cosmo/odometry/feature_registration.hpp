@@ -39,16 +39,16 @@ struct DeskewReference {
 
 /// The edge and planar feature points of `features` deskewed with constant velocity `delta` over `period`
 /// (deskewConstantVelocity on both sets).
-void deskewFeatures(const LoamFeatures& features, const Pose3& delta, double period, std::vector<Eigen::Vector3d>& edges,
-                    std::vector<Eigen::Vector3d>& planes);
+void deskewFeatures(const LoamFeatures& features, const Pose3& delta, double period,
+                    std::vector<Eigen::Vector3d>& edges, std::vector<Eigen::Vector3d>& planes);
 
 /// One robust Gauss-Newton step for the constraints at pose T; returns the update [rot, trans] as a perturbation
 /// about the sensor position (apply with applyCentredUpdate) and the number of degenerate directions through
 /// `degenerate`. (A left perturbation about the odometry origin made the degeneracy test depend on the
 /// distance travelled: far from the origin, rotation and translation mix and a direction fell below the
 /// threshold -- the continuous "1 of 6 directions unconstrained" of the 481 m demo trial.)
-Vector6 robustGaussNewtonStep(const std::vector<FeatureConstraint>& constraints, const Pose3& T,
-                              double huber_delta, double min_eigenvalue_per_constraint, int& degenerate);
+Vector6 robustGaussNewtonStep(const std::vector<FeatureConstraint>& constraints, const Pose3& T, double huber_delta,
+                              double min_eigenvalue_per_constraint, int& degenerate);
 
 /// Constraints with |residual| < inlier_dist at pose T, over num_features (0 when there are no features).
 double inlierFraction(const std::vector<FeatureConstraint>& constraints, const Pose3& T, double inlier_dist,
@@ -59,14 +59,14 @@ Pose3 applyCentredUpdate(const Vector6& dx, const Pose3& T);
 
 /// Registers `features` (sensor frame) to `map` starting at `guess`.
 FeatureRegistrationResult registerFeatures(const LoamFeatures& features, const LocalFeatureMap& map, const Pose3& guess,
-                                    const LoamParams& params, const std::optional<DeskewReference>& deskew);
+                                           const LoamParams& params, const std::optional<DeskewReference>& deskew);
 
 /// Re-registration after the features were deskewed again with a corrected motion `deskew`: the map is the
 /// same and each feature moved by at most the deskew change (centimetres), so `previous`' lines and planes are
 /// kept (each constraint's point re-deskewed, no k-NN search or fit) and up to `max_steps` robust Gauss-Newton
 /// steps start from previous.pose. The edge constraints keep their normal (first order in the point's shift).
 FeatureRegistrationResult refineRedeskewed(const LoamFeatures& features, FeatureRegistrationResult previous,
-                                    const LoamParams& params, const DeskewReference& deskew, int max_steps);
+                                           const LoamParams& params, const DeskewReference& deskew, int max_steps);
 
 /// Fraction of (every `stride`-th) features that find a map constraint with |r| < inlier_dist at pose T.
 double scorePose(const LoamFeatures& features, const LocalFeatureMap& map, const Pose3& T, const LoamParams& params,

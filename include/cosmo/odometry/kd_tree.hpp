@@ -77,7 +77,7 @@ class KdTree3 {
   struct Node {
     std::uint32_t begin = 0, end = 0;  ///< leaf: range of sorted_
     std::uint32_t right = 0;  ///< inner node: index of the right child (the left one follows it); leaf: first block
-    std::int32_t axis = -1;            ///< -1: leaf
+    std::int32_t axis = -1;   ///< -1: leaf
     float split = 0.0f;
   };
   struct SortedPoint {

@@ -12,8 +12,8 @@ namespace cosmo {
 
 struct KeyframeDecision {
   bool is_keyframe = false;
-  std::size_t index = 0;                  ///< keyframe index when is_keyframe
-  Pose3 relative = Pose3::Identity();     ///< odometry from the previous keyframe (index > 0)
+  std::size_t index = 0;               ///< keyframe index when is_keyframe
+  Pose3 relative = Pose3::Identity();  ///< odometry from the previous keyframe (index > 0)
 };
 
 class Keyframer {

@@ -36,7 +36,7 @@ class LocalFeatureMap {
   std::size_t max_scans_;
   double edge_voxel_ = 0.0, planar_voxel_ = 0.0;
   std::deque<Entry> scans_;
-  KdTree3 edge_tree_, plane_tree_;  ///< over the union of the scans (thinned when a voxel size is set)
+  KdTree3 edge_tree_, plane_tree_;    ///< over the union of the scans (thinned when a voxel size is set)
   std::vector<std::uint32_t> order_;  ///< scratch: the build order handed to the trees
 };
 

@@ -12,13 +12,13 @@
 namespace cosmo {
 
 struct SyntheticLidar {
-  int rings = 64;                 ///< beams
-  int columns = 1024;             ///< azimuth steps per sweep
-  double fov_up_deg = 16.6;       ///< highest beam elevation
-  double fov_down_deg = -16.6;    ///< lowest beam elevation
-  double max_range = 120.0;       ///< m; no return beyond
-  double period = 0.1;            ///< s per sweep
-  double range_noise = 0.0;       ///< m, Gaussian sigma (needs an RNG)
+  int rings = 64;               ///< beams
+  int columns = 1024;           ///< azimuth steps per sweep
+  double fov_up_deg = 16.6;     ///< highest beam elevation
+  double fov_down_deg = -16.6;  ///< lowest beam elevation
+  double max_range = 120.0;     ///< m; no return beyond
+  double period = 0.1;          ///< s per sweep
+  double range_noise = 0.0;     ///< m, Gaussian sigma (needs an RNG)
 };
 
 struct SyntheticScene {
@@ -29,7 +29,7 @@ struct SyntheticScene {
     Eigen::Vector2d centre;
     double radius;
   };
-  double ground_z = -1.8;         ///< ground plane height in the world frame
+  double ground_z = -1.8;  ///< ground plane height in the world frame
   std::vector<Box> boxes;
   std::vector<Pole> poles;
 

@@ -22,10 +22,10 @@ struct AteResult {
 AteResult absoluteTrajectoryError(const std::vector<Pose3>& estimate, const std::vector<Pose3>& reference);
 
 struct SegmentError {
-  double length = 0.0;              ///< segment length (m)
-  std::size_t count = 0;            ///< segments evaluated
-  double translation_percent = 0.0; ///< mean |t_err| / length * 100
-  double rotation_deg_per_m = 0.0;  ///< mean angle(R_err) / length, degrees per metre
+  double length = 0.0;               ///< segment length (m)
+  std::size_t count = 0;             ///< segments evaluated
+  double translation_percent = 0.0;  ///< mean |t_err| / length * 100
+  double rotation_deg_per_m = 0.0;   ///< mean angle(R_err) / length, degrees per metre
 };
 /// KITTI devkit style: for every `step`-th start frame and each length L, the first frame at least L metres
 /// (reference path length) later; error of the estimated relative pose against the reference one.

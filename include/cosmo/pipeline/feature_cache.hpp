@@ -48,7 +48,7 @@ class FeatureCache {
   struct Entry {
     std::shared_ptr<const KeptScan> scan;
     std::shared_future<std::shared_ptr<const FeatureCloud>> computing;  ///< until spilled (or held, or failed)
-    std::shared_ptr<const FeatureCloud> held;                          ///< without a spill file
+    std::shared_ptr<const FeatureCloud> held;                           ///< without a spill file
     bool spilled = false;
     SpillFile::Extent extent;
     std::weak_ptr<const FeatureCloud> in_use;

@@ -19,11 +19,11 @@ namespace cosmo::pipeline {
 
 /// What a front-end reports after every scan and every delivery it processed (FrontendAck in ROS).
 struct FrontendProgress {
-  StampNs last_scan = 0;             ///< the latest own scan processed (sequence time)
-  std::uint32_t scans = 0;           ///< own scans processed: the robot is on for the radio from the first
-  std::uint32_t received = 0;        ///< teammate scans processed (deliveries)
-  std::uint32_t keyframes = 0;       ///< keyframes offered to the radio
-  std::uint32_t loop_closures = 0;   ///< accepted loop closures sent to the recorder
+  StampNs last_scan = 0;            ///< the latest own scan processed (sequence time)
+  std::uint32_t scans = 0;          ///< own scans processed: the robot is on for the radio from the first
+  std::uint32_t received = 0;       ///< teammate scans processed (deliveries)
+  std::uint32_t keyframes = 0;      ///< keyframes offered to the radio
+  std::uint32_t loop_closures = 0;  ///< accepted loop closures sent to the recorder
 };
 
 /// A request to step the radio through `through`: the robots' states, and the keyframe offers that must have

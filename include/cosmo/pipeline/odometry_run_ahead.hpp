@@ -3,21 +3,20 @@
 // of the team as the CPU allows: LOAM odometry, the keyframer and every keyframe's dewarped scan (KeyframeTaker).
 // None of it depends on the other robots, so it need not wait for the team's sequence order: while only one robot
 // is on the move at the start of a sequence, the others' odometry is already being computed, and the team's thread
-// (radio, place recognition, pairwise registration, recording) never decodes a scan. next() hands the results over in the team's sequence order
-// (MergedScanStream's: stamp, ties to the lower robot id). Each worker reads its scans through a one-robot
-// MergedScanStream (same time shift, same dropped scans as the team's stream would have) and feeds them to its
-// own objects in order, so every result is exactly what the RobotFrontend's own would compute: the output does
-// not depend on threads or timing (test TeamRun.OdometryOnWorkerThreadsGivesTheSameJrl).
-// A worker stays at most kMaxAhead scans ahead of the team (a bound on the keyframe scans waiting in memory).
-// Admission keeps the team's thread, the serial part of a run, from being starved: a worker starts a scan only while
-// fewer threads than cores are busy, counting the team's thread whenever it is not waiting for a result, and the
-// worker the team waits for always may. With more threads than cores the workers otherwise ran ahead at the
-// team's expense, finished first, and left the team's loop-closure work (concentrated late in a sequence) to run
-// alone on one core at the end.
-// Registration features are left to the registrations (on the team's thread, or on TeamRun's RegistrationPool),
-// which compute them only for the keyframes that become loop-closure candidates (about 70 % of them on the default
-// sequence): computed ahead for every keyframe they cost more CPU in all, and the CPU in all is what bounds a run on
-// two cores. The pool's threads are not counted by the admission rule (see team_run.hpp).
+// (radio, place recognition, pairwise registration, recording) never decodes a scan. next() hands the results over in
+// the team's sequence order (MergedScanStream's: stamp, ties to the lower robot id). Each worker reads its scans
+// through a one-robot MergedScanStream (same time shift, same dropped scans as the team's stream would have) and feeds
+// them to its own objects in order, so every result is exactly what the RobotFrontend's own would compute: the output
+// does not depend on threads or timing (test TeamRun.OdometryOnWorkerThreadsGivesTheSameJrl). A worker stays at most
+// kMaxAhead scans ahead of the team (a bound on the keyframe scans waiting in memory). Admission keeps the team's
+// thread, the serial part of a run, from being starved: a worker starts a scan only while fewer threads than cores are
+// busy, counting the team's thread whenever it is not waiting for a result, and the worker the team waits for always
+// may. With more threads than cores the workers otherwise ran ahead at the team's expense, finished first, and left the
+// team's loop-closure work (concentrated late in a sequence) to run alone on one core at the end. Registration features
+// are left to the registrations (on the team's thread, or on TeamRun's RegistrationPool), which compute them only for
+// the keyframes that become loop-closure candidates (about 70 % of them on the default sequence): computed ahead for
+// every keyframe they cost more CPU in all, and the CPU in all is what bounds a run on two cores. The pool's threads
+// are not counted by the admission rule (see team_run.hpp).
 #include <atomic>
 #include <condition_variable>
 #include <deque>

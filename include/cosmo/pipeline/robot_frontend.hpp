@@ -58,17 +58,17 @@ struct FrontendFootprint {
 
 /// One registered loop-closure candidate (accepted or not).
 struct LoopClosureAttempt {
-  char owner = 'a';          ///< the robot that computed it (= key1's robot)
-  StampNs computed_at = 0;   ///< keyframe stamp, or the time the teammate's scan was received
-  char robot1 = 'a';         ///< key1 = (robot1, index1), always the owner's pose
+  char owner = 'a';         ///< the robot that computed it (= key1's robot)
+  StampNs computed_at = 0;  ///< keyframe stamp, or the time the teammate's scan was received
+  char robot1 = 'a';        ///< key1 = (robot1, index1), always the owner's pose
   std::size_t index1 = 0;
-  char robot2 = 'a';         ///< key2 = (robot2, index2)
+  char robot2 = 'a';  ///< key2 = (robot2, index2)
   std::size_t index2 = 0;
   Pose3 measurement = Pose3::Identity();  ///< T_key1^-1 * T_key2
-  bool accepted = false;     ///< the registration gate's verdict (only accepted ones are measurements)
+  bool accepted = false;                  ///< the registration gate's verdict (only accepted ones are measurements)
   double descriptor_distance = 1.0;
   std::size_t inliers = 0;
-  std::string reason;        ///< the registration's reason ("ok" or why it was rejected)
+  std::string reason;  ///< the registration's reason ("ok" or why it was rejected)
   bool inter() const { return robot1 != robot2; }
 };
 
@@ -82,9 +82,9 @@ struct PendingLoopClosure {
 
 /// What one scan produced.
 struct ScanOutcome {
-  OdometryResult odometry;                  ///< pose (sensor, odometry frame) at the scan stamp
-  std::optional<KeyframeRecord> keyframe;   ///< set when the scan became a keyframe
-  std::vector<LoopClosureAttempt> loop_closures;  ///< registered inline (no RegistrationPool set)
+  OdometryResult odometry;                                ///< pose (sensor, odometry frame) at the scan stamp
+  std::optional<KeyframeRecord> keyframe;                 ///< set when the scan became a keyframe
+  std::vector<LoopClosureAttempt> loop_closures;          ///< registered inline (no RegistrationPool set)
   std::vector<PendingLoopClosure> pending_loop_closures;  ///< with a RegistrationPool, instead of loop_closures
 };
 

@@ -16,35 +16,35 @@ namespace cosmo::pipeline {
 
 /// One robot's recording.
 struct TrialConfig {
-  char robot = 'a';                          ///< robot id (a, b, c, ...)
-  std::string name;                          ///< trial name (MCD: ntu_day_01, ...)
-  std::string bag;                           ///< absolute path of the bag
+  char robot = 'a';                             ///< robot id (a, b, c, ...)
+  std::string name;                             ///< trial name (MCD: ntu_day_01, ...)
+  std::string bag;                              ///< absolute path of the bag
   std::string topic = "/os_cloud_node/points";  ///< PointCloud2 topic in the bag
-  std::string reference;                     ///< absolute path of the reference CSV; empty: none
-  Pose3 extrinsic = Pose3::Identity();       ///< T_body_lidar (LiDAR pose = body pose * extrinsic)
-  bool stamp_at_end = true;                  ///< `stamp: end` (Ouster/MCD) or `stamp: start` (CU-Multi)
+  std::string reference;                        ///< absolute path of the reference CSV; empty: none
+  Pose3 extrinsic = Pose3::Identity();          ///< T_body_lidar (LiDAR pose = body pose * extrinsic)
+  bool stamp_at_end = true;                     ///< `stamp: end` (Ouster/MCD) or `stamp: start` (CU-Multi)
 };
 
 /// How the references' world frame is moved near the origin (one offset for the whole sequence: trials that
 /// share a frame, e.g. CU-Multi's UTM, keep sharing it).
 struct ReferenceOffsetConfig {
   enum class Mode { None, Anchor, Fixed };
-  Mode mode = Mode::None;              ///< `none`, `anchor` (the anchor's first reference position, whole metres)
+  Mode mode = Mode::None;  ///< `none`, `anchor` (the anchor's first reference position, whole metres)
   Eigen::Vector3d fixed = Eigen::Vector3d::Zero();  ///< `[x, y, z]`
 };
 
 struct SequenceConfig {
-  std::string path;                    ///< the file it was read from ("" when built in code)
-  std::string name = "sequence";       ///< dataset name; the JRL is <name>_<comm>.jrl
-  std::string source = "unknown";      ///< metadata (synthetic, MCD, CU-Multi)
-  unsigned long long seed = 0;         ///< seeds every random choice
-  char anchor = 'a';                   ///< robot whose trial starts at t*
-  double time_offset_sigma = 40.0;     ///< s, sigma of the N(0, sigma) start offsets of the other trials
-  std::string environment;             ///< noise-model environment (config/noise_models/<environment>.yaml); "": none
-  std::string noise_models;            ///< absolute path of a noise-model YAML; empty: by environment
+  std::string path;                 ///< the file it was read from ("" when built in code)
+  std::string name = "sequence";    ///< dataset name; the JRL is <name>_<comm>.jrl
+  std::string source = "unknown";   ///< metadata (synthetic, MCD, CU-Multi)
+  unsigned long long seed = 0;      ///< seeds every random choice
+  char anchor = 'a';                ///< robot whose trial starts at t*
+  double time_offset_sigma = 40.0;  ///< s, sigma of the N(0, sigma) start offsets of the other trials
+  std::string environment;          ///< noise-model environment (config/noise_models/<environment>.yaml); "": none
+  std::string noise_models;         ///< absolute path of a noise-model YAML; empty: by environment
   ReferenceOffsetConfig reference_offset;  ///< subtracted from every reference position
-  std::string data_root;               ///< the folder the trials' relative paths were resolved against
-  std::string data_root_from;          ///< where it came from: argument, data_root key, COSMO_DATA_ROOT, config folder
+  std::string data_root;                   ///< the folder the trials' relative paths were resolved against
+  std::string data_root_from;  ///< where it came from: argument, data_root key, COSMO_DATA_ROOT, config folder
   std::vector<TrialConfig> trials;
 
   /// Read and check a sequence config. `data_root`: the caller's data root (empty: the precedence above).
@@ -53,7 +53,6 @@ struct SequenceConfig {
   std::vector<char> robots() const;
   const TrialConfig& trial(char robot) const;  ///< throws naming the file when the robot is unknown
 };
-
 
 /// `path` when absolute, else `base_dir/path` (an empty path stays empty).
 std::string resolvePath(const std::string& base_dir, const std::string& path);

@@ -24,9 +24,9 @@ struct TrialSpan {
 /// One trial's shift into sequence time.
 struct TrialTiming {
   char robot = 'a';
-  StampNs first = 0;          ///< recorded first stamp
-  StampNs last = 0;           ///< recorded last stamp
-  std::int64_t offset_ns = 0; ///< sequence stamp = recorded stamp + offset_ns
+  StampNs first = 0;           ///< recorded first stamp
+  StampNs last = 0;            ///< recorded last stamp
+  std::int64_t offset_ns = 0;  ///< sequence stamp = recorded stamp + offset_ns
 
   StampNs toSequence(StampNs recorded) const;
   StampNs toRecorded(StampNs sequence) const;

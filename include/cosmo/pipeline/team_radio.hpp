@@ -31,7 +31,8 @@ StampNs radioGridOrigin(StampNs sequence_start, double step_s);
 StampNs radioStepStamp(StampNs origin, double radio_time);
 /// Position of a robot for the radio at `step_stamp`: its reference there (held at the ends), or
 /// `odometry_position` without a reference.
-Eigen::Vector3d radioPosition(const Trajectory& reference, StampNs step_stamp, const Eigen::Vector3d& odometry_position);
+Eigen::Vector3d radioPosition(const Trajectory& reference, StampNs step_stamp,
+                              const Eigen::Vector3d& odometry_position);
 /// The earliest sequence stamp at which advanceRadio runs the radio's next step: a scan stamped before it needs
 /// no radio step first (LockstepSchedule). 10 ns early, under advanceRadio's 1 ns tolerance on radio time.
 StampNs nextRadioStepStamp(const RadioSimulator& radio, StampNs origin);

@@ -4,11 +4,12 @@
 // gathering every measurement. Deterministic: one order of events (below), all randomness from the seed.
 //
 // Event order (LockstepSchedule, which the lockstep player drives the ROS nodes through): radio steps lie on the
-// grid origin + k * delta. Before a scan stamped s is processed, every radio step at a time <= s runs (advanceRadio, team_radio.hpp, which the
-// comm_broker node shares): robot states are set (on once the robot processed its first scan, position from its
-// reference trajectory held at the ends, or its odometry position without one), the step runs, and each
-// delivered scan is handed to its receiver at the step time (the time its loop closures are computed at). Then the scan goes through its robot's front-end; a new keyframe is
-// offered to the radio and recorded, accepted loop closures are recorded.
+// grid origin + k * delta. Before a scan stamped s is processed, every radio step at a time <= s runs (advanceRadio,
+// team_radio.hpp, which the comm_broker node shares): robot states are set (on once the robot processed its first scan,
+// position from its reference trajectory held at the ends, or its odometry position without one), the step runs, and
+// each delivered scan is handed to its receiver at the step time (the time its loop closures are computed at). Then the
+// scan goes through its robot's front-end; a new keyframe is offered to the radio and recorded, accepted loop closures
+// are recorded.
 //
 // Registration threads (TeamRunParams::registration_threads > 0): the loop-closure registrations run on a
 // RegistrationPool while this thread goes on with the radio, place recognition and the next scans. Nothing the

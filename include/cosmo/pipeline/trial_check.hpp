@@ -14,20 +14,20 @@ namespace cosmo::pipeline {
 /// What a reader found at the start of a trial's bag.
 struct TrialProbe {
   bool bag_found = false;
-  std::string error;                 ///< why the bag or the topic could not be read ("" when it could)
+  std::string error;  ///< why the bag or the topic could not be read ("" when it could)
   bool topic_found = false;
-  std::vector<std::string> topics;   ///< "name (type)" of every topic of the bag (shown when `topic` is missing)
-  std::string fields;                ///< the cloud's point fields, e.g. "x:float32 y:float32 z:float32 t:uint32"
-  std::size_t messages = 0;          ///< messages on the topic
+  std::vector<std::string> topics;          ///< "name (type)" of every topic of the bag (shown when `topic` is missing)
+  std::string fields;                       ///< the cloud's point fields, e.g. "x:float32 y:float32 z:float32 t:uint32"
+  std::size_t messages = 0;                 ///< messages on the topic
   StampNs first_stamp = 0, last_stamp = 0;  ///< sweep-end stamps of the first and the last message
-  std::vector<Scan> first_scans;     ///< the first few scans, decoded with the trial's convention, at the sweep end
+  std::vector<Scan> first_scans;       ///< the first few scans, decoded with the trial's convention, at the sweep end
   std::size_t points_in_messages = 0;  ///< width * height of those messages (invalid returns included)
 };
 
 struct TrialCheck {
   char robot = 'a';
-  std::string line;                  ///< one line for the console
-  std::vector<std::string> errors;   ///< the run could not produce a labelled dataset because of these
+  std::string line;                 ///< one line for the console
+  std::vector<std::string> errors;  ///< the run could not produce a labelled dataset because of these
 };
 
 /// Judges one trial. `reference`: its body reference as read (recorded time; empty with `reference_error` when it

@@ -26,7 +26,7 @@ struct TrialNoiseModels {
 /// into the result. Throws std::runtime_error when the run has too few measurements (names the counts).
 TrialNoiseModels estimateTrialNoiseModels(char robot, MergedScanStream& stream, const Trajectory& reference,
                                           const TeamRunParams& params, std::uint64_t radio_seed,
-                                          const NoiseModelEstimationParams& estimation,
-                                          const std::string& trial_label, const std::string& environment);
+                                          const NoiseModelEstimationParams& estimation, const std::string& trial_label,
+                                          const std::string& environment);
 
 }  // namespace cosmo::pipeline

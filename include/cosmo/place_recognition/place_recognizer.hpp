@@ -87,8 +87,8 @@ class PlaceRecognizer {
   const ScanContextDatabase* teammateDatabase(char robot) const;
 
  private:
-  void collect(const std::vector<DatabaseMatch>& matches, char query_robot, std::size_t query_index,
-               char match_robot, std::vector<LoopCandidate>& out) const;
+  void collect(const std::vector<DatabaseMatch>& matches, char query_robot, std::size_t query_index, char match_robot,
+               std::vector<LoopCandidate>& out) const;
   std::size_t ownSearchable(StampNs stamp) const;
 
   char own_robot_;

@@ -16,10 +16,10 @@ namespace cosmo {
 
 struct QueryOutcome {
   bool has_candidate = false;
-  std::size_t match = 0;          ///< index (into the searched list) of the top candidate
-  double distance = 1.0;          ///< its descriptor distance
-  double yaw = 0.0;               ///< its yaw estimate
-  double match_separation = 0.0;  ///< reference distance query <-> top candidate, m
+  std::size_t match = 0;             ///< index (into the searched list) of the top candidate
+  double distance = 1.0;             ///< its descriptor distance
+  double yaw = 0.0;                  ///< its yaw estimate
+  double match_separation = 0.0;     ///< reference distance query <-> top candidate, m
   double nearest_separation = -1.0;  ///< reference distance to the nearest searchable entry, m (-1: none)
 };
 

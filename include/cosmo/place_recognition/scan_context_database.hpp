@@ -3,8 +3,8 @@
 // (a nanoflann k-d tree, L2 distance) give candidates, the full descriptor distance ranks them.
 //
 // Insertion is cheap: the k-d tree covers the entries present at its last rebuild and is rebuilt periodically
-// (see ScanContextDatabaseParams::rebuild_every); the newer entries are searched linearly, so every query sees every inserted
-// entry. Entries keep their insertion order ("position"); a query may be limited to the first N positions,
+// (see ScanContextDatabaseParams::rebuild_every); the newer entries are searched linearly, so every query sees every
+// inserted entry. Entries keep their insertion order ("position"); a query may be limited to the first N positions,
 // which is how a robot excludes its most recent keyframes.
 #include <cstddef>
 #include <limits>

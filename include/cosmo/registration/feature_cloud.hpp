@@ -25,7 +25,6 @@ class StageObserver;
 /// Downsample, estimate normals, drop points without a normal, compute FPFH. The observer (optional) is told
 /// when each stage ends ("downsample", then "neighbours", "normals", "spfh", "fpfh" for the fast backend or
 /// "normals", "fpfh" for PCL's).
-FeatureCloud computeFeatureCloud(const Scan& scan, const RegistrationParams& params,
-                                 StageObserver* observer = nullptr);
+FeatureCloud computeFeatureCloud(const Scan& scan, const RegistrationParams& params, StageObserver* observer = nullptr);
 
 }  // namespace cosmo

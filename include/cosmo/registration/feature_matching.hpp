@@ -17,7 +17,7 @@ struct Correspondence {
 /// For each source feature its nearest target feature; with `mutual`, kept only if that target's nearest
 /// source feature is the same point. Sorted by (distance, source index); at most `max_count`.
 /// `eps` > 0 makes the kd-tree search (1+eps)-approximate (faster in 33 dimensions, still deterministic).
-std::vector<Correspondence> matchFeatures(const FpfhMatrix& source, const FpfhMatrix& target,
-                                          std::size_t max_count, bool mutual = true, float eps = 0.f);
+std::vector<Correspondence> matchFeatures(const FpfhMatrix& source, const FpfhMatrix& target, std::size_t max_count,
+                                          bool mutual = true, float eps = 0.f);
 
 }  // namespace cosmo

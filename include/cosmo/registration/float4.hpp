@@ -54,7 +54,9 @@ struct Float4 {
   Float4() = default;
   explicit Float4(float x) : v{x, x, x, x} {}
   Float4(float a, float b, float c, float d) : v{a, b, c, d} {}
-  static Float4 load(const float* p) { return make([&](int k) { return p[k]; }); }
+  static Float4 load(const float* p) {
+    return make([&](int k) { return p[k]; });
+  }
   void store(float* p) const {
     for (int k = 0; k < 4; ++k) p[k] = v[k];
   }
@@ -75,18 +77,42 @@ struct Float4 {
     __builtin_memcpy(&bits, &f, 4);
     return bits != 0u;
   }
-  friend Float4 operator+(Float4 a, Float4 b) { return make([&](int k) { return a.v[k] + b.v[k]; }); }
-  friend Float4 operator-(Float4 a, Float4 b) { return make([&](int k) { return a.v[k] - b.v[k]; }); }
-  friend Float4 operator*(Float4 a, Float4 b) { return make([&](int k) { return a.v[k] * b.v[k]; }); }
-  friend Float4 operator/(Float4 a, Float4 b) { return make([&](int k) { return a.v[k] / b.v[k]; }); }
-  friend Float4 operator-(Float4 a) { return make([&](int k) { return -a.v[k]; }); }
-  friend Float4 sqrt(Float4 a) { return make([&](int k) { return std::sqrt(a.v[k]); }); }
-  friend Float4 abs(Float4 a) { return make([&](int k) { return std::fabs(a.v[k]); }); }
-  friend Float4 max(Float4 a, Float4 b) { return make([&](int k) { return a.v[k] > b.v[k] ? a.v[k] : b.v[k]; }); }
-  friend Float4 min(Float4 a, Float4 b) { return make([&](int k) { return a.v[k] < b.v[k] ? a.v[k] : b.v[k]; }); }
-  friend Float4 operator<(Float4 a, Float4 b) { return make([&](int k) { return maskValue(a.v[k] < b.v[k]); }); }
-  friend Float4 operator>(Float4 a, Float4 b) { return make([&](int k) { return maskValue(a.v[k] > b.v[k]); }); }
-  friend Float4 operator<=(Float4 a, Float4 b) { return make([&](int k) { return maskValue(a.v[k] <= b.v[k]); }); }
+  friend Float4 operator+(Float4 a, Float4 b) {
+    return make([&](int k) { return a.v[k] + b.v[k]; });
+  }
+  friend Float4 operator-(Float4 a, Float4 b) {
+    return make([&](int k) { return a.v[k] - b.v[k]; });
+  }
+  friend Float4 operator*(Float4 a, Float4 b) {
+    return make([&](int k) { return a.v[k] * b.v[k]; });
+  }
+  friend Float4 operator/(Float4 a, Float4 b) {
+    return make([&](int k) { return a.v[k] / b.v[k]; });
+  }
+  friend Float4 operator-(Float4 a) {
+    return make([&](int k) { return -a.v[k]; });
+  }
+  friend Float4 sqrt(Float4 a) {
+    return make([&](int k) { return std::sqrt(a.v[k]); });
+  }
+  friend Float4 abs(Float4 a) {
+    return make([&](int k) { return std::fabs(a.v[k]); });
+  }
+  friend Float4 max(Float4 a, Float4 b) {
+    return make([&](int k) { return a.v[k] > b.v[k] ? a.v[k] : b.v[k]; });
+  }
+  friend Float4 min(Float4 a, Float4 b) {
+    return make([&](int k) { return a.v[k] < b.v[k] ? a.v[k] : b.v[k]; });
+  }
+  friend Float4 operator<(Float4 a, Float4 b) {
+    return make([&](int k) { return maskValue(a.v[k] < b.v[k]); });
+  }
+  friend Float4 operator>(Float4 a, Float4 b) {
+    return make([&](int k) { return maskValue(a.v[k] > b.v[k]); });
+  }
+  friend Float4 operator<=(Float4 a, Float4 b) {
+    return make([&](int k) { return maskValue(a.v[k] <= b.v[k]); });
+  }
   friend Float4 maskAnd(Float4 a, Float4 b) {
     return make([&](int k) { return maskValue(isSet(a.v[k]) && isSet(b.v[k])); });
   }

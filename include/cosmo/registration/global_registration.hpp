@@ -22,24 +22,24 @@ namespace cosmo {
 
 struct RegistrationResult {
   Pose3 T_target_source = Pose3::Identity();  ///< maps source points into the target frame
-  std::size_t source_points = 0;      ///< feature points of the source (downsampled, with a normal)
-  std::size_t target_points = 0;      ///< same for the target
-  std::size_t source_keypoints = 0;   ///< source points carrying an FPFH feature (keypoint subsampling)
-  std::size_t target_keypoints = 0;   ///< same for the target
-  std::size_t correspondences = 0;    ///< mutual-NN correspondences after the cap
-  std::size_t max_core_size = 0;      ///< vertices of the max k-core of the consistency graph
-  std::size_t pruned_inliers = 0;     ///< correspondences surviving the pruning (max clique / k-core)
-  std::size_t final_inliers = 0;      ///< pruned correspondences within noise_bound of the final transform
-  bool clique_proven = true;          ///< false when the max-clique search hit its node budget
-  int hypotheses = 0;                 ///< cliques solved and verified (more than 1 when the first was rejected)
-  int hypothesis = 0;                 ///< index of the one reported (0 = the maximum clique)
-  bool refined = false;               ///< the ICP refinement was applied
-  double overlap = 0.0;               ///< fraction of source points with a target point within icp_max_distance
-                                      ///< at the reported transform
-  double structure_overlap = 0.0;     ///< the same over the source's structure points (|normal z| below
-                                      ///< structure_max_normal_z): ground, which matches almost anywhere, left out
-  bool valid = false;                 ///< the gate's verdict
-  std::string reason;                 ///< why it was rejected (or "ok")
+  std::size_t source_points = 0;              ///< feature points of the source (downsampled, with a normal)
+  std::size_t target_points = 0;              ///< same for the target
+  std::size_t source_keypoints = 0;           ///< source points carrying an FPFH feature (keypoint subsampling)
+  std::size_t target_keypoints = 0;           ///< same for the target
+  std::size_t correspondences = 0;            ///< mutual-NN correspondences after the cap
+  std::size_t max_core_size = 0;              ///< vertices of the max k-core of the consistency graph
+  std::size_t pruned_inliers = 0;             ///< correspondences surviving the pruning (max clique / k-core)
+  std::size_t final_inliers = 0;              ///< pruned correspondences within noise_bound of the final transform
+  bool clique_proven = true;                  ///< false when the max-clique search hit its node budget
+  int hypotheses = 0;                         ///< cliques solved and verified (more than 1 when the first was rejected)
+  int hypothesis = 0;                         ///< index of the one reported (0 = the maximum clique)
+  bool refined = false;                       ///< the ICP refinement was applied
+  double overlap = 0.0;                       ///< fraction of source points with a target point within icp_max_distance
+                                              ///< at the reported transform
+  double structure_overlap = 0.0;             ///< the same over the source's structure points (|normal z| below
+                                   ///< structure_max_normal_z): ground, which matches almost anywhere, left out
+  bool valid = false;  ///< the gate's verdict
+  std::string reason;  ///< why it was rejected (or "ok")
 };
 
 class GlobalRegistration {

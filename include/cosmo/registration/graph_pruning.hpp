@@ -17,9 +17,9 @@ std::vector<int> coreNumbers(const ConsistencyGraph& graph);
 std::vector<int> maxKCore(const ConsistencyGraph& graph);
 
 struct CliqueResult {
-  std::vector<int> vertices;  ///< sorted ascending
-  bool proven_maximum = true; ///< false when the node budget ran out (the best clique found is returned)
-  std::uint64_t nodes = 0;    ///< branch-and-bound nodes expanded
+  std::vector<int> vertices;      ///< sorted ascending
+  bool proven_maximum = true;     ///< false when the node budget ran out (the best clique found is returned)
+  std::uint64_t nodes = 0;        ///< branch-and-bound nodes expanded
   std::size_t max_core_size = 0;  ///< vertices of the maximum k-core (= maxKCore(graph).size(), found on the way)
 };
 

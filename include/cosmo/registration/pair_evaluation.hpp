@@ -23,10 +23,10 @@ Scan rotateScanYaw(const Scan& scan, double yaw_rad);
 /// A registration problem with a known answer.
 struct ScanPair {
   std::string name;
-  std::string source;        ///< scan file
-  std::string target;        ///< scan file
+  std::string source;  ///< scan file
+  std::string target;  ///< scan file
   Pose3 T_target_source = Pose3::Identity();
-  double distance_m = 0.0;   ///< |translation|
+  double distance_m = 0.0;  ///< |translation|
 };
 
 /// Read a pair list: lines "source target x y z qx qy qz qw" (or 12/16 matrix numbers, or a path to a 4x4

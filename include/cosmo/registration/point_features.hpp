@@ -16,8 +16,7 @@ struct PointNormals {
   std::vector<Eigen::Vector3f> normals;
   std::vector<bool> valid;
 };
-PointNormals estimateNormals(const std::vector<Eigen::Vector3f>& points, double radius,
-                             std::size_t min_neighbors);
+PointNormals estimateNormals(const std::vector<Eigen::Vector3f>& points, double radius, std::size_t min_neighbors);
 
 /// FPFH of every point (column i for point i) over neighbours within `radius`; points and normals must be
 /// valid (filter them first). A point without neighbours gets an all-zero column.

@@ -11,6 +11,7 @@ namespace cosmo::ros_glue {
 
 /// `frame`: the frame of the reference pose (the world).
 cosmo::RecorderKeyframe recorderKeyframeMsg(const pipeline::KeyframeRecord& keyframe, const std::string& frame);
-cosmo::RecorderLoopClosure recorderLoopClosureMsg(const pipeline::LoopClosureAttempt& closure, const std::string& frame);
+cosmo::RecorderLoopClosure recorderLoopClosureMsg(const pipeline::LoopClosureAttempt& closure,
+                                                  const std::string& frame);
 
 }  // namespace cosmo::ros_glue

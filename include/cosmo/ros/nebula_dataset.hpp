@@ -22,9 +22,9 @@ struct NebulaOptions {
 };
 
 struct NebulaConversion {
-  std::vector<std::string> inputs;                   ///< files read, relative to the dataset folder
-  std::vector<PoseGraphTopicSummary> topics;         ///< bag mode: per bag and topic
-  std::size_t reference_poses = 0;                   ///< vertices of result.g2o
+  std::vector<std::string> inputs;            ///< files read, relative to the dataset folder
+  std::vector<PoseGraphTopicSummary> topics;  ///< bag mode: per bag and topic
+  std::size_t reference_poses = 0;            ///< vertices of result.g2o
   nebula::NebulaGraph graph;
   nebula::ConversionReport report;
   jrl::Dataset dataset;

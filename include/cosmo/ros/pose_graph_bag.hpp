@@ -30,9 +30,9 @@ struct PoseGraphTopicSummary {
 /// Feeds every message of every /<robot>/lamp/pose_graph_incremental topic of `bag_path` (in bag time order)
 /// to `builder`, the source of each named "<source_name> <topic> #<n>". Throws std::runtime_error naming bag,
 /// topic and message when the bag cannot be read, a topic has another type, or a message does not decode.
-std::vector<PoseGraphTopicSummary> readPoseGraphBag(const std::string& bag_path, const std::string& source_name,
-                                                    nebula::GraphBuilder& builder,
-                                                    nebula::CovarianceOrder order = nebula::CovarianceOrder::TranslationFirst);
+std::vector<PoseGraphTopicSummary> readPoseGraphBag(
+    const std::string& bag_path, const std::string& source_name, nebula::GraphBuilder& builder,
+    nebula::CovarianceOrder order = nebula::CovarianceOrder::TranslationFirst);
 
 /// Writes PoseGraph messages as pose_graph_msgs/PoseGraph (its full definition and md5sum in the connection
 /// header), received at their header stamps. `md5sum` overrides the md5sum written (to make a mismatching bag).

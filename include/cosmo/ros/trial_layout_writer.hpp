@@ -26,9 +26,9 @@ std::string trialLayoutName(TrialLayout layout);
 inline const Eigen::Vector3d kSimulatedUtmOffset(4.8e5, 4.43e6, 0.0);
 
 struct LayoutTrialInfo {
-  std::string name;          ///< trial name
-  int robot_number = 1;      ///< CU-Multi's robotN (1-based)
-  std::string platform;      ///< handheld | atv | car (MCD: which extrinsic)
+  std::string name;      ///< trial name
+  int robot_number = 1;  ///< CU-Multi's robotN (1-based)
+  std::string platform;  ///< handheld | atv | car (MCD: which extrinsic)
   int beams = 64, columns = 1024;
   double rate_hz = 10.0;
 };

@@ -28,8 +28,8 @@ class Bvh {
     std::uint16_t count = 0;  ///< primitives in a leaf, 0 for an inner node
     std::uint8_t axis = 0;    ///< split axis of an inner node
   };
-  std::uint32_t build(std::vector<std::uint32_t>& order, std::vector<Aabb>& boxes, std::vector<Eigen::Vector3d>& centers,
-                      std::uint32_t begin, std::uint32_t end, int max_leaf);
+  std::uint32_t build(std::vector<std::uint32_t>& order, std::vector<Aabb>& boxes,
+                      std::vector<Eigen::Vector3d>& centers, std::uint32_t begin, std::uint32_t end, int max_leaf);
   std::vector<Node> nodes_;
   std::vector<Primitive> prims_;
 };

@@ -21,8 +21,14 @@ struct Ray {
 struct Aabb {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300);
   Eigen::Vector3d hi = Eigen::Vector3d::Constant(-1e300);
-  void extend(const Eigen::Vector3d& p) { lo = lo.cwiseMin(p); hi = hi.cwiseMax(p); }
-  void extend(const Aabb& b) { lo = lo.cwiseMin(b.lo); hi = hi.cwiseMax(b.hi); }
+  void extend(const Eigen::Vector3d& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  void extend(const Aabb& b) {
+    lo = lo.cwiseMin(b.lo);
+    hi = hi.cwiseMax(b.hi);
+  }
   Eigen::Vector3d center() const { return 0.5 * (lo + hi); }
   double area() const {
     const Eigen::Vector3d e = (hi - lo).cwiseMax(0.0);

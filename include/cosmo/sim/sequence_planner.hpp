@@ -13,10 +13,10 @@ namespace cosmo::sim {
 
 struct PlannedTrial {
   TrialParams params;
-  std::vector<int> route;            ///< network nodes
-  Trajectory body;                   ///< reference trajectory (body in world), params.motion.rate_hz
-  std::vector<StampNs> scan_stamps;  ///< sweep-end stamps; every sweep lies inside the trajectory
-  std::uint64_t noise_seed = 0;      ///< LiDAR noise seed of this trial (and its sensor's calibration)
+  std::vector<int> route;              ///< network nodes
+  Trajectory body;                     ///< reference trajectory (body in world), params.motion.rate_hz
+  std::vector<StampNs> scan_stamps;    ///< sweep-end stamps; every sweep lies inside the trajectory
+  std::uint64_t noise_seed = 0;        ///< LiDAR noise seed of this trial (and its sensor's calibration)
   std::shared_ptr<const World> world;  ///< what this trial's LiDAR sees: the world with that day's clutter
 };
 

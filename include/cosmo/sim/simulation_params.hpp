@@ -18,13 +18,13 @@ namespace cosmo::sim {
 inline constexpr const char* kSimCodeVersion = "sim-1";
 
 struct TrialParams {
-  std::string robot = "a";          ///< robot id
-  std::string name = "trial_a";     ///< trial name: <name>.bag, <name>_pose_inW.csv
-  std::string platform = "atv";     ///< handheld | atv | car (motion preset)
-  double length = 500.0;            ///< route length along the network, m (when duration <= 0 and no waypoints)
-  double duration = 0.0;            ///< s; > 0 sets the route length to about duration * cruise speed
-  int start_node = -1;              ///< junction to start from (-1: seeded random)
-  RouteParams route;                ///< streets_only, return_fraction, waypoints (start_node is copied in)
+  std::string robot = "a";       ///< robot id
+  std::string name = "trial_a";  ///< trial name: <name>.bag, <name>_pose_inW.csv
+  std::string platform = "atv";  ///< handheld | atv | car (motion preset)
+  double length = 500.0;         ///< route length along the network, m (when duration <= 0 and no waypoints)
+  double duration = 0.0;         ///< s; > 0 sets the route length to about duration * cruise speed
+  int start_node = -1;           ///< junction to start from (-1: seeded random)
+  RouteParams route;             ///< streets_only, return_fraction, waypoints (start_node is copied in)
   MotionParams motion;
   /// T_body_lidar as x y z qx qy qz qw (LiDAR pose = body pose * extrinsic).
   std::vector<double> extrinsic{0.0, 0.0, 0.25, 0.0, 0.0, 0.0, 1.0};
@@ -36,7 +36,7 @@ struct SimulationParams {
   std::string name = "synthetic_r3_00";  ///< sequence name (sequence config <name>.yaml)
   std::string source = "synthetic";
   std::string environment = "synthetic";  ///< noise-model environment written into the sequence config
-  std::uint64_t seed = 7;                ///< seeds the world, routes, motion and LiDAR noise
+  std::uint64_t seed = 7;                 ///< seeds the world, routes, motion and LiDAR noise
   std::string anchor = "a";
   double time_offset_sigma = 40.0;       ///< s, written into the sequence config (spec section 3)
   double start_epoch = 1.7e9;            ///< s, first stamp of the first trial (realistic UNIX time)

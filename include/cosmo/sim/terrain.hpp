@@ -12,11 +12,11 @@
 namespace cosmo::sim {
 
 struct TerrainParams {
-  double cell = 4.0;          ///< heightfield cell size (m)
-  double amplitude = 2.0;     ///< height amplitude of the undulations (m); 0 gives a flat plane
-  double wavelength = 220.0;  ///< dominant wavelength (m); slopes ~ 2*pi*amplitude/wavelength
-  int waves = 4;              ///< number of superposed sine waves
-  double material_cell = 0.5; ///< resolution of the material raster (m)
+  double cell = 4.0;           ///< heightfield cell size (m)
+  double amplitude = 2.0;      ///< height amplitude of the undulations (m); 0 gives a flat plane
+  double wavelength = 220.0;   ///< dominant wavelength (m); slopes ~ 2*pi*amplitude/wavelength
+  int waves = 4;               ///< number of superposed sine waves
+  double material_cell = 0.5;  ///< resolution of the material raster (m)
 };
 
 class Terrain {
@@ -57,15 +57,15 @@ class Terrain {
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   double cell_ = 1.0;
   int nx_ = 0, ny_ = 0;
-  std::vector<double> h_;                    ///< (nx+1) x (ny+1) vertex heights
-  std::vector<float> cell_lo_, cell_hi_;     ///< nx x ny
-  static constexpr int kTile = 16;           ///< cells per tile side (coarse level of the two-level walk)
+  std::vector<double> h_;                 ///< (nx+1) x (ny+1) vertex heights
+  std::vector<float> cell_lo_, cell_hi_;  ///< nx x ny
+  static constexpr int kTile = 16;        ///< cells per tile side (coarse level of the two-level walk)
   int tx_ = 0, ty_ = 0;
-  std::vector<float> tile_lo_, tile_hi_;     ///< tx x ty
+  std::vector<float> tile_lo_, tile_hi_;  ///< tx x ty
   double h_min_ = 0.0, h_max_ = 0.0;
   double mat_cell_ = 1.0;
   int mx_ = 0, my_ = 0;
-  std::vector<std::uint8_t> materials_;      ///< mx x my
+  std::vector<std::uint8_t> materials_;  ///< mx x my
 };
 
 }  // namespace cosmo::sim

@@ -14,22 +14,22 @@
 namespace cosmo::sim {
 
 struct MotionParams {
-  double cruise_speed = 4.0;        ///< m/s (handheld ~1.4, ATV/car 3-8)
-  double speed_variation = 0.15;    ///< slow random variation of the cruise speed (fraction)
-  double max_accel = 0.6;           ///< m/s^2
-  double max_decel = 0.9;           ///< m/s^2
-  double max_lateral_accel = 1.0;   ///< m/s^2, slows the platform in corners
-  double corner_radius = 7.0;       ///< m, corner fillet radius (shrunk on short segments)
-  double lateral_offset = 1.0;      ///< m to the right of the path centre line (keep right)
-  double body_height = 1.0;         ///< m above the ground
-  double axle_half_length = 1.0;    ///< m, terrain pitch is taken between front and rear contact points
-  double track_half_width = 0.6;    ///< m, terrain roll between left and right contact points
-  double bob_amplitude = 0.0;       ///< m, vertical gait oscillation (handheld)
-  double bob_frequency = 1.8;       ///< Hz (steps)
-  double sway_deg = 0.0;            ///< deg, roll/pitch/yaw sway of a hand-held sensor
-  double start_still = 2.0;         ///< s at rest before moving
-  double end_still = 1.0;           ///< s at rest after stopping
-  double rate_hz = 200.0;           ///< reference trajectory rate (>= 100 Hz)
+  double cruise_speed = 4.0;       ///< m/s (handheld ~1.4, ATV/car 3-8)
+  double speed_variation = 0.15;   ///< slow random variation of the cruise speed (fraction)
+  double max_accel = 0.6;          ///< m/s^2
+  double max_decel = 0.9;          ///< m/s^2
+  double max_lateral_accel = 1.0;  ///< m/s^2, slows the platform in corners
+  double corner_radius = 7.0;      ///< m, corner fillet radius (shrunk on short segments)
+  double lateral_offset = 1.0;     ///< m to the right of the path centre line (keep right)
+  double body_height = 1.0;        ///< m above the ground
+  double axle_half_length = 1.0;   ///< m, terrain pitch is taken between front and rear contact points
+  double track_half_width = 0.6;   ///< m, terrain roll between left and right contact points
+  double bob_amplitude = 0.0;      ///< m, vertical gait oscillation (handheld)
+  double bob_frequency = 1.8;      ///< Hz (steps)
+  double sway_deg = 0.0;           ///< deg, roll/pitch/yaw sway of a hand-held sensor
+  double start_still = 2.0;        ///< s at rest before moving
+  double end_still = 1.0;          ///< s at rest after stopping
+  double rate_hz = 200.0;          ///< reference trajectory rate (>= 100 Hz)
 
   /// Presets: "handheld", "atv", "car".
   static MotionParams preset(const std::string& platform);

@@ -18,36 +18,36 @@
 namespace cosmo::sim {
 
 struct WorldParams {
-  int blocks_x = 4;                  ///< blocks along x (junctions: blocks_x + 1)
-  int blocks_y = 3;                  ///< blocks along y
-  double block_min = 70.0;           ///< block pitch range (street centre to street centre), m
+  int blocks_x = 4;         ///< blocks along x (junctions: blocks_x + 1)
+  int blocks_y = 3;         ///< blocks along y
+  double block_min = 70.0;  ///< block pitch range (street centre to street centre), m
   double block_max = 100.0;
-  double street_half_width = 4.0;    ///< kerb offset from the street centre line, m
-  double sidewalk_width = 3.0;       ///< paved strip outside the kerb, m
-  double footpath_half_width = 1.5;  ///< m
-  double footpath_fraction = 0.15;   ///< interior streets turned into footpaths (no kerbs, no cars)
-  double diagonal_fraction = 0.35;   ///< park blocks crossed by a diagonal footpath
-  double building_height_min = 6.0;  ///< m
-  double building_height_max = 24.0; ///< m
-  double p_buildings = 0.45;         ///< block type weights: varied buildings,
-  double p_row = 0.2;                ///< rows of identical buildings (one shared template),
-  double p_park = 0.2;               ///< park with trees,
-  double p_parking = 0.15;           ///< car park with rows of cars and lamp posts
-  double tree_row_fraction = 0.5;    ///< street sides lined with a row of identical trees
-  double tree_spacing = 9.0;         ///< m
-  double pole_spacing = 28.0;        ///< lamp posts along streets, m (0: none)
-  double parked_car_fraction = 0.3;  ///< street sides with parked cars
-  double wall_fraction = 0.25;       ///< block sides with a wall or fence
-  double outer_ring = 40.0;          ///< depth of the built-up / wooded ring outside the outer streets, m
-  double terrain_margin = 90.0;      ///< terrain beyond the outer ring, m
-  double car_change = 0.0;           ///< per trial: share of parked cars moved along the kerb (1-5 m) or gone
-  double people_per_100m = 0.0;      ///< per trial: pedestrians per 100 m of path network, on the pavements
-  double foliage_change = 0.0;       ///< per trial: relative change of every tree canopy (size and centre)
+  double street_half_width = 4.0;     ///< kerb offset from the street centre line, m
+  double sidewalk_width = 3.0;        ///< paved strip outside the kerb, m
+  double footpath_half_width = 1.5;   ///< m
+  double footpath_fraction = 0.15;    ///< interior streets turned into footpaths (no kerbs, no cars)
+  double diagonal_fraction = 0.35;    ///< park blocks crossed by a diagonal footpath
+  double building_height_min = 6.0;   ///< m
+  double building_height_max = 24.0;  ///< m
+  double p_buildings = 0.45;          ///< block type weights: varied buildings,
+  double p_row = 0.2;                 ///< rows of identical buildings (one shared template),
+  double p_park = 0.2;                ///< park with trees,
+  double p_parking = 0.15;            ///< car park with rows of cars and lamp posts
+  double tree_row_fraction = 0.5;     ///< street sides lined with a row of identical trees
+  double tree_spacing = 9.0;          ///< m
+  double pole_spacing = 28.0;         ///< lamp posts along streets, m (0: none)
+  double parked_car_fraction = 0.3;   ///< street sides with parked cars
+  double wall_fraction = 0.25;        ///< block sides with a wall or fence
+  double outer_ring = 40.0;           ///< depth of the built-up / wooded ring outside the outer streets, m
+  double terrain_margin = 90.0;       ///< terrain beyond the outer ring, m
+  double car_change = 0.0;            ///< per trial: share of parked cars moved along the kerb (1-5 m) or gone
+  double people_per_100m = 0.0;       ///< per trial: pedestrians per 100 m of path network, on the pavements
+  double foliage_change = 0.0;        ///< per trial: relative change of every tree canopy (size and centre)
   /// Block sides along streets lined with a terrace of identical houses (one house for the whole world, the
   /// terraces centred on their side): with equal blocks, places a block apart along a long street look alike to
   /// ScanContext and align convincingly, as repeated façades do on real campuses. 0: none.
   double terrace_fraction = 0.0;
-  double p_open = 0.0;               ///< block type weight: open plaza / lawn with little structure (benches)
+  double p_open = 0.0;  ///< block type weight: open plaza / lawn with little structure (benches)
   /// Street sides lined with a hedge (1 m thick, 1.4 m high, behind the pavement): foliage, which a LiDAR with
   /// LidarModel::foliage_mean_free_path sees as a volume that returns at a random depth. 0: none.
   double hedge_fraction = 0.0;

@@ -16,8 +16,8 @@ struct OusterSweep {
   int beams = 64;
   int columns = 1024;
   double rate_hz = 10.0;
-  bool stamp_at_end = true;   ///< header stamp at the sweep end (MCD) or start (CU-Multi)
-  bool ring_uint16 = false;   ///< ring as uint16 (ouster-ros 2) or uint8 (MCD's driver)
+  bool stamp_at_end = true;  ///< header stamp at the sweep end (MCD) or start (CU-Multi)
+  bool ring_uint16 = false;  ///< ring as uint16 (ouster-ros 2) or uint8 (MCD's driver)
   std::string frame_id = "os_sensor";
 };
 

@@ -24,7 +24,14 @@ namespace cosmo::trials {
 
 /// sensor_msgs/PointField datatypes (same numbers in ROS 1 and ROS 2).
 enum class PointType : std::uint8_t {
-  Int8 = 1, UInt8 = 2, Int16 = 3, UInt16 = 4, Int32 = 5, UInt32 = 6, Float32 = 7, Float64 = 8
+  Int8 = 1,
+  UInt8 = 2,
+  Int16 = 3,
+  UInt16 = 4,
+  Int32 = 5,
+  UInt32 = 6,
+  Float32 = 7,
+  Float64 = 8
 };
 /// Bytes of one value of `datatype` (0 for an unknown type).
 std::size_t pointTypeSize(std::uint8_t datatype);

@@ -32,7 +32,7 @@ std::vector<std::string> ros2BagFiles(const std::string& bag_path);
 class Ros2BagReader {
  public:
   struct Message {
-    StampNs received = 0;             ///< the bag's `timestamp` column
+    StampNs received = 0;  ///< the bag's `timestamp` column
     const std::uint8_t* data = nullptr;
     std::size_t size = 0;
   };

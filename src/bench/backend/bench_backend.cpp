@@ -35,7 +35,8 @@ double threadCpuMs() {
 void benchSolve(const std::string& path, int repeats) {
   const jrl::Dataset d = jrl::readJrl(path);
   std::printf("solve %s (%zu factors)\n", d.name.c_str(), jrl::computeStats(d).factors);
-  for (auto s : {backend::FactorSelection::All, backend::FactorSelection::AllRobust, backend::FactorSelection::Inliers}) {
+  for (auto s :
+       {backend::FactorSelection::All, backend::FactorSelection::AllRobust, backend::FactorSelection::Inliers}) {
     std::vector<double> ms, cpu;
     backend::DatasetCheck check;
     for (int i = 0; i < repeats; ++i) {
@@ -46,11 +47,12 @@ void benchSolve(const std::string& path, int repeats) {
       ms.push_back(sw.elapsedMs());
     }
     const auto& c = check.solves.front();
-    std::printf("  %-8s CPU median %7.1f ms (min %.1f), wall median %.1f ms | %d iterations, cost %.1f -> %.1f | "
-                "ATE %.3f m (init %.3f m), rot %.2f deg\n",
-                backend::selectionName(s), quantile(cpu, 0.5), quantile(cpu, 0.0), quantile(ms, 0.5),
-                c.solve.iterations, c.solve.initial_cost, c.solve.final_cost, c.error.overall.trans_m,
-                check.init.overall.trans_m, c.error.overall.rot_rad * 180.0 / M_PI);
+    std::printf(
+        "  %-8s CPU median %7.1f ms (min %.1f), wall median %.1f ms | %d iterations, cost %.1f -> %.1f | "
+        "ATE %.3f m (init %.3f m), rot %.2f deg\n",
+        backend::selectionName(s), quantile(cpu, 0.5), quantile(cpu, 0.0), quantile(ms, 0.5), c.solve.iterations,
+        c.solve.initial_cost, c.solve.final_cost, c.error.overall.trans_m, check.init.overall.trans_m,
+        c.error.overall.rot_rad * 180.0 / M_PI);
   }
 }
 

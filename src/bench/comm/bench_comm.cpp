@@ -40,7 +40,8 @@ RadioSimulator endlessPair(RadioParams p, std::uint64_t seed) {
 void connectivity(int n) {
   std::printf("\n## 1. Connectivity frequency of an active link vs phi(d)  (%d samples per distance)\n", n);
   std::printf("| model | d (m) | phi(d) | observed | sigma | z |\n|---|---|---|---|---|---|\n");
-  for (const auto& [name, p] : {std::pair{"Wi-Fi", RadioParams::wifi()}, std::pair{"Pro-Radio", RadioParams::proRadio()}}) {
+  for (const auto& [name, p] :
+       {std::pair{"Wi-Fi", RadioParams::wifi()}, std::pair{"Pro-Radio", RadioParams::proRadio()}}) {
     for (double frac : {0.05, 0.2, 0.4, 0.6, 0.8, 0.95, 1.1}) {
       const double d = frac * p.r_max;
       RadioSimulator sim = endlessPair(p, 100 + static_cast<int>(frac * 100));
@@ -57,8 +58,12 @@ void connectivity(int n) {
 }
 
 void throughput(int n) {
-  std::printf("\n## 2. Throughput  (%d steps)\n| model | case | per-link mean (kB/s) | expected (kB/s) | ratio |\n|---|---|---|---|---|\n", n);
-  for (const auto& [name, base] : {std::pair{"Wi-Fi", RadioParams::wifi()}, std::pair{"Pro-Radio", RadioParams::proRadio()}}) {
+  std::printf(
+      "\n## 2. Throughput  (%d steps)\n| model | case | per-link mean (kB/s) | expected (kB/s) | ratio "
+      "|\n|---|---|---|---|---|\n",
+      n);
+  for (const auto& [name, base] :
+       {std::pair{"Wi-Fi", RadioParams::wifi()}, std::pair{"Pro-Radio", RadioParams::proRadio()}}) {
     RadioSimulator sim = endlessPair(base, 5);
     const double b0 = sim.activeCommunications().front().bytes_delivered;
     for (int i = 0; i < n; ++i) sim.step(sim.nextStepTime());
@@ -80,7 +85,8 @@ void throughput(int n) {
       for (const auto& c : s.activeCommunications()) before.push_back(c.bytes_delivered);
       for (int i = 0; i < n; ++i) s.step(s.nextStepTime());
       double mean = 0;
-      for (int i = 0; i < 2; ++i) mean += (s.activeCommunications()[i].bytes_delivered - before[i]) / (n * p.step) / 1000 / 2;
+      for (int i = 0; i < 2; ++i)
+        mean += (s.activeCommunications()[i].bytes_delivered - before[i]) / (n * p.step) / 1000 / 2;
       const double expect = sep < p.d_intf ? want / 2 : want;
       std::printf("| %s | two links %.0f m apart (%s) | %.1f | %.1f | %.4f |\n", name, sep,
                   sep < p.d_intf ? "overlap, B/2" : "apart, B", mean, expect, mean / expect);
@@ -90,7 +96,8 @@ void throughput(int n) {
 
 void timeouts(int trials) {
   std::printf("\n## 3. A pair moving apart at 2 m/s from 5 m (%d seeds, no_progress T = 2 s)\n", trials);
-  for (const auto& [name, base] : {std::pair{"Wi-Fi", RadioParams::wifi()}, std::pair{"Pro-Radio", RadioParams::proRadio()}}) {
+  for (const auto& [name, base] :
+       {std::pair{"Wi-Fi", RadioParams::wifi()}, std::pair{"Pro-Radio", RadioParams::proRadio()}}) {
     RadioParams p = base;
     p.size_model = RadioParams::SizeModel::RealCompressed;
     double sum_d = 0, sum_gap = 0;
@@ -128,7 +135,9 @@ Scan organize64x1024(const Scan& in) {
     const float el = std::asin(p.z() / r) * 180.0f / static_cast<float>(M_PI);
     const int row = static_cast<int>(std::floor((2.0f - el) / 26.9f * 64.0f));
     const float az = std::atan2(p.y(), p.x());
-    const int col = static_cast<int>(std::floor((az + static_cast<float>(M_PI)) / (2.0f * static_cast<float>(M_PI)) * 1024.0f)) % 1024;
+    const int col =
+        static_cast<int>(std::floor((az + static_cast<float>(M_PI)) / (2.0f * static_cast<float>(M_PI)) * 1024.0f)) %
+        1024;
     if (row < 0 || row >= 64) continue;
     const int i = row * 1024 + col;
     if (r < best[i]) {
@@ -142,8 +151,17 @@ Scan organize64x1024(const Scan& in) {
 struct Ratio {
   std::vector<double> r;
   void add(double x) { r.push_back(x); }
-  double mean() const { double s = 0; for (double x : r) s += x; return s / r.size(); }
-  double sd() const { const double m = mean(); double s = 0; for (double x : r) s += (x - m) * (x - m); return r.size() > 1 ? std::sqrt(s / (r.size() - 1)) : 0; }
+  double mean() const {
+    double s = 0;
+    for (double x : r) s += x;
+    return s / r.size();
+  }
+  double sd() const {
+    const double m = mean();
+    double s = 0;
+    for (double x : r) s += (x - m) * (x - m);
+    return r.size() > 1 ? std::sqrt(s / (r.size() - 1)) : 0;
+  }
 };
 
 void compression(int repeats) {
@@ -153,14 +171,20 @@ void compression(int repeats) {
     std::printf("(skipped: ../shared/data/scan_snippets not found)\n");
     return;
   }
-  struct Set { const char* name; std::string folder; bool organize; };
+  struct Set {
+    const char* name;
+    std::string folder;
+    bool organize;
+  };
   const std::vector<Set> sets = {
       {"KITTI 00 HDL-64E (.bin, unorganized ~120k pts)", *root + "/kitti00/velodyne", false},
       {"KITTI 00 as organized 64x1024 grid (zeros = no return)", *root + "/kitti00/velodyne", true},
       {"MulRan KAIST03 OS1-64 keyframes (.pcd, downsampled ~37k)", *root + "/mulran_kaist03_keyframes/Scans", false},
       {"hdl32 pair (.pcd, ~69k)", *root + "/hdl32_pair", false},
       {"KITTI 07 keyframes (xyz .bin, downsampled)", *root + "/kitti07_keyframes", false}};
-  std::printf("| data | scans | points (mean) | ratio mean | ratio sd | compress wall ms (median) | compress CPU ms | decompress wall ms |\n|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| data | scans | points (mean) | ratio mean | ratio sd | compress wall ms (median) | compress CPU ms | "
+      "decompress wall ms |\n|---|---|---|---|---|---|---|---|\n");
   for (const Set& s : sets) {
     Ratio ratio;
     std::vector<double> tc, td, cc;
@@ -190,7 +214,8 @@ void compression(int repeats) {
   // The 64 x 1024 case: compression time of an organized grid at every xz preset.
   const Scan grid = organize64x1024(readScanFile(*root + "/kitti00/velodyne/000000.bin"));
   std::printf("\n64 x 1024 organized scan (KITTI 00 000000 re-gridded, 786432 B raw), by xz preset:\n");
-  std::printf("| preset | ratio | compress wall ms (median of %d) | compress CPU ms (median) |\n|---|---|---|---|\n", repeats);
+  std::printf("| preset | ratio | compress wall ms (median of %d) | compress CPU ms (median) |\n|---|---|---|---|\n",
+              repeats);
   for (std::uint32_t preset : {0u, 1u, 3u, 6u, 9u}) {
     std::vector<double> t, cpu;
     std::size_t size = 0;
@@ -207,10 +232,15 @@ void compression(int repeats) {
 }
 
 void stepCost(double seconds) {
-  std::printf("\n## 5. Simulator step cost (%.0f s of simulated time per run, robots in random walks in a 300 m square,\n"
-              "##    a keyframe every 2 s per robot, paper size model with S = 786432 B)\n", seconds);
-  std::printf("| model | robots | steps | wall us per step | CPU us per step | delivered | timed out |\n|---|---|---|---|---|---|---|\n");
-  for (const auto& [name, p] : {std::pair{"Wi-Fi", RadioParams::wifi()}, std::pair{"Pro-Radio", RadioParams::proRadio()}}) {
+  std::printf(
+      "\n## 5. Simulator step cost (%.0f s of simulated time per run, robots in random walks in a 300 m square,\n"
+      "##    a keyframe every 2 s per robot, paper size model with S = 786432 B)\n",
+      seconds);
+  std::printf(
+      "| model | robots | steps | wall us per step | CPU us per step | delivered | timed out "
+      "|\n|---|---|---|---|---|---|---|\n");
+  for (const auto& [name, p] :
+       {std::pair{"Wi-Fi", RadioParams::wifi()}, std::pair{"Pro-Radio", RadioParams::proRadio()}}) {
     for (int n : {3, 10, 30}) {
       std::vector<char> ids;
       for (int i = 0; i < n; ++i) ids.push_back(static_cast<char>(i < 26 ? 'a' + i : 'A' + i - 26));
@@ -238,8 +268,9 @@ void stepCost(double seconds) {
       }
       const double ms = w.elapsedMs();
       const double cpu_ms = 1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
-      std::printf("| %s | %d | %d | %.2f | %.2f | %llu | %llu |\n", name, n, steps, 1000.0 * ms / steps, 1000.0 * cpu_ms / steps,
-                  static_cast<unsigned long long>(sim.stats().delivered), static_cast<unsigned long long>(sim.stats().timed_out));
+      std::printf("| %s | %d | %d | %.2f | %.2f | %llu | %llu |\n", name, n, steps, 1000.0 * ms / steps,
+                  1000.0 * cpu_ms / steps, static_cast<unsigned long long>(sim.stats().delivered),
+                  static_cast<unsigned long long>(sim.stats().timed_out));
     }
   }
 }
@@ -250,8 +281,10 @@ int main(int argc, char** argv) {
   int samples = 20000;
   double seconds = 3600;
   for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--samples")) samples = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--seconds")) seconds = std::atof(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--samples"))
+      samples = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--seconds"))
+      seconds = std::atof(argv[i + 1]);
   }
   std::printf("# bench_comm (wall-clock timings; figures depend on machine load)\n");
   connectivity(samples);

@@ -52,15 +52,17 @@ void report(const char* kind, const std::vector<Closure>& cs, double good_t, dou
     }
   }
   const double n = std::max<double>(1, static_cast<double>(cs.size()));
-  std::printf("  %-4s %4zu, outliers %3zu (%.1f %%); good %zu, labelled inliers %.1f %%, error median %.1f cm / %.2f deg,"
-              " p90 %.1f cm / %.2f deg; > 2 m: %zu (%zu labelled outliers)\n",
-              kind, cs.size(), outliers, 100.0 * static_cast<double>(outliers) / n, te.size(),
-              te.empty() ? 0.0 : 100.0 * static_cast<double>(good_inliers) / static_cast<double>(te.size()),
-              100 * quantile(te, 0.5), quantile(re, 0.5), 100 * quantile(te, 0.9), quantile(re, 0.9), gross,
-              gross_outliers);
-  std::printf("       good-closure median error by pose distance: <5 m %.1f cm (%zu), 5-10 m %.1f cm (%zu), 10-20 m %.1f cm (%zu), >20 m %.1f cm (%zu)\n",
-              100 * quantile(by_bin[0], 0.5), by_bin[0].size(), 100 * quantile(by_bin[1], 0.5), by_bin[1].size(),
-              100 * quantile(by_bin[2], 0.5), by_bin[2].size(), 100 * quantile(by_bin[3], 0.5), by_bin[3].size());
+  std::printf(
+      "  %-4s %4zu, outliers %3zu (%.1f %%); good %zu, labelled inliers %.1f %%, error median %.1f cm / %.2f deg,"
+      " p90 %.1f cm / %.2f deg; > 2 m: %zu (%zu labelled outliers)\n",
+      kind, cs.size(), outliers, 100.0 * static_cast<double>(outliers) / n, te.size(),
+      te.empty() ? 0.0 : 100.0 * static_cast<double>(good_inliers) / static_cast<double>(te.size()),
+      100 * quantile(te, 0.5), quantile(re, 0.5), 100 * quantile(te, 0.9), quantile(re, 0.9), gross, gross_outliers);
+  std::printf(
+      "       good-closure median error by pose distance: <5 m %.1f cm (%zu), 5-10 m %.1f cm (%zu), 10-20 m %.1f cm "
+      "(%zu), >20 m %.1f cm (%zu)\n",
+      100 * quantile(by_bin[0], 0.5), by_bin[0].size(), 100 * quantile(by_bin[1], 0.5), by_bin[1].size(),
+      100 * quantile(by_bin[2], 0.5), by_bin[2].size(), 100 * quantile(by_bin[3], 0.5), by_bin[3].size());
 }
 
 }  // namespace
@@ -76,13 +78,18 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw std::invalid_argument(a + ": missing value");
         return argv[++i];
       };
-      if (a == "--relabel") relabel = NoiseModels::load(value());
-      else if (a == "--good-translation") good_t = std::stod(value());
-      else if (a == "--good-rotation") good_r = std::stod(value());
+      if (a == "--relabel")
+        relabel = NoiseModels::load(value());
+      else if (a == "--good-translation")
+        good_t = std::stod(value());
+      else if (a == "--good-rotation")
+        good_r = std::stod(value());
       else if (a == "-h" || a == "--help") {
-        std::cout << "usage: bench_closure_errors FILE.jrl... [--relabel NOISE.yaml] [--good-translation M] [--good-rotation RAD]\n";
+        std::cout << "usage: bench_closure_errors FILE.jrl... [--relabel NOISE.yaml] [--good-translation M] "
+                     "[--good-rotation RAD]\n";
         return 0;
-      } else files.push_back(a);
+      } else
+        files.push_back(a);
     }
     if (files.empty()) throw std::invalid_argument("need a JRL file");
     for (const auto& file : files) {

@@ -34,8 +34,8 @@ struct Noise {
 
 Pose3 walk(std::size_t i, std::size_t robot) {
   const double s = 0.05 * static_cast<double>(i);
-  return makePose(30 * std::cos(s + robot) + 0.02 * static_cast<double>(i), 30 * std::sin(1.3 * s + robot), 0.5 * std::sin(s),
-                  0.0, 0.0, s + robot + M_PI / 2);
+  return makePose(30 * std::cos(s + robot) + 0.02 * static_cast<double>(i), 30 * std::sin(1.3 * s + robot),
+                  0.5 * std::sin(s), 0.0, 0.0, s + robot + M_PI / 2);
 }
 
 }  // namespace
@@ -46,10 +46,14 @@ int main(int argc, char** argv) {
   std::string out = std::filesystem::temp_directory_path().string();
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
-    if (a == "--robots") robots = std::stoul(argv[i + 1]);
-    else if (a == "--keyframes") keyframes = std::stoul(argv[i + 1]);
-    else if (a == "--seed") seed = std::stoull(argv[i + 1]);
-    else if (a == "--out") out = argv[i + 1];
+    if (a == "--robots")
+      robots = std::stoul(argv[i + 1]);
+    else if (a == "--keyframes")
+      keyframes = std::stoul(argv[i + 1]);
+    else if (a == "--seed")
+      seed = std::stoull(argv[i + 1]);
+    else if (a == "--out")
+      out = argv[i + 1];
     else {
       std::cerr << "unknown option " << a << "\n";
       return 2;
@@ -70,12 +74,14 @@ int main(int argc, char** argv) {
   for (std::size_t i = 0; i < keyframes; ++i) {
     for (std::size_t r = 0; r < robots; ++r) {
       const Pose3 truth = walk(i, r);
-      const Pose3 odo = i ? rng.perturb(walk(i - 1, r).inverse(Eigen::Isometry) * truth, noise.odometry) : Pose3::Identity();
+      const Pose3 odo =
+          i ? rng.perturb(walk(i - 1, r).inverse(Eigen::Isometry) * truth, noise.odometry) : Pose3::Identity();
       rec.addKeyframe(ids[r], i, t0 + i * 1000000000ULL + r * 1000, odo, truth);
       auto add = [&](std::size_t r2, std::size_t j) {
         Pose3 m = rng.perturb(truth.inverse(Eigen::Isometry) * walk(j, r2), noise.loop_closure);
         if (closures % 10 == 9) m = m * makePose(2, 1, 0, 0, 0, 0.3);
-        rec.addLoopClosure({ids[r], t0 + i * 1000000000ULL + r * 1000 + 1, jrl::symbol(ids[r], i), jrl::symbol(ids[r2], j), m});
+        rec.addLoopClosure(
+            {ids[r], t0 + i * 1000000000ULL + r * 1000 + 1, jrl::symbol(ids[r], i), jrl::symbol(ids[r2], j), m});
         ++closures;
       };
       if (i >= 50 && i % 3 == 0) add(r, i - 50);
@@ -104,7 +110,8 @@ int main(int argc, char** argv) {
   const std::size_t n = 20 * keyframes;
   for (std::size_t i = 0; i < n; ++i) {
     const Pose3 truth = walk(i, 0);
-    const Pose3 odo = i ? rng.perturb(walk(i - 1, 0).inverse(Eigen::Isometry) * truth, noise.odometry) : Pose3::Identity();
+    const Pose3 odo =
+        i ? rng.perturb(walk(i - 1, 0).inverse(Eigen::Isometry) * truth, noise.odometry) : Pose3::Identity();
     single.addKeyframe('a', i, t0 + i * 1000000000ULL, odo, truth);
     if (i >= 50) {
       Pose3 m = rng.perturb(truth.inverse(Eigen::Isometry) * walk(i - 50, 0), noise.loop_closure);
@@ -121,9 +128,11 @@ int main(int argc, char** argv) {
   const double est_ms = sw.elapsedMs();
   std::cout << "single robot: " << n << " keyframes, " << sets.loop_closures.size() << " loop closures ("
             << est.loop_closure.rejected << " over 0.5 m / 0.05 rad) -> " << single_path << "\n"
-            << "  estimation " << std::setprecision(1) << est_ms << " ms; sigma estimated / true [rx ry rz tx ty tz]:\n";
-  for (const auto& [what, q, truth] : {std::tuple<const char*, Matrix6, Matrix6>{"odometry", est.models.odometry, noise.odometry},
-                                       {"loop closure", est.models.loop_closure, noise.loop_closure}}) {
+            << "  estimation " << std::setprecision(1) << est_ms
+            << " ms; sigma estimated / true [rx ry rz tx ty tz]:\n";
+  for (const auto& [what, q, truth] :
+       {std::tuple<const char*, Matrix6, Matrix6>{"odometry", est.models.odometry, noise.odometry},
+        {"loop closure", est.models.loop_closure, noise.loop_closure}}) {
     std::cout << "  " << std::setw(12) << what << ":";
     double worst = 0;
     for (int i = 0; i < 6; ++i) {

@@ -55,10 +55,11 @@ void measure(const std::string& label, const std::string& path, int repeats, con
   }
   auto med = [](const std::vector<double>& v) { return cosmo::bench::quantile(v, 0.5); };
   auto mx = [](const std::vector<double>& v) { return cosmo::bench::quantile(v, 1.0); };
-  std::printf("%-28s %9.2f MB  read %7.1f ms (max %7.1f)  parse %7.1f ms  dump %7.1f ms  write %7.1f ms (max %7.1f)  "
-              "round trip %s\n",
-              label.c_str(), double(bytes) / 1e6, med(t.read_ms), mx(t.read_ms), med(t.parse_ms), med(t.dump_ms),
-              med(t.write_ms), mx(t.write_ms), identical ? "byte-identical" : "DIFFERS");
+  std::printf(
+      "%-28s %9.2f MB  read %7.1f ms (max %7.1f)  parse %7.1f ms  dump %7.1f ms  write %7.1f ms (max %7.1f)  "
+      "round trip %s\n",
+      label.c_str(), double(bytes) / 1e6, med(t.read_ms), mx(t.read_ms), med(t.parse_ms), med(t.dump_ms),
+      med(t.write_ms), mx(t.write_ms), identical ? "byte-identical" : "DIFFERS");
 }
 
 }  // namespace
@@ -82,8 +83,8 @@ int main(int argc, char** argv) {
       return a == "--help" || a == "-h" ? 0 : 2;
     }
   }
-  const fs::path dir = keep.empty() ? fs::temp_directory_path() / ("cosmo_bench_jrl_" + std::to_string(::getpid()))
-                                    : fs::path(keep);
+  const fs::path dir =
+      keep.empty() ? fs::temp_directory_path() / ("cosmo_bench_jrl_" + std::to_string(::getpid())) : fs::path(keep);
   fs::create_directories(dir);
   std::printf("bench_jrl_io: %d repeats, medians\n", repeats);
 

@@ -29,25 +29,32 @@ int main(int argc, char** argv) {
   std::string keep;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
-    if (a == "--robots") robots = std::strtoul(argv[i + 1], nullptr, 10);
-    else if (a == "--poses") poses = std::strtoul(argv[i + 1], nullptr, 10);
-    else if (a == "--repeats") repeats = std::strtoul(argv[i + 1], nullptr, 10);
-    else if (a == "--seed") seed = std::strtoull(argv[i + 1], nullptr, 10);
-    else if (a == "--keep") keep = argv[i + 1];
+    if (a == "--robots")
+      robots = std::strtoul(argv[i + 1], nullptr, 10);
+    else if (a == "--poses")
+      poses = std::strtoul(argv[i + 1], nullptr, 10);
+    else if (a == "--repeats")
+      repeats = std::strtoul(argv[i + 1], nullptr, 10);
+    else if (a == "--seed")
+      seed = std::strtoull(argv[i + 1], nullptr, 10);
+    else if (a == "--keep")
+      keep = argv[i + 1];
     else {
       std::cerr << "usage: bench_nebula [--robots N (1-4)] [--poses N] [--repeats N] [--seed S] [--keep DIR]\n";
       return 2;
     }
   }
-  const std::vector<std::pair<std::string, char>> all{{"husky1", 'a'}, {"husky2", 'b'}, {"husky3", 'c'}, {"husky4", 'd'}};
+  const std::vector<std::pair<std::string, char>> all{
+      {"husky1", 'a'}, {"husky2", 'b'}, {"husky3", 'c'}, {"husky4", 'd'}};
   nebula::SyntheticTeamParams params;
-  params.robots.assign(all.begin(), all.begin() + static_cast<long>(std::min<std::size_t>(std::max<std::size_t>(robots, 1), 4)));
+  params.robots.assign(all.begin(),
+                       all.begin() + static_cast<long>(std::min<std::size_t>(std::max<std::size_t>(robots, 1), 4)));
   params.poses_per_robot = poses;
   std::mt19937_64 rng(seed);
   bench::Stopwatch sw;
   const nebula::SyntheticTeam team = makeSyntheticTeam(params, rng);
-  const fs::path dir = keep.empty() ? fs::temp_directory_path() / ("cosmo_bench_nebula_" + std::to_string(::getpid()))
-                                    : fs::path(keep);
+  const fs::path dir =
+      keep.empty() ? fs::temp_directory_path() / ("cosmo_bench_nebula_" + std::to_string(::getpid())) : fs::path(keep);
   fs::remove_all(dir);
   ros_glue::writeNebulaFolder(dir.string(), team);
   std::uintmax_t bag_bytes = 0;
@@ -55,8 +62,8 @@ int main(int argc, char** argv) {
   for (const auto& e : fs::directory_iterator(dir / "rosbag")) bag_bytes += fs::file_size(e.path());
   for (const auto& [name, list] : team.messages) messages += list.size();
   std::cout << "fixture: " << params.robots.size() << " robots x " << poses << " poses, " << messages
-            << " messages, bags " << std::fixed << std::setprecision(1) << bag_bytes / 1e6 << " MB, "
-            << team.intra << " + " << team.inter << " loop closures (" << team.wrong_closures.size()
+            << " messages, bags " << std::fixed << std::setprecision(1) << bag_bytes / 1e6 << " MB, " << team.intra
+            << " + " << team.inter << " loop closures (" << team.wrong_closures.size()
             << " wrong); generated and written in " << std::setprecision(0) << sw.elapsedMs() << " ms\n";
 
   std::vector<double> read_ms, build_ms, recorded_ms, estimated_ms, validate_ms, write_ms, total_ms;

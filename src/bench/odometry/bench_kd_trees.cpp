@@ -36,7 +36,9 @@ struct FloatRows {
   std::size_t kdtree_get_point_count() const { return rows; }
   float kdtree_get_pt(std::size_t i, std::size_t d) const { return data[i * dim + d]; }
   template <class B>
-  bool kdtree_get_bbox(B&) const { return false; }
+  bool kdtree_get_bbox(B&) const {
+    return false;
+  }
 };
 template <int Dim>
 using NanoTree =
@@ -66,7 +68,7 @@ struct Timing {
 };
 
 void loamWorkload(int repeats) {
-  const auto map = streetPoints(0, 3, 6);    // three scans' worth of points, thinned as LOAM's features are
+  const auto map = streetPoints(0, 3, 6);      // three scans' worth of points, thinned as LOAM's features are
   const auto queries = streetPoints(3, 1, 8);  // the next scan's
   const int k = 5;
   const float max_dist = 4.0f;

@@ -57,9 +57,9 @@ StepError stepError(const Pose3& est, const Pose3& gt) {
 
 void printStep(const std::string& what, const StepError& e, double t_target_cm, double r_target_deg,
                const std::string& note = "") {
-  std::cout << "  " << std::left << std::setw(34) << what << std::right << std::fixed << std::setprecision(2)
-            << "gt " << std::setw(6) << e.gt_m << " m   err " << std::setw(7) << e.t_cm << " cm  "
-            << std::setprecision(3) << std::setw(6) << e.r_deg << " deg   "
+  std::cout << "  " << std::left << std::setw(34) << what << std::right << std::fixed << std::setprecision(2) << "gt "
+            << std::setw(6) << e.gt_m << " m   err " << std::setw(7) << e.t_cm << " cm  " << std::setprecision(3)
+            << std::setw(6) << e.r_deg << " deg   "
             << ((e.t_cm <= t_target_cm && e.r_deg <= r_target_deg) ? "ok" : "MISS") << note << "\n";
 }
 
@@ -101,7 +101,8 @@ void sectionReal(const LoamParams& params, std::vector<double>& kitti_times, int
     auto fillNote = [&](int a, int b) -> std::string {
       for (const auto& f : fills)
         if (static_cast<std::size_t>(a) >= f.first && static_cast<std::size_t>(b) <= f.last)
-          return "  (reference interpolated here: frames " + std::to_string(f.first) + "-" + std::to_string(f.last) + ")";
+          return "  (reference interpolated here: frames " + std::to_string(f.first) + "-" + std::to_string(f.last) +
+                 ")";
       return "";
     };
     for (const std::vector<int>& chain : {std::vector<int>{0, 1, 2}, {94, 95}, {198, 199}}) {
@@ -115,8 +116,8 @@ void sectionReal(const LoamParams& params, std::vector<double>& kitti_times, int
       for (std::size_t i = 1; i < chain.size(); ++i) {
         const Pose3 est = poses[i - 1].inverse() * poses[i];
         const Pose3 gt = ref[chain[i - 1]].inverse() * ref[chain[i]];
-        printStep("frame " + std::to_string(chain[i - 1]) + " -> " + std::to_string(chain[i]), stepError(est, gt), 5.0, 0.2,
-                  fillNote(chain[i - 1], chain[i]));
+        printStep("frame " + std::to_string(chain[i - 1]) + " -> " + std::to_string(chain[i]), stepError(est, gt), 5.0,
+                  0.2, fillNote(chain[i - 1], chain[i]));
       }
     }
   } else {
@@ -202,8 +203,8 @@ void syntheticTrial(const SyntheticLidar& lidar, double speed, double yaw_rate_a
   };
   for (int k = 0; k < n_scans; ++k) {
     const double t_end = 0.1 + lidar.period * k;
-    scans.push_back(simulateSweep(scene, lidar, toStampNs(1.0 + t_end),
-                                  [&](double dt) { return pose_at_abs(t_end + dt); }, &rng));
+    scans.push_back(simulateSweep(
+        scene, lidar, toStampNs(1.0 + t_end), [&](double dt) { return pose_at_abs(t_end + dt); }, &rng));
     if (truth_dewarp == TruthDewarp::kTrueMotion)
       scans.back() = dewarp(scans.back(), [&](StampNs st) { return pose_at_abs(toSeconds(st) - 1.0); });
     if (truth_dewarp == TruthDewarp::kTrueConstantVelocity)
@@ -221,8 +222,8 @@ void sectionSpeed(const LoamParams& params, const std::vector<double>& kitti_tim
   std::cout << std::fixed << std::setprecision(1);
   if (!kitti_times.empty())
     std::cout << "  KITTI HDL-64E (~120k points, 64 lines x ~1900): median " << bench::quantile(kitti_times, 0.5)
-              << " ms, p95 " << bench::quantile(kitti_times, 0.95) << " ms  (" << kitti_times.size() << " scans; wall median "
-              << bench::quantile(g_wall_ms, 0.5) << " ms)\n";
+              << " ms, p95 " << bench::quantile(kitti_times, 0.95) << " ms  (" << kitti_times.size()
+              << " scans; wall median " << bench::quantile(g_wall_ms, 0.5) << " ms)\n";
   for (int rings : {64, 128}) {
     SyntheticLidar lidar;
     lidar.rings = rings;
@@ -240,9 +241,9 @@ void sectionSpeed(const LoamParams& params, const std::vector<double>& kitti_tim
     const auto seg = segmentErrors(est, gt, {10.0}, 1);
     std::cout << "  synthetic " << rings << " x 1024 (" << pts / scans.size() << " returns/scan): median "
               << bench::quantile(times, 0.5) << " ms, p95 " << bench::quantile(times, 0.95) << " ms (wall median "
-              << bench::quantile(g_wall_ms, 0.5) << " ms)  (drift over 10 m: "
-              << std::setprecision(2) << seg[0].translation_percent << " %, " << std::setprecision(4)
-              << seg[0].rotation_deg_per_m << " deg/m)\n"
+              << bench::quantile(g_wall_ms, 0.5) << " ms)  (drift over 10 m: " << std::setprecision(2)
+              << seg[0].translation_percent << " %, " << std::setprecision(4) << seg[0].rotation_deg_per_m
+              << " deg/m)\n"
               << std::setprecision(1);
     // Per-stage split (CPU ms per scan, median): scan lines + features, local-map update (3-scan union + k-d
     // trees), the rest (guess scoring, registration, deskew) = total - the two.
@@ -260,8 +261,8 @@ void sectionSpeed(const LoamParams& params, const std::vector<double>& kitti_tim
     }
     const double feat = bench::quantile(t_feat, 0.5), mapu = bench::quantile(t_map, 0.5);
     std::cout << "    split: scan lines + features " << feat << " ms, local-map update " << mapu
-              << " ms, registration (guesses, k-NN, fits, Gauss-Newton, deskew) ~" << bench::quantile(times, 0.5) - feat - mapu
-              << " ms\n";
+              << " ms, registration (guesses, k-NN, fits, Gauss-Newton, deskew) ~"
+              << bench::quantile(times, 0.5) - feat - mapu << " ms\n";
   }
 }
 
@@ -286,8 +287,9 @@ void sectionDrift(const LoamParams& params) {
     for (const auto& r : res) warn += r.ok ? 0 : 1;
     double len = 0.0;
     for (std::size_t i = 1; i < gt.size(); ++i) len += (gt[i].translation() - gt[i - 1].translation()).norm();
-    std::cout << "  " << tr.name << ", " << std::fixed << std::setprecision(0) << len << " m, " << scans.size() << " scans, "
-              << warn << " warnings, ATE " << std::setprecision(3) << absoluteTrajectoryError(est, gt).rmse << " m\n";
+    std::cout << "  " << tr.name << ", " << std::fixed << std::setprecision(0) << len << " m, " << scans.size()
+              << " scans, " << warn << " warnings, ATE " << std::setprecision(3)
+              << absoluteTrajectoryError(est, gt).rmse << " m\n";
     for (const auto& e : segmentErrors(est, gt, {25.0, 50.0, 100.0}, 1)) {
       std::cout << "    " << std::setw(4) << std::setprecision(0) << e.length << " m: ";
       if (e.count == 0)
@@ -313,11 +315,12 @@ void sectionDriftSources(const LoamParams& params) {
     bool sway;
     TruthDewarp truth_dewarp;
   };
-  for (const Variant& v : {Variant{"walking with sway (as in c)", true, TruthDewarp::kNone},
-                           Variant{"same, dewarped with the true motion", true, TruthDewarp::kTrueMotion},
-                           Variant{"same, true sweep motion at constant velocity", true, TruthDewarp::kTrueConstantVelocity},
-                           Variant{"walking without sway", false, TruthDewarp::kNone},
-                           Variant{"without sway, dewarped with the true motion", false, TruthDewarp::kTrueMotion}}) {
+  for (const Variant& v :
+       {Variant{"walking with sway (as in c)", true, TruthDewarp::kNone},
+        Variant{"same, dewarped with the true motion", true, TruthDewarp::kTrueMotion},
+        Variant{"same, true sweep motion at constant velocity", true, TruthDewarp::kTrueConstantVelocity},
+        Variant{"walking without sway", false, TruthDewarp::kNone},
+        Variant{"without sway, dewarped with the true motion", false, TruthDewarp::kTrueMotion}}) {
     SyntheticLidar lidar;
     lidar.range_noise = 0.01;
     std::vector<Scan> scans;
@@ -336,9 +339,9 @@ void sectionDriftSources(const LoamParams& params) {
     const Eigen::Vector3d sd = (sum2 / n - mean.cwiseProduct(mean)).cwiseMax(0.0).cwiseSqrt();
     const auto seg = segmentErrors(est, gt, {25.0}, 1);
     std::cout << "  " << std::left << std::setw(46) << v.name << std::right << std::fixed << std::setprecision(5)
-              << "25 m: " << seg[0].rotation_deg_per_m << " deg/m;  per scan (deg) roll/pitch/yaw mean "
-              << mean.x() << " " << mean.y() << " " << mean.z() << ", sd " << std::setprecision(4) << sd.x() << " "
-              << sd.y() << " " << sd.z() << "\n";
+              << "25 m: " << seg[0].rotation_deg_per_m << " deg/m;  per scan (deg) roll/pitch/yaw mean " << mean.x()
+              << " " << mean.y() << " " << mean.z() << ", sd " << std::setprecision(4) << sd.x() << " " << sd.y() << " "
+              << sd.z() << "\n";
   }
 }
 }  // namespace

@@ -83,19 +83,29 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto val = [&]() { return std::string(i + 1 < argc ? argv[++i] : ""); };
-    if (a == "--sim") sim_config = val();
-    else if (a == "--lidar") lidar = val();
-    else if (a == "--length") length = std::stod(val());
-    else if (a == "--comm") comm = val();
-    else if (a == "--registration-threads") threads = static_cast<unsigned>(std::stoul(val()));
-    else if (a == "--report-every") report_every = std::stoul(val());
-    else if (a == "--target-keyframes") target_keyframes = std::stoul(val());
-    else if (a == "--target-robots") target_robots = std::stoul(val());
-    else if (a == "--no-spill") spill = false;
+    if (a == "--sim")
+      sim_config = val();
+    else if (a == "--lidar")
+      lidar = val();
+    else if (a == "--length")
+      length = std::stod(val());
+    else if (a == "--comm")
+      comm = val();
+    else if (a == "--registration-threads")
+      threads = static_cast<unsigned>(std::stoul(val()));
+    else if (a == "--report-every")
+      report_every = std::stoul(val());
+    else if (a == "--target-keyframes")
+      target_keyframes = std::stoul(val());
+    else if (a == "--target-robots")
+      target_robots = std::stoul(val());
+    else if (a == "--no-spill")
+      spill = false;
     else {
-      std::cerr << "usage: bench_keyframe_memory [--sim FILE] [--lidar os1_64|os1_128] [--length M] [--comm wifi|proradio]\n"
-                   "         [--registration-threads N] [--report-every K] [--target-keyframes N] [--target-robots R]\n"
-                   "         [--no-spill]\n";
+      std::cerr
+          << "usage: bench_keyframe_memory [--sim FILE] [--lidar os1_64|os1_128] [--length M] [--comm wifi|proradio]\n"
+             "         [--registration-threads N] [--report-every K] [--target-keyframes N] [--target-robots R]\n"
+             "         [--no-spill]\n";
       return 2;
     }
   }
@@ -166,13 +176,14 @@ int main(int argc, char** argv) {
       FrontendFootprint team;
       for (char robot : run.robots()) team += run.frontend(robot).footprint(seen);
       const FeatureCacheFootprint fc = run.frontend(run.robots().front()).featureCache().footprint();
-      std::printf("keyframes %5zu  RSS %7.1f MB  peak %7.1f MB | scans own %zu + received %zu: %7.1f MB in memory, "
-                  "%7.1f MB spilled | features %zu: %7.1f MB in memory, %7.1f MB spilled | descriptors %6.1f MB | "
-                  "LC %zu+%zu (%.0f s)\n",
-                  kfs, mb(r.rss), mb(r.hwm), team.own_scans, team.teammate_scans, mb(team.scan_bytes_in_memory),
-                  mb(team.scan_bytes_spilled), fc.entries, mb(fc.bytes_in_memory), mb(fc.bytes_spilled),
-                  mb(team.descriptor_bytes), run.counts().intra_accepted, run.counts().inter_accepted,
-                  total.elapsedMs() * 1e-3);
+      std::printf(
+          "keyframes %5zu  RSS %7.1f MB  peak %7.1f MB | scans own %zu + received %zu: %7.1f MB in memory, "
+          "%7.1f MB spilled | features %zu: %7.1f MB in memory, %7.1f MB spilled | descriptors %6.1f MB | "
+          "LC %zu+%zu (%.0f s)\n",
+          kfs, mb(r.rss), mb(r.hwm), team.own_scans, team.teammate_scans, mb(team.scan_bytes_in_memory),
+          mb(team.scan_bytes_spilled), fc.entries, mb(fc.bytes_in_memory), mb(fc.bytes_spilled),
+          mb(team.descriptor_bytes), run.counts().intra_accepted, run.counts().inter_accepted,
+          total.elapsedMs() * 1e-3);
       std::fflush(stdout);
     };
 
@@ -185,8 +196,7 @@ int main(int argc, char** argv) {
       KeyframeTaker& taker = takers.at(e.robot);
       std::shared_ptr<const Scan> kf_scan;
       if (taker.update(e.stamp, odo.pose).is_keyframe) {
-        const Scan sweep =
-            simulators.at(e.robot)->simulate(t.body, t.extrinsic, e.stamp - t.shift, t.noise_seed);
+        const Scan sweep = simulators.at(e.robot)->simulate(t.body, t.extrinsic, e.stamp - t.shift, t.noise_seed);
         Scan shifted = sweep;
         shifted.stamp = e.stamp;
         kf_scan = std::make_shared<const Scan>(taker.keyframeScan(shifted, t.sensor));
@@ -212,10 +222,12 @@ int main(int argc, char** argv) {
                 a.keyframes, b.keyframes, mb(base));
     // What a keyframe costs grows with the teammates that receive it (their descriptors, their copies without
     // spilling): the robot-scaled figure assumes the whole slope does, an upper bound.
-    const double robot_scale = trials.size() > 1 ? static_cast<double>(target_robots - 1) / static_cast<double>(trials.size() - 1) : 1.0;
-    std::printf("extrapolated peak for %zu keyframes: %.2f GB; with %zu robots instead of %zu (slope x %.2f): %.2f GB\n",
-                target_keyframes, (base + slope * static_cast<double>(target_keyframes)) / 1e9, target_robots,
-                trials.size(), robot_scale, (base + slope * robot_scale * static_cast<double>(target_keyframes)) / 1e9);
+    const double robot_scale =
+        trials.size() > 1 ? static_cast<double>(target_robots - 1) / static_cast<double>(trials.size() - 1) : 1.0;
+    std::printf(
+        "extrapolated peak for %zu keyframes: %.2f GB; with %zu robots instead of %zu (slope x %.2f): %.2f GB\n",
+        target_keyframes, (base + slope * static_cast<double>(target_keyframes)) / 1e9, target_robots, trials.size(),
+        robot_scale, (base + slope * robot_scale * static_cast<double>(target_keyframes)) / 1e9);
   } catch (const std::exception& e) {
     std::cerr << "bench_keyframe_memory: " << e.what() << "\n";
     return 1;

@@ -151,11 +151,16 @@ int main(int argc, char** argv) {
     if (a == "--beams" && i + 1 < argc) {
       beam_counts.clear();
       for (const auto& b : splitList(argv[++i])) beam_counts.push_back(std::stoi(b));
-    } else if (a == "--runs" && i + 1 < argc) runs = splitList(argv[++i]);
-    else if (a == "--dir" && i + 1 < argc) dir = argv[++i];
-    else if (a == "--sim-cache" && i + 1 < argc) sim_cache = argv[++i];
-    else if (a == "--comm" && i + 1 < argc) comm = argv[++i];
-    else if (a == "--short") short_routes = true;
+    } else if (a == "--runs" && i + 1 < argc)
+      runs = splitList(argv[++i]);
+    else if (a == "--dir" && i + 1 < argc)
+      dir = argv[++i];
+    else if (a == "--sim-cache" && i + 1 < argc)
+      sim_cache = argv[++i];
+    else if (a == "--comm" && i + 1 < argc)
+      comm = argv[++i];
+    else if (a == "--short")
+      short_routes = true;
     else {
       std::cerr << "usage: bench_sequence_speed [--beams 64,128] [--runs off,first,warm] [--dir DIR] "
                    "[--sim-cache DIR] [--comm wifi] [--short]\n";
@@ -192,9 +197,9 @@ int main(int argc, char** argv) {
         if (run == "first") fs::remove_all(cache);
         const std::string env = "COSMO_SCAN_CACHE=" + (run == "off" ? std::string("off") : cache.string());
         const std::string load = loadAverage();
-        const Run r = runProgram({(bin / "cosmo_generate").string(), sequence, "--out", out.string(), "--comm", comm,
-                                  "--quiet"},
-                                 {env}, dir / ("generate_" + std::to_string(beams) + "_" + run + ".log"));
+        const Run r =
+            runProgram({(bin / "cosmo_generate").string(), sequence, "--out", out.string(), "--comm", comm, "--quiet"},
+                       {env}, dir / ("generate_" + std::to_string(beams) + "_" + run + ".log"));
         if (r.status != 0) throw std::runtime_error("cosmo_generate failed (" + run + "):\n" + r.output);
         std::smatch m;
         if (!std::regex_search(r.output, m, std::regex(R"(trials, ([0-9.]+) s, noise models)")))
@@ -202,8 +207,10 @@ int main(int argc, char** argv) {
         const double seconds = std::stod(m[1]);
         const fs::path jrl = out / (name + "_" + comm + ".jrl");
         std::string same = "-";
-        if (first_jrl.empty()) first_jrl = jrl;
-        else same = sameBytes(first_jrl, jrl) ? "identical" : "DIFFERENT";
+        if (first_jrl.empty())
+          first_jrl = jrl;
+        else
+          same = sameBytes(first_jrl, jrl) ? "identical" : "DIFFERENT";
         std::printf("%-6d %-6s %9.1f %9.1f %9.2f %11.2f %9.0f %6s  %s (%.1f s of sequence)\n", beams, run.c_str(),
                     r.wall_s, r.cpu_s, seconds / r.wall_s, r.cpu_s / seconds, directoryMb(cache), load.c_str(),
                     same.c_str(), seconds);

@@ -108,8 +108,8 @@ void realNearFar(const RealSet& set, const PlaceRecognitionParams& params, doubl
   for (std::size_t i = 0; i < sc.size(); ++i)
     for (std::size_t j = i + 1; j < sc.size(); ++j) {
       const double sep = (set.poses[i].translation() - set.poses[j].translation()).norm();
-      const double d = scanContextDistance(sc[j], sc[i], params.sc.empty_columns, params.sc.coarse_search_radius)
-                           .distance;
+      const double d =
+          scanContextDistance(sc[j], sc[i], params.sc.empty_columns, params.sc.coarse_search_radius).distance;
       if (sep <= near_m) near.add(d);
       if (sep >= far_m) far.add(d);
     }
@@ -118,7 +118,7 @@ void realNearFar(const RealSet& set, const PlaceRecognitionParams& params, doubl
   std::printf("  %-26s far pairs  (>= %.0f m): n=%3zu distance mean %.3f [min %.3f, max %.3f]  -> %s\n", "", far_m,
               far.v.size(), far.mean(), far.min(), far.max(),
               near.v.empty() || far.v.empty() ? "n/a"
-              : near.max() < far.min()       ? "separated (max near < min far)"
+              : near.max() < far.min()        ? "separated (max near < min far)"
                                               : "overlapping");
 }
 
@@ -153,9 +153,10 @@ void realYaw(const RealSet& set, const PlaceRecognitionParams& params, double ne
   }
   std::printf("  %-26s rotated copy: %zu cases, |yaw error| mean %.2f deg, max %.2f deg, %d within one sector\n",
               set.name.c_str(), self_err.v.size(), self_err.mean(), self_err.max(), self_within);
-  std::printf("  %-26s rotated near pair (<= %.0f m): %zu cases, |yaw error| mean %.2f deg, p95 %.2f, max %.2f, "
-              "%d within one sector\n",
-              "", near_m, pair_err.v.size(), pair_err.mean(), pair_err.q(0.95), pair_err.max(), pair_within);
+  std::printf(
+      "  %-26s rotated near pair (<= %.0f m): %zu cases, |yaw error| mean %.2f deg, p95 %.2f, max %.2f, "
+      "%d within one sector\n",
+      "", near_m, pair_err.v.size(), pair_err.mean(), pair_err.q(0.95), pair_err.max(), pair_within);
 }
 
 /// Full shift search vs coarse sector-key alignment, and point_stride vs full resolution, on real pairs.
@@ -177,9 +178,10 @@ void realSearchVariants(const RealSet& set, const PlaceRecognitionParams& params
           increase.add(coarse.distance - full.distance);
         }
       }
-    std::printf("  %-26s coarse alignment +-%d sectors: same shift as full search in %d/%d near (<= 3 m) or "
-                "self pairs with turns, distance increase mean %.4f max %.4f\n",
-                set.name.c_str(), radius, same, total, increase.mean(), increase.max());
+    std::printf(
+        "  %-26s coarse alignment +-%d sectors: same shift as full search in %d/%d near (<= 3 m) or "
+        "self pairs with turns, distance increase mean %.4f max %.4f\n",
+        set.name.c_str(), radius, same, total, increase.mean(), increase.max());
   }
   for (const int stride : {2, 4, 8}) {
     PlaceRecognitionParams p = params;
@@ -190,15 +192,15 @@ void realSearchVariants(const RealSet& set, const PlaceRecognitionParams& params
       self.add(scanContextDistance(thin, sc[i], p.sc.empty_columns).distance);
       for (std::size_t j = i + 1; j < set.scans.size(); ++j) {
         const double sep = (set.poses[i].translation() - set.poses[j].translation()).norm();
-        const double d =
-            scanContextDistance(makeScanContext(set.scans[j], p.sc), thin, p.sc.empty_columns).distance;
+        const double d = scanContextDistance(makeScanContext(set.scans[j], p.sc), thin, p.sc.empty_columns).distance;
         if (sep <= near_m) near.add(d);
         if (sep >= 15.0) far.add(d);
       }
     }
-    std::printf("  %-26s point_stride %d: distance to the full-resolution descriptor mean %.3f max %.3f; near "
-                "mean %.3f max %.3f, far mean %.3f min %.3f\n",
-                "", stride, self.mean(), self.max(), near.mean(), near.max(), far.mean(), far.min());
+    std::printf(
+        "  %-26s point_stride %d: distance to the full-resolution descriptor mean %.3f max %.3f; near "
+        "mean %.3f max %.3f, far mean %.3f min %.3f\n",
+        "", stride, self.mean(), self.max(), near.mean(), near.max(), far.mean(), far.min());
   }
 }
 
@@ -237,8 +239,10 @@ Scan organizedScan(int beams, int columns, unsigned seed) {
       const double az = 2.0 * M_PI * c / columns;
       const int b = c * blocks / columns;
       double range = 120.0;  // no return: beyond max_range
-      if (el < 0.0) range = std::min(dist[b] / std::cos(el), h / std::tan(-el) / std::cos(el));
-      else if (dist[b] * std::tan(el) < height[b] - h) range = dist[b] / std::cos(el);
+      if (el < 0.0)
+        range = std::min(dist[b] / std::cos(el), h / std::tan(-el) / std::cos(el));
+      else if (dist[b] * std::tan(el) < height[b] - h)
+        range = dist[b] / std::cos(el);
       scan.points.emplace_back(static_cast<float>(range * std::cos(el) * std::cos(az)),
                                static_cast<float>(range * std::cos(el) * std::sin(az)),
                                static_cast<float>(range * std::sin(el)));
@@ -279,10 +283,10 @@ void runSpeed(const PlaceRecognitionParams& params, int repeat) {
         cpu.push_back(cw.elapsedMs());
         ms.push_back(sw.elapsedMs());
       }
-      std::printf("  descriptor %3dx1024 (%6zu points) point_stride %d: wall median %.3f ms p95 %.3f ms | "
-                  "thread CPU median %.3f ms\n",
-                  beams, scan.size(), stride, bench::quantile(ms, 0.5), bench::quantile(ms, 0.95),
-                  bench::quantile(cpu, 0.5));
+      std::printf(
+          "  descriptor %3dx1024 (%6zu points) point_stride %d: wall median %.3f ms p95 %.3f ms | "
+          "thread CPU median %.3f ms\n",
+          beams, scan.size(), stride, bench::quantile(ms, 0.5), bench::quantile(ms, 0.95), bench::quantile(cpu, 0.5));
     }
   }
   {
@@ -322,11 +326,11 @@ void runSpeed(const PlaceRecognitionParams& params, int repeat) {
     }
     double insert_total = 0.0;
     for (double v : insert_ms) insert_total += v;
-    std::printf("  database %5zu entries (%zu in the k-d tree): query (%d candidates) wall median %.3f ms p95 %.3f "
-                "ms | thread CPU median %.3f ms; insert mean (rebuilds included) %.4f ms, max %.2f ms\n",
-                n, db.indexedSize(), params.num_candidates, bench::quantile(query_ms, 0.5),
-                bench::quantile(query_ms, 0.95), bench::quantile(query_cpu, 0.5), insert_total / n,
-                bench::quantile(insert_ms, 1.0));
+    std::printf(
+        "  database %5zu entries (%zu in the k-d tree): query (%d candidates) wall median %.3f ms p95 %.3f "
+        "ms | thread CPU median %.3f ms; insert mean (rebuilds included) %.4f ms, max %.2f ms\n",
+        n, db.indexedSize(), params.num_candidates, bench::quantile(query_ms, 0.5), bench::quantile(query_ms, 0.95),
+        bench::quantile(query_cpu, 0.5), insert_total / n, bench::quantile(insert_ms, 1.0));
   }
 }
 
@@ -339,11 +343,16 @@ int main(int argc, char** argv) {
   int repeat = 50;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--real") real = true;
-    else if (a == "--speed") speed = true;
-    else if (a == "--sim" && i + 1 < argc) sims.push_back(argv[++i]);
-    else if (a == "--config" && i + 1 < argc) config = argv[++i];
-    else if (a == "--repeat" && i + 1 < argc) repeat = std::stoi(argv[++i]);
+    if (a == "--real")
+      real = true;
+    else if (a == "--speed")
+      speed = true;
+    else if (a == "--sim" && i + 1 < argc)
+      sims.push_back(argv[++i]);
+    else if (a == "--config" && i + 1 < argc)
+      config = argv[++i];
+    else if (a == "--repeat" && i + 1 < argc)
+      repeat = std::stoi(argv[++i]);
     else {
       std::cerr << "usage: bench_scancontext [--real] [--speed] [--sim sequence.yaml ...] [--config file.yaml] "
                    "[--repeat N]\n";

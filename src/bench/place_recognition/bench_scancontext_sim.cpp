@@ -62,8 +62,8 @@ std::vector<Keyframes> loadSequence(const std::string& yaml_path, const PlaceRec
       std::printf("  trial %s: %s or %s missing, skipped\n", kf.robot.c_str(), bag.c_str(), ref.c_str());
       continue;
     }
-    std::vector<double> e = t["extrinsic"] ? t["extrinsic"].as<std::vector<double>>()
-                                           : std::vector<double>{0, 0, 0, 0, 0, 0, 1};
+    std::vector<double> e =
+        t["extrinsic"] ? t["extrinsic"].as<std::vector<double>>() : std::vector<double>{0, 0, 0, 0, 0, 0, 1};
     const Pose3 T_body_lidar = parsePoseNumbers(e, yaml_path + ": extrinsic");
     const Trajectory body = readMcdPoseCsv(ref.string());
     const std::string topic = t["topic"] ? t["topic"].as<std::string>() : "/os_cloud_node/points";
@@ -81,8 +81,8 @@ std::vector<Keyframes> loadSequence(const std::string& yaml_path, const PlaceRec
       kf.descriptors.push_back(makeScanContext(dewarpWithReference(scan, body, T_body_lidar), params.sc));
       kf.positions.push_back(lidar.translation());
     }
-    std::printf("  trial %s: %zu scans read, %zu keyframes (%.1f s)\n", kf.robot.c_str(), scans,
-                kf.descriptors.size(), sw.elapsedMs() * 1e-3);
+    std::printf("  trial %s: %zu scans read, %zu keyframes (%.1f s)\n", kf.robot.c_str(), scans, kf.descriptors.size(),
+                sw.elapsedMs() * 1e-3);
     std::fflush(stdout);
     out.push_back(std::move(kf));
   }
@@ -93,9 +93,10 @@ void printTable(const char* title, const std::vector<QueryOutcome>& outcomes, do
   std::printf("%s: %zu queries\n", title, outcomes.size());
   for (const double radius : {5.0, 10.0}) {
     const PrPoint d = precisionRecallAt(outcomes, threshold, radius);
-    std::printf("  default threshold %.3f, revisit <= %.0f m: precision %.3f recall %.3f (%zu/%zu detections "
-                "true, %zu revisits)\n",
-                threshold, radius, d.precision, d.recall, d.true_positives, d.detections, d.revisits);
+    std::printf(
+        "  default threshold %.3f, revisit <= %.0f m: precision %.3f recall %.3f (%zu/%zu detections "
+        "true, %zu revisits)\n",
+        threshold, radius, d.precision, d.recall, d.true_positives, d.detections, d.revisits);
   }
   std::printf("  threshold | 5 m: det  TP  revisits precision recall | 10 m: TP revisits precision recall\n");
   for (double t = 0.05; t <= 0.601; t += 0.025) {
@@ -115,10 +116,14 @@ int main(int argc, char** argv) {
   std::size_t max_keyframes = 1000000;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--config" && i + 1 < argc) config = argv[++i];
-    else if (a == "--kf" && i + 1 < argc) kf_m = std::stod(argv[++i]);
-    else if (a == "--max-keyframes" && i + 1 < argc) max_keyframes = std::stoul(argv[++i]);
-    else if (!a.empty() && a[0] != '-') sequences.push_back(a);
+    if (a == "--config" && i + 1 < argc)
+      config = argv[++i];
+    else if (a == "--kf" && i + 1 < argc)
+      kf_m = std::stod(argv[++i]);
+    else if (a == "--max-keyframes" && i + 1 < argc)
+      max_keyframes = std::stoul(argv[++i]);
+    else if (!a.empty() && a[0] != '-')
+      sequences.push_back(a);
     else {
       std::cerr << "usage: bench_scancontext_sim <sequence.yaml> [...] [--config file.yaml] [--kf 2.0] "
                    "[--max-keyframes N]\n";

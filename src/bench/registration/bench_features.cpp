@@ -25,8 +25,10 @@ int main(int argc, char** argv) {
   RegistrationParams params;
   for (int i = 3; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--repeats" && i + 1 < argc) repeats = std::stoi(argv[++i]);
-    else if (a == "--config" && i + 1 < argc) params = RegistrationParams::fromConfig(ConfigNode::load(argv[++i]));
+    if (a == "--repeats" && i + 1 < argc)
+      repeats = std::stoi(argv[++i]);
+    else if (a == "--config" && i + 1 < argc)
+      params = RegistrationParams::fromConfig(ConfigNode::load(argv[++i]));
   }
   const Scan src = readScanFile(argv[1]), tgt = readScanFile(argv[2]);
   const GlobalRegistration reg(params);
@@ -45,9 +47,12 @@ int main(int argc, char** argv) {
   const auto down = voxelDownsample(src.points, params.voxel_size, params.min_range, params.max_range);
   const double radius = std::max({params.normal_radius, params.fpfh_radius, params.spfh_radius});
   const NeighbourPairs pairs = findNeighbourPairs(down, static_cast<float>(radius));
-  std::printf("source: %zu points -> %zu downsampled -> %zu with normal, %zu keypoints; %zu neighbour pairs "
-              "within %.2f m\n", src.size(), down.size(), fs.points.size(), fs.keypoints.size(), pairs.size(), radius);
-  std::printf("target: %zu points -> %zu with normal, %zu keypoints\n", tgt.size(), ft.points.size(), ft.keypoints.size());
+  std::printf(
+      "source: %zu points -> %zu downsampled -> %zu with normal, %zu keypoints; %zu neighbour pairs "
+      "within %.2f m\n",
+      src.size(), down.size(), fs.points.size(), fs.keypoints.size(), pairs.size(), radius);
+  std::printf("target: %zu points -> %zu with normal, %zu keypoints\n", tgt.size(), ft.points.size(),
+              ft.keypoints.size());
   std::printf("correspondences %zu, clique %zu, final %zu, overlap %.3f, %s\n", r.correspondences, r.pruned_inliers,
               r.final_inliers, r.overlap, r.valid ? "accepted" : "rejected");
   std::printf("CPU ms over %d repeats (both clouds' features): median, min\n", repeats);

@@ -52,21 +52,23 @@ Run runOne(const GlobalRegistration& reg, const std::string& name, const Scan& s
   run.r = reg.align(src, tgt, &timer);
   run.ms = timer.milliseconds();
   run.total = timer.total();
-  run.e = poseError(run.r.T_target_source, T_expected * Pose3(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())).inverse());
+  run.e =
+      poseError(run.r.T_target_source, T_expected * Pose3(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())).inverse());
   run.success = run.r.valid && run.e.translation_m <= max_t && run.e.rotation_deg <= max_r;
   return run;
 }
 
 void printRun(const Run& x) {
-  std::printf("%-18s %6.2f %5.0f %6zu %6zu %6zu %6zu %6zu %5.2f %5.2f %4s %8.3f %8.3f %8.1f %s\n", x.name.c_str(), x.dist,
-              x.yaw, x.r.source_points, x.r.correspondences, x.r.max_core_size, x.r.pruned_inliers, x.r.final_inliers,
-              x.r.overlap, x.r.structure_overlap, x.r.valid ? "yes" : "no", x.e.translation_m, x.e.rotation_deg, x.total, x.success ? "OK" : "FAIL");
+  std::printf("%-18s %6.2f %5.0f %6zu %6zu %6zu %6zu %6zu %5.2f %5.2f %4s %8.3f %8.3f %8.1f %s\n", x.name.c_str(),
+              x.dist, x.yaw, x.r.source_points, x.r.correspondences, x.r.max_core_size, x.r.pruned_inliers,
+              x.r.final_inliers, x.r.overlap, x.r.structure_overlap, x.r.valid ? "yes" : "no", x.e.translation_m,
+              x.e.rotation_deg, x.total, x.success ? "OK" : "FAIL");
   std::fflush(stdout);
 }
 
 void printHeader() {
-  std::printf("%-18s %6s %5s %6s %6s %6s %6s %6s %5s %5s %4s %8s %8s %8s %s\n", "pair", "dist_m", "yaw", "srcpts", "corr",
-              "core", "clique", "final", "ovl", "sovl", "acc", "err_m", "err_deg", "ms", "result");
+  std::printf("%-18s %6s %5s %6s %6s %6s %6s %6s %5s %5s %4s %8s %8s %8s %s\n", "pair", "dist_m", "yaw", "srcpts",
+              "corr", "core", "clique", "final", "ovl", "sovl", "acc", "err_m", "err_deg", "ms", "result");
 }
 
 void printSpeed(const std::string& label, const std::vector<Run>& runs) {
@@ -119,7 +121,8 @@ SynthPair syntheticPair(const Scan& scan, double offset, double yaw, double dir,
     if (qd.head<2>().norm() <= keep && u(rng) > 0.2)
       p.target.points.push_back(q + Eigen::Vector3f(noise(rng), noise(rng), noise(rng)));
     if ((qd - c).head<2>().norm() <= keep && u(rng) > 0.2)
-      p.source.points.push_back((T_source_target * qd).cast<float>() + Eigen::Vector3f(noise(rng), noise(rng), noise(rng)));
+      p.source.points.push_back((T_source_target * qd).cast<float>() +
+                                Eigen::Vector3f(noise(rng), noise(rng), noise(rng)));
   }
   return p;
 }
@@ -135,12 +138,18 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto val = [&]() { return std::string(i + 1 < argc ? argv[++i] : ""); };
-    if (a == "--config") config_path = val();
-    else if (a == "--write-pairs") write_pairs = val();
-    else if (a == "--speed-repeats") speed_repeats = std::stoi(val());
-    else if (a == "--dense") dense = true;
-    else if (a == "--synthetic") synthetic = std::stoi(val());
-    else if (a == "--seed") seed = std::stoull(val());
+    if (a == "--config")
+      config_path = val();
+    else if (a == "--write-pairs")
+      write_pairs = val();
+    else if (a == "--speed-repeats")
+      speed_repeats = std::stoi(val());
+    else if (a == "--dense")
+      dense = true;
+    else if (a == "--synthetic")
+      synthetic = std::stoi(val());
+    else if (a == "--seed")
+      seed = std::stoull(val());
     else if (a == "--yaws") {
       yaws.clear();
       std::stringstream ss(val());
@@ -214,8 +223,10 @@ int main(int argc, char** argv) {
     std::vector<std::string> bases;
     for (const auto& p : pairs) bases.push_back(p.target);
     int ok = 0, accepted = 0;
-    std::printf("\n(c) %d synthetic pairs (crop 40 m radius around two virtual sensors 0-10 m apart in one real scan,"
-                " random yaw, 2 cm noise, 20 %% drop), success = accepted and < 0.5 m, < 2 deg\n", synthetic);
+    std::printf(
+        "\n(c) %d synthetic pairs (crop 40 m radius around two virtual sensors 0-10 m apart in one real scan,"
+        " random yaw, 2 cm noise, 20 %% drop), success = accepted and < 0.5 m, < 2 deg\n",
+        synthetic);
     for (int k = 0; k < synthetic; ++k) {
       const std::string& base = bases[static_cast<std::size_t>(k) % bases.size()];
       const double off = 10.0 * u(rng), yaw = 2 * M_PI * u(rng), dir = 2 * M_PI * u(rng);
@@ -233,18 +244,21 @@ int main(int argc, char** argv) {
     const std::string m = *root + "/mulran_kaist03_keyframes/Scans/";
     const std::string h = *root + "/hdl32_pair/";
     const std::vector<std::pair<std::string, std::string>> neg = {
-        {k + "000000.bin", k + "000094.bin"}, {k + "000000.bin", k + "000198.bin"}, {k + "000094.bin", k + "000198.bin"},
-        {k + "000040.bin", k + "000198.bin"}, {k + "000020.bin", k + "000094.bin"}, {k + "000040.bin", k + "000094.bin"},
-        {k + "000001.bin", k + "000199.bin"}, {k + "000095.bin", k + "000199.bin"}, {m + "000000.pcd", k + "000000.bin"},
-        {m + "000010.pcd", k + "000094.bin"}, {m + "000020.pcd", h + "251370668.pcd"}, {h + "251371071.pcd", k + "000198.bin"},
+        {k + "000000.bin", k + "000094.bin"},    {k + "000000.bin", k + "000198.bin"},
+        {k + "000094.bin", k + "000198.bin"},    {k + "000040.bin", k + "000198.bin"},
+        {k + "000020.bin", k + "000094.bin"},    {k + "000040.bin", k + "000094.bin"},
+        {k + "000001.bin", k + "000199.bin"},    {k + "000095.bin", k + "000199.bin"},
+        {m + "000000.pcd", k + "000000.bin"},    {m + "000010.pcd", k + "000094.bin"},
+        {m + "000020.pcd", h + "251370668.pcd"}, {h + "251371071.pcd", k + "000198.bin"},
         {m + "000000.pcd", m + "000020.pcd"}};
     std::printf("\n(c') gate on non-overlapping real pairs (different places / datasets), yaw 0 and 90\n");
     printHeader();
     int acc = 0, n = 0;
     for (const auto& [s, t] : neg)
       for (const double yaw : {0.0, 90.0}) {
-        const Run x = runOne(reg, std::filesystem::path(s).stem().string() + "/" + std::filesystem::path(t).stem().string(),
-                             load(s), load(t), Pose3::Identity(), yaw, 0.0, 0.0);
+        const Run x =
+            runOne(reg, std::filesystem::path(s).stem().string() + "/" + std::filesystem::path(t).stem().string(),
+                   load(s), load(t), Pose3::Identity(), yaw, 0.0, 0.0);
         printRun(x);
         acc += x.r.valid;
         ++n;

@@ -118,7 +118,8 @@ void writeCache(const std::string& path, double kf_m, const std::vector<Keyframe
     out.write(reinterpret_cast<const char*>(&robot), sizeof robot);
     out.write(reinterpret_cast<const char*>(m.data()), sizeof(double) * 16);
     out.write(reinterpret_cast<const char*>(&np), sizeof np);
-    out.write(reinterpret_cast<const char*>(k.scan.points.data()), static_cast<std::streamsize>(sizeof(float) * 3 * np));
+    out.write(reinterpret_cast<const char*>(k.scan.points.data()),
+              static_cast<std::streamsize>(sizeof(float) * 3 * np));
   }
 }
 
@@ -132,15 +133,24 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto val = [&]() { return std::string(i + 1 < argc ? argv[++i] : ""); };
-    if (a == "--config") config = val();
-    else if (a == "--pairs") n_pairs = std::stoi(val());
-    else if (a == "--negatives") n_neg = std::stoi(val());
-    else if (a == "--kf") kf_m = std::stod(val());
-    else if (a == "--max-offset") max_offset = std::stod(val());
-    else if (a == "--min-separation") min_sep = std::stod(val());
-    else if (a == "--seed") seed = std::stoull(val());
-    else if (a == "--cache") cache = val();
-    else if (!a.empty() && a[0] != '-') seq = a;
+    if (a == "--config")
+      config = val();
+    else if (a == "--pairs")
+      n_pairs = std::stoi(val());
+    else if (a == "--negatives")
+      n_neg = std::stoi(val());
+    else if (a == "--kf")
+      kf_m = std::stod(val());
+    else if (a == "--max-offset")
+      max_offset = std::stod(val());
+    else if (a == "--min-separation")
+      min_sep = std::stod(val());
+    else if (a == "--seed")
+      seed = std::stoull(val());
+    else if (a == "--cache")
+      cache = val();
+    else if (!a.empty() && a[0] != '-')
+      seq = a;
     else {
       std::cerr << "usage: bench_registration_sim <sequence.yaml> [--config f] [--pairs N] [--negatives N] [--kf m] "
                    "[--max-offset m] [--min-separation m] [--seed S] [--cache FILE]\n";
@@ -177,8 +187,10 @@ int main(int argc, char** argv) {
     if (static_cast<int>(near.size()) > n_pairs) near.resize(static_cast<std::size_t>(n_pairs));
     if (static_cast<int>(far.size()) > n_neg) far.resize(static_cast<std::size_t>(n_neg));
     std::uniform_real_distribution<double> u(-M_PI, M_PI);
-    std::printf("loop pairs (different robots, <= %.0f m apart, random yaw): %zu; success = accepted and < 0.5 m, "
-                "< 2 deg\n", max_offset, near.size());
+    std::printf(
+        "loop pairs (different robots, <= %.0f m apart, random yaw): %zu; success = accepted and < 0.5 m, "
+        "< 2 deg\n",
+        max_offset, near.size());
     std::printf("%-10s %6s %7s %6s %6s %6s %5s %5s %4s %8s %8s %7s\n", "pair", "dist", "yaw", "corr", "clique", "final",
                 "ovl", "sovl", "acc", "err_m", "err_deg", "cpu_ms");
     int ok = 0, acc = 0;
@@ -198,14 +210,17 @@ int main(int argc, char** argv) {
       const int b = d < 3.0 ? 0 : (d < 6.0 ? 1 : 2);
       bins_n[b]++, bins_ok[b] += success;
       ok += success, acc += r.valid;
-      std::printf("%4d-%-5d %6.2f %7.1f %6zu %6zu %6zu %5.2f %5.2f %4s %8.3f %8.3f %7.1f %s\n", s, t, d, yaw * 180 / M_PI,
-                  r.correspondences, r.pruned_inliers, r.final_inliers, r.overlap, r.structure_overlap, r.valid ? "yes" : "no", e.translation_m,
-                  e.rotation_deg, timer.total(), success ? "OK" : "FAIL");
+      std::printf("%4d-%-5d %6.2f %7.1f %6zu %6zu %6zu %5.2f %5.2f %4s %8.3f %8.3f %7.1f %s\n", s, t, d,
+                  yaw * 180 / M_PI, r.correspondences, r.pruned_inliers, r.final_inliers, r.overlap,
+                  r.structure_overlap, r.valid ? "yes" : "no", e.translation_m, e.rotation_deg, timer.total(),
+                  success ? "OK" : "FAIL");
       std::fflush(stdout);
     }
-    std::printf("success: %d / %zu (%.1f %%), accepted %d; by offset 0-3 m %d/%d, 3-6 m %d/%d, 6-10 m %d/%d; "
-                "median cpu %.1f ms\n", ok, near.size(), near.empty() ? 0.0 : 100.0 * ok / near.size(), acc, bins_ok[0],
-                bins_n[0], bins_ok[1], bins_n[1], bins_ok[2], bins_n[2], bench::quantile(ms, 0.5));
+    std::printf(
+        "success: %d / %zu (%.1f %%), accepted %d; by offset 0-3 m %d/%d, 3-6 m %d/%d, 6-10 m %d/%d; "
+        "median cpu %.1f ms\n",
+        ok, near.size(), near.empty() ? 0.0 : 100.0 * ok / near.size(), acc, bins_ok[0], bins_n[0], bins_ok[1],
+        bins_n[1], bins_ok[2], bins_n[2], bench::quantile(ms, 0.5));
     int false_acc = 0;
     std::vector<double> neg_final, neg_overlap, neg_structure;
     for (const auto& [s, t] : far) {
@@ -218,11 +233,11 @@ int main(int argc, char** argv) {
         std::printf("  false accept %d-%d: %.0f m apart, final inliers %zu\n", s, t,
                     (kfs[s].pose.translation() - kfs[t].pose.translation()).norm(), r.final_inliers);
     }
-    std::printf("non-overlapping pairs: final inliers median %.0f max %.0f; overlap median %.2f max %.2f; "
-                "structure overlap median %.2f max %.2f\n",
-                bench::quantile(neg_final, 0.5), bench::quantile(neg_final, 1.0), bench::quantile(neg_overlap, 0.5),
-                bench::quantile(neg_overlap, 1.0), bench::quantile(neg_structure, 0.5),
-                bench::quantile(neg_structure, 1.0));
+    std::printf(
+        "non-overlapping pairs: final inliers median %.0f max %.0f; overlap median %.2f max %.2f; "
+        "structure overlap median %.2f max %.2f\n",
+        bench::quantile(neg_final, 0.5), bench::quantile(neg_final, 1.0), bench::quantile(neg_overlap, 0.5),
+        bench::quantile(neg_overlap, 1.0), bench::quantile(neg_structure, 0.5), bench::quantile(neg_structure, 1.0));
     std::printf("non-overlapping pairs (> %.0f m apart): %d / %zu accepted by the gate (false-accept rate %.1f %%)\n",
                 min_sep, false_acc, far.size(), far.empty() ? 0.0 : 100.0 * false_acc / far.size());
   } catch (const std::exception& e) {

@@ -36,10 +36,14 @@ int main(int argc, char** argv) {
   int threads = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--config" && i + 1 < argc) config = argv[++i];
-    else if (a == "--scans" && i + 1 < argc) scans = std::stoul(argv[++i]);
-    else if (a == "--threads" && i + 1 < argc) threads = std::stoi(argv[++i]);
-    else if (a == "--sequence") sequence = true;
+    if (a == "--config" && i + 1 < argc)
+      config = argv[++i];
+    else if (a == "--scans" && i + 1 < argc)
+      scans = std::stoul(argv[++i]);
+    else if (a == "--threads" && i + 1 < argc)
+      threads = std::stoi(argv[++i]);
+    else if (a == "--sequence")
+      sequence = true;
     else {
       std::cerr << "usage: bench_sim [--config FILE] [--scans N] [--threads N] [--sequence]\n";
       return 2;

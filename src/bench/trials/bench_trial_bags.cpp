@@ -81,8 +81,10 @@ int main(int argc, char** argv) {
   fs::path dir = fs::temp_directory_path() / ("cosmo_bench_trial_bags_" + std::to_string(::getpid()));
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--scans" && i + 1 < argc) scans = std::stoi(argv[++i]);
-    else if (a == "--dir" && i + 1 < argc) dir = argv[++i];
+    if (a == "--scans" && i + 1 < argc)
+      scans = std::stoi(argv[++i]);
+    else if (a == "--dir" && i + 1 < argc)
+      dir = argv[++i];
     else if (a == "--beams" && i + 1 < argc) {
       beam_counts.clear();
       std::stringstream ss(argv[++i]);
@@ -95,8 +97,8 @@ int main(int argc, char** argv) {
   }
   fs::create_directories(dir);
   ::setenv("COSMO_SCAN_CACHE", (dir / "scan_cache").c_str(), 1);
-  std::printf("%-9s %6s %8s %8s %8s %8s | %12s %12s %12s %12s | %8s  (ms: CPU per scan)\n", "sweep", "scans",
-              "bz2 MB", "raw MB", "ros2 MB", "cache MB", "bz2 1st", "bz2 cached", "raw", "ros2", "pts/scan");
+  std::printf("%-9s %6s %8s %8s %8s %8s | %12s %12s %12s %12s | %8s  (ms: CPU per scan)\n", "sweep", "scans", "bz2 MB",
+              "raw MB", "ros2 MB", "cache MB", "bz2 1st", "bz2 cached", "raw", "ros2", "pts/scan");
   for (int beams : beam_counts) {
     sim::LidarModel lidar = beams == 128 ? sim::LidarModel::os1_128() : sim::LidarModel::os1_64();
     lidar.beams = beams;

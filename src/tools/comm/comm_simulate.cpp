@@ -51,14 +51,22 @@ int main(int argc, char** argv) {
         std::fputs(kUsage, stdout);
         return 0;
       }
-      if (a == "--comm") comm = next();
-      else if (a == "--seed") seed = std::stoull(next());
-      else if (a == "--kf-distance") kf_distance = std::stod(next());
-      else if (a == "--scan-points") scan_points = std::stoul(next());
-      else if (a == "--size-model") size_model = next();
-      else if (a == "--timeout-mode") timeout_mode = next();
-      else if (a == "--tail") tail = std::stod(next());
-      else if (a == "--out") out = next();
+      if (a == "--comm")
+        comm = next();
+      else if (a == "--seed")
+        seed = std::stoull(next());
+      else if (a == "--kf-distance")
+        kf_distance = std::stod(next());
+      else if (a == "--scan-points")
+        scan_points = std::stoul(next());
+      else if (a == "--size-model")
+        size_model = next();
+      else if (a == "--timeout-mode")
+        timeout_mode = next();
+      else if (a == "--tail")
+        tail = std::stod(next());
+      else if (a == "--out")
+        out = next();
       else if (a.size() > 2 && a[1] == '=') {
         std::string path = a.substr(2);
         double offset = 0.0;

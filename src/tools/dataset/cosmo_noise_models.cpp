@@ -29,7 +29,8 @@ void usage(std::ostream& out) {
 }
 
 void printEstimate(const char* what, const cosmo::CovarianceEstimate& e) {
-  std::cout << what << ": " << e.used << " used, " << e.rejected << " over the thresholds\n  sigmas [rx ry rz tx ty tz]:";
+  std::cout << what << ": " << e.used << " used, " << e.rejected
+            << " over the thresholds\n  sigmas [rx ry rz tx ty tz]:";
   for (int i = 0; i < 6; ++i) std::cout << ' ' << std::setprecision(4) << std::sqrt(e.covariance(i, i));
   std::cout << "\n  mean residual:";
   for (int i = 0; i < 6; ++i) std::cout << ' ' << std::setprecision(3) << e.mean_residual(i);
@@ -116,8 +117,9 @@ int main(int argc, char** argv) {
     std::ostringstream header;
     header << "Noise models estimated by cosmo_noise_models (spec section 6) from " << input << "\n"
            << "dataset '" << ds.name << "', robots " << robots << ": " << est.odometry.used << " odometry factors, "
-           << est.loop_closure.used << " loop closures (" << est.loop_closure.rejected << " left out: error >= "
-           << params.max_translation_error << " m or >= " << params.max_rotation_error << " rad)\n"
+           << est.loop_closure.used << " loop closures (" << est.loop_closure.rejected
+           << " left out: error >= " << params.max_translation_error << " m or >= " << params.max_rotation_error
+           << " rad)\n"
            << "Q = " << (params.subtract_mean ? "centred sample covariance, 1/(N-1)" : "(1/N) sum r r^T")
            << " with r = Log(m^-1 * m*), rotation first";
     est.models.save(output, header.str());

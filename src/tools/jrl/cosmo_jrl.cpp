@@ -129,7 +129,8 @@ int solve(const Args& a) {
     if (a.json)
       std::cout << cosmo::backend::checkJson(check) << "\n";
     else
-      std::cout << cosmo::backend::formatCheck(check) << (d.outliers ? "" : "  (no outlier labels: no inliers solve)\n");
+      std::cout << cosmo::backend::formatCheck(check)
+                << (d.outliers ? "" : "  (no outlier labels: no inliers solve)\n");
     return 0;
   });
 }
@@ -165,8 +166,8 @@ int main(int argc, char** argv) {
   }
   Args a;
   a.cmd = args[0];
-  const std::map<std::string, std::vector<std::string>> valued{
-      {"plot", {"-o"}}, {"export", {"--g2o", "--tum", "--labels"}}};
+  const std::map<std::string, std::vector<std::string>> valued{{"plot", {"-o"}},
+                                                               {"export", {"--g2o", "--tum", "--labels"}}};
   for (std::size_t i = 1; i < args.size(); ++i) {
     const std::string& s = args[i];
     const auto v = valued.find(a.cmd);

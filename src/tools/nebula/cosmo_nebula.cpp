@@ -63,8 +63,8 @@ void printSummary(const cosmo::ros_glue::NebulaConversion& c) {
   std::cout << "robots:";
   for (const auto& [ch, r] : g.robots)
     std::cout << ' ' << ch << '=' << (r.name.empty() ? "?" : r.name) << " (" << r.stamps.size() << " poses)";
-  std::cout << "\nloop closures: " << c.report.intra << " intra, " << c.report.inter << " inter ("
-            << c.report.inverted << " stored the other way round: key1 = the later pose)\n";
+  std::cout << "\nloop closures: " << c.report.intra << " intra, " << c.report.inter << " inter (" << c.report.inverted
+            << " stored the other way round: key1 = the later pose)\n";
   std::cout << "ignored edges:";
   if (g.ignored_edges.empty()) std::cout << " none";
   for (const auto& [type, n] : g.ignored_edges) std::cout << ' ' << type << ' ' << n;

@@ -1,6 +1,6 @@
-// cosmo_lidar_odometry (the library target is already named cosmo_odometry): LOAM odometry over a folder of scans (PCD, KITTI .bin) or a bag topic; writes the trajectory
-// (KITTI / TUM) and, given reference poses, prints ATE (SE(3)-aligned), KITTI-style segment errors and the
-// time per scan.
+// cosmo_lidar_odometry (the library target is already named cosmo_odometry): LOAM odometry over a folder of scans (PCD,
+// KITTI .bin) or a bag topic; writes the trajectory (KITTI / TUM) and, given reference poses, prints ATE
+// (SE(3)-aligned), KITTI-style segment errors and the time per scan.
 //
 //   cosmo_lidar_odometry --scans DIR [--poses KITTI_POSES [--calib CALIB.txt]] [--out-kitti F] [--out-tum F]
 //                  [--config config/odometry.yaml] [--period 0.1] [--first N] [--count M] [--quiet]
@@ -40,13 +40,14 @@ double threadCpuMs() {
 }
 
 void usage() {
-  std::cerr << "usage: cosmo_lidar_odometry --scans DIR [--poses KITTI_POSES [--calib CALIB.txt]]\n"
-               "                            | --bag FILE --topic TOPIC [--reference-tum F | --reference-csv pose_inW.csv]\n"
-               "       [--out-kitti F] [--out-tum F] [--config config/odometry.yaml] [--period S]\n"
-               "       [--first N] [--count M] [--segments 10,20,40,100] [--extrinsic \"x y z qx qy qz qw\"] [--quiet]\n"
-               "--extrinsic: T_body_lidar, when the stamped reference is a body trajectory (LiDAR = body * extrinsic).\n"
-               "Folder scans are matched to KITTI pose lines by the number in their file name (000094.bin ->\n"
-               "line 94) and stamped index * period (default 0.1 s).\n";
+  std::cerr
+      << "usage: cosmo_lidar_odometry --scans DIR [--poses KITTI_POSES [--calib CALIB.txt]]\n"
+         "                            | --bag FILE --topic TOPIC [--reference-tum F | --reference-csv pose_inW.csv]\n"
+         "       [--out-kitti F] [--out-tum F] [--config config/odometry.yaml] [--period S]\n"
+         "       [--first N] [--count M] [--segments 10,20,40,100] [--extrinsic \"x y z qx qy qz qw\"] [--quiet]\n"
+         "--extrinsic: T_body_lidar, when the stamped reference is a body trajectory (LiDAR = body * extrinsic).\n"
+         "Folder scans are matched to KITTI pose lines by the number in their file name (000094.bin ->\n"
+         "line 94) and stamped index * period (default 0.1 s).\n";
 }
 
 /// Frame index from a file name like 000094.bin or a folder 000003/points.bin; -1 if none.
@@ -58,9 +59,7 @@ long frameIndexOf(const std::string& path) {
     std::size_t used = 0;
     const long v = std::stol(stem, &used);
     return used == stem.size() ? v : -1;
-  } catch (...) {
-    return -1;
-  }
+  } catch (...) { return -1; }
 }
 using Args = std::map<std::string, std::string>;
 
@@ -223,7 +222,8 @@ void printSegmentErrors(const std::vector<Pose3>& est, const std::vector<Pose3>&
       std::cout << "n/a (trajectory too short)\n";
     else
       std::cout << std::setprecision(3) << e.translation_percent << " %  " << std::setprecision(5)
-                << e.rotation_deg_per_m << " deg/m  (" << e.count << " segments)\n" << std::setprecision(3);
+                << e.rotation_deg_per_m << " deg/m  (" << e.count << " segments)\n"
+                << std::setprecision(3);
   }
 }
 
@@ -283,8 +283,10 @@ int main(int argc, char** argv) {
     const Range range{a.count("first") ? std::stol(a["first"]) : 0, a.count("count") ? std::stol(a["count"]) : -1};
     const std::vector<double> segments = segmentLengths(a);
     OdometryRun run(params, readReference(a), quiet);
-    if (a.count("scans")) runFolder(a["scans"], range, period, run);
-    else runBag(a["bag"], a["topic"], range, run);
+    if (a.count("scans"))
+      runFolder(a["scans"], range, period, run);
+    else
+      runBag(a["bag"], a["topic"], range, run);
     if (a.count("out-kitti")) writeKittiPoses(a["out-kitti"], run.est);
     if (a.count("out-tum")) writeTumTrajectory(a["out-tum"], run.est_traj);
     printTiming(run);

@@ -21,7 +21,8 @@ void usage() {
   std::cerr << "usage: cosmo_check SEQUENCE.yaml [--data-root DIR] [--config-dir DIR] [--noise-models FILE]\n"
                "  --data-root DIR      the folder the trials' bags and references are below (default: the config's\n"
                "                       data_root key, else $COSMO_DATA_ROOT, else the config's folder)\n"
-               "  --config-dir DIR     where noise_models/<environment>.yaml is looked up (default: the source tree's config/)\n"
+               "  --config-dir DIR     where noise_models/<environment>.yaml is looked up (default: the source tree's "
+               "config/)\n"
                "  --noise-models FILE  the noise-model file the run would be given\n"
                "exit 0: the run can produce a labelled dataset; 1: it cannot (the reasons are printed)\n";
 }
@@ -37,13 +38,26 @@ int main(int argc, char** argv) {
       usage();
       return 2;
     }
-    if (a == "--data-root") data_root = argv[++i];
-    else if (a == "--config-dir") config_dir = argv[++i];
-    else if (a == "--noise-models") noise = argv[++i];
-    else if (a == "-h" || a == "--help") { usage(); return 0; }
-    else if (!a.empty() && a[0] == '-') { std::cerr << "unknown option " << a << "\n"; usage(); return 2; }
-    else if (sequence.empty()) sequence = a;
-    else { std::cerr << "unexpected argument " << a << "\n"; usage(); return 2; }
+    if (a == "--data-root")
+      data_root = argv[++i];
+    else if (a == "--config-dir")
+      config_dir = argv[++i];
+    else if (a == "--noise-models")
+      noise = argv[++i];
+    else if (a == "-h" || a == "--help") {
+      usage();
+      return 0;
+    } else if (!a.empty() && a[0] == '-') {
+      std::cerr << "unknown option " << a << "\n";
+      usage();
+      return 2;
+    } else if (sequence.empty())
+      sequence = a;
+    else {
+      std::cerr << "unexpected argument " << a << "\n";
+      usage();
+      return 2;
+    }
   }
   if (sequence.empty()) {
     usage();

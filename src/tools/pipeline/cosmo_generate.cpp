@@ -6,7 +6,8 @@
 //   cosmo_generate SEQUENCE.yaml [--data-root DIR] [--comm wifi,proradio] [--seed N] [--out DIR] [--config-dir DIR]
 //                  [--noise-models FILE] [--outlier-rule fidelity|squared] [--reference-odometry]
 //                  [--registration-threads N] [--max-seconds S] [--no-check] [--quiet]
-//                  [--estimate-noise-models TRIAL [--noise-models-out FILE] [--good-translation M] [--good-rotation RAD]]
+//                  [--estimate-noise-models TRIAL [--noise-models-out FILE] [--good-translation M] [--good-rotation
+//                  RAD]]
 //
 // Noise models: the ones the sequence names (sequence_noise_models.hpp); none: the run stops and says how to make
 // them, or --estimate-noise-models makes them first from that trial run alone (trial_noise_models.hpp).
@@ -14,7 +15,8 @@
 // Determinism: the same sequence, seed and parameters give a byte-identical JRL (the team's events in one order,
 // randomness from the seed only), whatever the threads: the robots' LOAM and keyframes run ahead on one thread per
 // robot (OdometryRunAhead), the loop-closure registrations on --registration-threads threads (RegistrationPool),
-// their results are consumed in the single-threaded order. Wall time and peak memory are printed at the end (tool only).
+// their results are consumed in the single-threaded order. Wall time and peak memory are printed at the end (tool
+// only).
 #include <sys/resource.h>
 
 #include <cmath>
@@ -58,36 +60,40 @@ using namespace cosmo::pipeline;
 namespace {
 
 void usage() {
-  std::cerr << "usage: cosmo_generate SEQUENCE.yaml [--data-root DIR] [--comm wifi,proradio] [--seed N] [--out DIR]\n"
-               "         [--config-dir DIR] [--noise-models FILE] [--outlier-rule fidelity|squared]\n"
-               "         [--reference-odometry] [--serial-odometry] [--registration-threads N] [--max-seconds S] [--no-check] [--quiet]\n"
-               "  --data-root DIR      the folder the trials' bags and references are below (default: the config's\n"
-               "                       data_root key, else $COSMO_DATA_ROOT, else the config's folder)\n"
-               "  --no-check           skip the pre-flight check (cosmo_check) that stops a run that would be unlabelled\n"
-               "  --comm LIST          comm models, comma separated (wifi, proradio, or a config/comm/*.yaml); default wifi.\n"
-               "                       The robots' odometry and keyframes are computed once for all of them\n"
-               "  --seed N             overrides the sequence config's seed\n"
-               "  --out DIR            output folder (default: current folder)\n"
-               "  --config-dir DIR     frontend/odometry/place_recognition/registration/comm/noise_models configs\n"
-               "                       (default: the source tree's config/)\n"
-               "  --noise-models FILE  noise-model YAML (default: the sequence's noise_models, else\n"
-               "                       <config-dir>/noise_models/<environment>.yaml; none: the run stops)\n"
-               "  --estimate-noise-models TRIAL  first make the noise models as the paper does: run TRIAL (robot id or\n"
-               "                       trial name) alone through the front-end, compare with its reference, keep the\n"
-               "                       good loop closures, write the sample covariances, then generate the sequence\n"
-               "                       with them\n"
-               "  --noise-models-out FILE  where the estimate goes (default: the sequence's noise-model file, when it\n"
-               "                       does not exist or says its models are unknown)\n"
-               "  --good-translation M, --good-rotation RAD  good loop closures for the estimate: errors under\n"
-               "                       these (default 0.5 m, 0.05 rad)\n"
-               "  --reference-odometry take odometry from the reference trajectories instead of LOAM\n"
-               "  --serial-odometry    everything in the main thread (default: one thread per robot reads its own bag and\n"
-               "                       runs its LOAM and keyframes ahead of the team; the output is the same byte\n"
-               "                       for byte)\n"
-               "  --registration-threads N  threads running the loop-closure registrations while the team's thread goes\n"
-               "                       on (0: on the team's thread; default: the machine's cores; 0 with --serial-odometry);\n"
-               "                       the output is the same byte for byte\n"
-               "  --max-seconds S      stop after S seconds of sequence time (quick looks)\n";
+  std::cerr
+      << "usage: cosmo_generate SEQUENCE.yaml [--data-root DIR] [--comm wifi,proradio] [--seed N] [--out DIR]\n"
+         "         [--config-dir DIR] [--noise-models FILE] [--outlier-rule fidelity|squared]\n"
+         "         [--reference-odometry] [--serial-odometry] [--registration-threads N] [--max-seconds S] "
+         "[--no-check] [--quiet]\n"
+         "  --data-root DIR      the folder the trials' bags and references are below (default: the config's\n"
+         "                       data_root key, else $COSMO_DATA_ROOT, else the config's folder)\n"
+         "  --no-check           skip the pre-flight check (cosmo_check) that stops a run that would be unlabelled\n"
+         "  --comm LIST          comm models, comma separated (wifi, proradio, or a config/comm/*.yaml); default "
+         "wifi.\n"
+         "                       The robots' odometry and keyframes are computed once for all of them\n"
+         "  --seed N             overrides the sequence config's seed\n"
+         "  --out DIR            output folder (default: current folder)\n"
+         "  --config-dir DIR     frontend/odometry/place_recognition/registration/comm/noise_models configs\n"
+         "                       (default: the source tree's config/)\n"
+         "  --noise-models FILE  noise-model YAML (default: the sequence's noise_models, else\n"
+         "                       <config-dir>/noise_models/<environment>.yaml; none: the run stops)\n"
+         "  --estimate-noise-models TRIAL  first make the noise models as the paper does: run TRIAL (robot id or\n"
+         "                       trial name) alone through the front-end, compare with its reference, keep the\n"
+         "                       good loop closures, write the sample covariances, then generate the sequence\n"
+         "                       with them\n"
+         "  --noise-models-out FILE  where the estimate goes (default: the sequence's noise-model file, when it\n"
+         "                       does not exist or says its models are unknown)\n"
+         "  --good-translation M, --good-rotation RAD  good loop closures for the estimate: errors under\n"
+         "                       these (default 0.5 m, 0.05 rad)\n"
+         "  --reference-odometry take odometry from the reference trajectories instead of LOAM\n"
+         "  --serial-odometry    everything in the main thread (default: one thread per robot reads its own bag and\n"
+         "                       runs its LOAM and keyframes ahead of the team; the output is the same byte\n"
+         "                       for byte)\n"
+         "  --registration-threads N  threads running the loop-closure registrations while the team's thread goes\n"
+         "                       on (0: on the team's thread; default: the machine's cores; 0 with "
+         "--serial-odometry);\n"
+         "                       the output is the same byte for byte\n"
+         "  --max-seconds S      stop after S seconds of sequence time (quick looks)\n";
 }
 
 RadioParams radioFor(const std::string& comm, const std::string& config_dir, std::string& label) {
@@ -117,10 +123,10 @@ double peakRssMb() {
 }
 
 void printSigmas(const char* what, const CovarianceEstimate& e) {
-  std::printf("  %s: %zu used, %zu over the thresholds; sigmas rx ry rz %.3g %.3g %.3g rad, tx ty tz %.3g %.3g %.3g m\n",
-              what, e.used, e.rejected, std::sqrt(e.covariance(0, 0)), std::sqrt(e.covariance(1, 1)),
-              std::sqrt(e.covariance(2, 2)), std::sqrt(e.covariance(3, 3)), std::sqrt(e.covariance(4, 4)),
-              std::sqrt(e.covariance(5, 5)));
+  std::printf(
+      "  %s: %zu used, %zu over the thresholds; sigmas rx ry rz %.3g %.3g %.3g rad, tx ty tz %.3g %.3g %.3g m\n", what,
+      e.used, e.rejected, std::sqrt(e.covariance(0, 0)), std::sqrt(e.covariance(1, 1)), std::sqrt(e.covariance(2, 2)),
+      std::sqrt(e.covariance(3, 3)), std::sqrt(e.covariance(4, 4)), std::sqrt(e.covariance(5, 5)));
 }
 
 /// --estimate-noise-models: the paper's step on one trial of the sequence, written to `out_path` (default: the
@@ -135,11 +141,10 @@ NoiseModels estimateFirst(const SequenceConfig& config, const std::string& which
       bool unknown = false;
       try {
         NoiseModels::load(out_path);
-      } catch (const NoiseModelsUnknown&) {
-        unknown = true;
-      }
+      } catch (const NoiseModelsUnknown&) { unknown = true; }
       if (!unknown)
-        throw std::runtime_error(out_path + " already holds noise models: pass --noise-models-out FILE to write the "
+        throw std::runtime_error(out_path +
+                                 " already holds noise models: pass --noise-models-out FILE to write the "
                                  "estimate elsewhere (or leave out --estimate-noise-models to use them)");
     }
   }
@@ -155,18 +160,18 @@ NoiseModels estimateFirst(const SequenceConfig& config, const std::string& which
   std::fflush(stdout);
   MergedScanStream stream = ros_glue::openSequenceStream(alone, timing);
   const std::string environment = config.environment.empty() ? fs::path(out_path).stem().string() : config.environment;
-  const TrialNoiseModels result = estimateTrialNoiseModels(trial.robot, stream, reference, params,
-                                                           deriveSeed(config.seed, "radio"), estimation,
-                                                           trial.name, environment);
+  const TrialNoiseModels result = estimateTrialNoiseModels(
+      trial.robot, stream, reference, params, deriveSeed(config.seed, "radio"), estimation, trial.name, environment);
   printSigmas("odometry", result.estimate.odometry);
   printSigmas("loop closures", result.estimate.loop_closure);
   std::ostringstream header;
   header << "Noise models of the " << environment << " environment (spec section 6), written by\n"
          << "  cosmo_generate " << config.path << " --estimate-noise-models " << which << "\n"
-         << "from trial " << trial.name << " (robot " << trial.robot << ") run alone through the front-end: "
-         << result.estimate.odometry.used << " odometry factors, " << result.estimate.loop_closure.used
-         << " good loop closures (" << result.estimate.loop_closure.rejected << " left out: error >= "
-         << estimation.max_translation_error << " m or >= " << estimation.max_rotation_error << " rad).\n"
+         << "from trial " << trial.name << " (robot " << trial.robot
+         << ") run alone through the front-end: " << result.estimate.odometry.used << " odometry factors, "
+         << result.estimate.loop_closure.used << " good loop closures (" << result.estimate.loop_closure.rejected
+         << " left out: error >= " << estimation.max_translation_error << " m or >= " << estimation.max_rotation_error
+         << " rad).\n"
          << "Q = (1/N) sum r r^T, r = Log(m^-1 * m*), rotation first.";
   result.estimate.models.save(out_path, header.str());
   std::printf("wrote %s\n", out_path.c_str());
@@ -186,24 +191,43 @@ struct Options {
 
 /// Reads one option (and its value) at argv[i]; false when it is not one.
 bool readOption(const std::string& a, const std::function<std::string()>& value, Options& o) {
-  if (a == "--comm") o.comms = splitList(value());
-  else if (a == "--seed") { o.seed = std::stoull(value()); o.seed_given = true; }
-  else if (a == "--out") o.out_dir = value();
-  else if (a == "--config-dir") o.config_dir = value();
-  else if (a == "--data-root") o.data_root = value();
-  else if (a == "--no-check") o.skip_check = true;
-  else if (a == "--noise-models") o.noise_path = value();
-  else if (a == "--outlier-rule") o.rule_name = value();
-  else if (a == "--estimate-noise-models") o.estimate_trial = value();
-  else if (a == "--noise-models-out") o.noise_out = value();
-  else if (a == "--good-translation") o.estimation.max_translation_error = std::stod(value());
-  else if (a == "--good-rotation") o.estimation.max_rotation_error = std::stod(value());
-  else if (a == "--reference-odometry") o.reference_odometry = true;
-  else if (a == "--serial-odometry") o.serial_odometry = true;
-  else if (a == "--registration-threads") o.registration_threads = std::stoi(value());
-  else if (a == "--max-seconds") o.max_seconds = std::stod(value());
-  else if (a == "--quiet") o.quiet = true;
-  else return false;
+  if (a == "--comm")
+    o.comms = splitList(value());
+  else if (a == "--seed") {
+    o.seed = std::stoull(value());
+    o.seed_given = true;
+  } else if (a == "--out")
+    o.out_dir = value();
+  else if (a == "--config-dir")
+    o.config_dir = value();
+  else if (a == "--data-root")
+    o.data_root = value();
+  else if (a == "--no-check")
+    o.skip_check = true;
+  else if (a == "--noise-models")
+    o.noise_path = value();
+  else if (a == "--outlier-rule")
+    o.rule_name = value();
+  else if (a == "--estimate-noise-models")
+    o.estimate_trial = value();
+  else if (a == "--noise-models-out")
+    o.noise_out = value();
+  else if (a == "--good-translation")
+    o.estimation.max_translation_error = std::stod(value());
+  else if (a == "--good-rotation")
+    o.estimation.max_rotation_error = std::stod(value());
+  else if (a == "--reference-odometry")
+    o.reference_odometry = true;
+  else if (a == "--serial-odometry")
+    o.serial_odometry = true;
+  else if (a == "--registration-threads")
+    o.registration_threads = std::stoi(value());
+  else if (a == "--max-seconds")
+    o.max_seconds = std::stod(value());
+  else if (a == "--quiet")
+    o.quiet = true;
+  else
+    return false;
   return true;
 }
 
@@ -221,9 +245,20 @@ std::optional<int> parseArgs(int argc, char** argv, Options& o) {
     };
     try {
       if (readOption(a, value, o)) continue;
-      if (a == "-h" || a == "--help") { usage(); return 0; }
-      if (!a.empty() && a[0] == '-') { std::cerr << "unknown option " << a << "\n"; usage(); return 2; }
-      if (!o.sequence_path.empty()) { std::cerr << "unexpected argument " << a << "\n"; usage(); return 2; }
+      if (a == "-h" || a == "--help") {
+        usage();
+        return 0;
+      }
+      if (!a.empty() && a[0] == '-') {
+        std::cerr << "unknown option " << a << "\n";
+        usage();
+        return 2;
+      }
+      if (!o.sequence_path.empty()) {
+        std::cerr << "unexpected argument " << a << "\n";
+        usage();
+        return 2;
+      }
       o.sequence_path = a;
     } catch (const std::exception&) {
       std::cerr << "bad value for " << a << "\n";
@@ -249,9 +284,11 @@ void checkOptions(const Options& o) {
 void preflightCheck(const SequenceConfig& config, const Options& o) {
   if (o.skip_check) return;
   std::string check;
-  const bool ok = ros_glue::checkSequence(
-      config, o.estimate_trial.empty() ? chooseNoiseModels(config, o.config_dir, o.noise_path)
-                                       : "estimated first from trial " + o.estimate_trial, check);
+  const bool ok =
+      ros_glue::checkSequence(config,
+                              o.estimate_trial.empty() ? chooseNoiseModels(config, o.config_dir, o.noise_path)
+                                                       : "estimated first from trial " + o.estimate_trial,
+                              check);
   if (!o.quiet || !ok) std::printf("%s", check.c_str());
   if (!ok) throw std::runtime_error("the pre-flight check failed (above); --no-check runs anyway");
 }
@@ -268,8 +305,8 @@ TeamRunParams teamRunParams(const SequenceConfig& config, const Options& o) {
   params.metadata = trials::sequenceMetadata(config);
   params.reference_odometry = o.reference_odometry;
   params.registration_threads = o.registration_threads >= 0 ? static_cast<unsigned>(o.registration_threads)
-                                : o.serial_odometry           ? 0u
-                                                              : std::max(1u, std::thread::hardware_concurrency());
+                                : o.serial_odometry         ? 0u
+                                                            : std::max(1u, std::thread::hardware_concurrency());
   std::string first_label;  // the single-trial run of the estimate uses the first comm model (no transfers alone)
   params.radio = radioFor(o.comms.front(), o.config_dir, first_label);
   params.noise = o.estimate_trial.empty()
@@ -299,10 +336,11 @@ class ProgressLine {
     const double t = toSeconds(stamp - start_);
     if (quiet_ || t < next_report_) return;
     const auto& c = run_.counts();
-    std::printf("[%s] %6.1f / %.1f s  keyframes %zu  loop closures intra %zu (+%zu rejected) inter %zu (+%zu rejected)"
-                "  transfers %zu delivered, %zu timed out  (%.1f s wall)\n",
-                label_.c_str(), t, duration_, c.keyframes, c.intra_accepted, c.intra_rejected, c.inter_accepted,
-                c.inter_rejected, c.transfers_delivered, c.transfers_timed_out, wall_.elapsedMs() * 1e-3);
+    std::printf(
+        "[%s] %6.1f / %.1f s  keyframes %zu  loop closures intra %zu (+%zu rejected) inter %zu (+%zu rejected)"
+        "  transfers %zu delivered, %zu timed out  (%.1f s wall)\n",
+        label_.c_str(), t, duration_, c.keyframes, c.intra_accepted, c.intra_rejected, c.inter_accepted,
+        c.inter_rejected, c.transfers_delivered, c.transfers_timed_out, wall_.elapsedMs() * 1e-3);
     std::fflush(stdout);
     next_report_ = t + std::max(10.0, duration_ / 20.0);
   }
@@ -344,7 +382,8 @@ struct FeedFigures {
 FeedFigures replayComputed(TeamRun& run, const ComputedScans& computed, ProgressLine& progress) {
   std::size_t next_keyframe = 0;
   for (const AheadScan& s : computed.scans) {
-    run.addPrepared(s.robot, s.stamp, s.odometry, s.keyframe_scan ? computed.keyframes.at(next_keyframe++)->get() : nullptr);
+    run.addPrepared(s.robot, s.stamp, s.odometry,
+                    s.keyframe_scan ? computed.keyframes.at(next_keyframe++)->get() : nullptr);
     progress(s.stamp);
   }
   FeedFigures f;
@@ -434,16 +473,18 @@ struct RunClock {
 
   void print(const TeamRun& run, double wall_s, double duration, const FeedFigures& f) const {
     const double cpu = cpuSeconds() - cpu_before, team_cpu = cpuSeconds(RUSAGE_THREAD) - team_cpu_before;
-    std::printf("  wall %.1f s for %.1f s of sequence (%.2fx real time), CPU %.1f s (%.0f %% of one core; the team's "
-                "thread %.1f s", wall_s, duration, duration / std::max(wall_s, 1e-9), cpu,
-                100.0 * cpu / std::max(wall_s, 1e-9), team_cpu);
+    std::printf(
+        "  wall %.1f s for %.1f s of sequence (%.2fx real time), CPU %.1f s (%.0f %% of one core; the team's "
+        "thread %.1f s",
+        wall_s, duration, duration / std::max(wall_s, 1e-9), cpu, 100.0 * cpu / std::max(wall_s, 1e-9), team_cpu);
     if (const RegistrationPool* pool = run.registrationPool())
       std::printf(", %u registration threads %.1f s", pool->threads(), pool->cpuSeconds());
     std::printf("), peak memory %.0f MB\n", peakRssMb());
     if (f.wait_odometry_s + f.team_work_s > 0.0)
-      std::printf("  the team's thread: %.1f s waiting for the robots' odometry, %.1f s on the team's work (with "
-                  "waits for registrations), %.1f s finishing (the last transfers and registrations)\n",
-                  f.wait_odometry_s, f.team_work_s, f.finish_s);
+      std::printf(
+          "  the team's thread: %.1f s waiting for the robots' odometry, %.1f s on the team's work (with "
+          "waits for registrations), %.1f s finishing (the last transfers and registrations)\n",
+          f.wait_odometry_s, f.team_work_s, f.finish_s);
   }
 };
 
@@ -467,11 +508,13 @@ void runComm(const std::string& comm, const Sequence& seq, TeamRunParams params,
   const double duration = toSeconds(seq.end - seq.timing.start());
   ProgressLine progress(run, label, seq.timing.start(), duration, o.quiet, clock.wall);
   FeedFigures f;
-  if (computed.ready) f = replayComputed(run, computed, progress);
+  if (computed.ready)
+    f = replayComputed(run, computed, progress);
   else if (!o.reference_odometry && !o.serial_odometry)
     f = runAhead(run, seq.config, seq.timing, params, seq.references, seq.end, o.comms.size() > 1 ? &computed : nullptr,
                  progress);
-  else f = runSerial(run, seq.config, seq.timing, seq.end, progress);
+  else
+    f = runSerial(run, seq.config, seq.timing, seq.end, progress);
   bench::Stopwatch finishing;
   run.finish(seq.end);
   f.finish_s = finishing.elapsedMs() * 1e-3;

@@ -54,12 +54,18 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
         return argv[++i];
       };
-      if (a == "--calib") calib = value();
-      else if (a == "--config") config = value();
-      else if (a == "--exclude") exclude = std::stoi(value());
-      else if (a == "--radius") radius = std::stod(value());
-      else if (a == "--stride") stride = std::stoi(value());
-      else if (a == "--list") list = true;
+      if (a == "--calib")
+        calib = value();
+      else if (a == "--config")
+        config = value();
+      else if (a == "--exclude")
+        exclude = std::stoi(value());
+      else if (a == "--radius")
+        radius = std::stod(value());
+      else if (a == "--stride")
+        stride = std::stoi(value());
+      else if (a == "--list")
+        list = true;
       else if (a == "--thresholds") {
         const std::string v = value();
         if (std::sscanf(v.c_str(), "%lf:%lf:%lf", &lo, &hi, &step) != 3 || step <= 0.0 || hi < lo)
@@ -67,8 +73,10 @@ int main(int argc, char** argv) {
       } else if (a == "-h" || a == "--help") {
         usage();
         return 0;
-      } else if (!a.empty() && a[0] == '-') throw std::runtime_error("unknown option " + a);
-      else positional.push_back(a);
+      } else if (!a.empty() && a[0] == '-')
+        throw std::runtime_error("unknown option " + a);
+      else
+        positional.push_back(a);
     }
     if (positional.size() != 2) {
       usage();
@@ -92,8 +100,8 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < files.size(); ++i) {
       const std::size_t k = poseIndexOf(files[i], i);
       if (k >= poses.size())
-        throw std::runtime_error(files[i] + ": pose line " + std::to_string(k) + " is beyond " + positional[1] +
-                                 " (" + std::to_string(poses.size()) + " poses)");
+        throw std::runtime_error(files[i] + ": pose line " + std::to_string(k) + " is beyond " + positional[1] + " (" +
+                                 std::to_string(poses.size()) + " poses)");
       const Scan scan = readScanFile(files[i]);
       points += scan.size();
       bench::Stopwatch sw;
@@ -139,9 +147,8 @@ int main(int argc, char** argv) {
       }
     }
 
-    std::printf("%zu scans (%.0f points on average) from %s, exclude_recent %d, revisit radius %.1f m\n",
-                files.size(), static_cast<double>(points) / files.size(), positional[0].c_str(),
-                params.exclude_recent, radius);
+    std::printf("%zu scans (%.0f points on average) from %s, exclude_recent %d, revisit radius %.1f m\n", files.size(),
+                static_cast<double>(points) / files.size(), positional[0].c_str(), params.exclude_recent, radius);
     std::printf("threshold  detections  true_pos  revisits  precision  recall\n");
     for (double t = lo; t <= hi + 1e-9; t += step) {
       const PrPoint p = precisionRecallAt(outcomes, t, radius);
@@ -151,8 +158,8 @@ int main(int argc, char** argv) {
     const PrPoint d = precisionRecallAt(outcomes, params.threshold, radius);
     std::printf("default threshold %.3f: precision %.3f recall %.3f (%zu/%zu detections correct, %zu revisits)\n",
                 params.threshold, d.precision, d.recall, d.true_positives, d.detections, d.revisits);
-    std::printf("descriptor time: median %.3f ms, p95 %.3f ms (point_stride %d)\n",
-                bench::quantile(descriptor_ms, 0.5), bench::quantile(descriptor_ms, 0.95), params.sc.point_stride);
+    std::printf("descriptor time: median %.3f ms, p95 %.3f ms (point_stride %d)\n", bench::quantile(descriptor_ms, 0.5),
+                bench::quantile(descriptor_ms, 0.95), params.sc.point_stride);
     std::printf("query+insert time: median %.3f ms, p95 %.3f ms, max %.3f ms (database of up to %zu entries)\n",
                 bench::quantile(query_ms, 0.5), bench::quantile(query_ms, 0.95), bench::quantile(query_ms, 1.0),
                 descriptors.size());

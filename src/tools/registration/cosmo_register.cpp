@@ -84,15 +84,25 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw std::runtime_error("missing value after " + a);
         return argv[++i];
       };
-      if (a == "--yaw") yaw_deg = std::stod(value());
-      else if (a == "--expected") expected_arg = value();
-      else if (a == "--config") config_path = value();
-      else if (a == "--pairs") pairs_path = value();
-      else if (a == "--max-trans") max_trans = std::stod(value());
-      else if (a == "--max-rot") max_rot = std::stod(value());
-      else if (a == "-h" || a == "--help") { usage(); return 0; }
-      else if (!a.empty() && a[0] == '-') throw std::runtime_error("unknown option " + a);
-      else positional.push_back(a);
+      if (a == "--yaw")
+        yaw_deg = std::stod(value());
+      else if (a == "--expected")
+        expected_arg = value();
+      else if (a == "--config")
+        config_path = value();
+      else if (a == "--pairs")
+        pairs_path = value();
+      else if (a == "--max-trans")
+        max_trans = std::stod(value());
+      else if (a == "--max-rot")
+        max_rot = std::stod(value());
+      else if (a == "-h" || a == "--help") {
+        usage();
+        return 0;
+      } else if (!a.empty() && a[0] == '-')
+        throw std::runtime_error("unknown option " + a);
+      else
+        positional.push_back(a);
     }
     const RegistrationParams params =
         config_path.empty() ? RegistrationParams{} : RegistrationParams::fromConfig(ConfigNode::load(config_path));
@@ -100,8 +110,8 @@ int main(int argc, char** argv) {
 
     if (!pairs_path.empty()) {
       const auto pairs = readPairList(pairs_path);
-      std::printf("%-28s %7s %6s %6s %6s %6s %5s %8s %8s %8s %s\n", "pair", "dist_m", "corr", "core", "clique",
-                  "final", "valid", "err_m", "err_deg", "time_ms", "result");
+      std::printf("%-28s %7s %6s %6s %6s %6s %5s %8s %8s %8s %s\n", "pair", "dist_m", "corr", "core", "clique", "final",
+                  "valid", "err_m", "err_deg", "time_ms", "result");
       int ok = 0;
       for (const auto& p : pairs) {
         const Outcome o = runPair(reg, p.source, p.target, yaw_deg, p.T_target_source);
@@ -129,7 +139,8 @@ int main(int argc, char** argv) {
     std::cout << "matrix:\n" << r.T_target_source.matrix() << "\n";
     std::printf("points (feature): source %zu, target %zu\n", r.source_points, r.target_points);
     std::printf("correspondences %zu -> max k-core %zu -> %s %zu -> final inliers %zu\n", r.correspondences,
-                r.max_core_size, params.use_max_clique ? (r.clique_proven ? "max clique" : "clique (budget hit)") : "k-core",
+                r.max_core_size,
+                params.use_max_clique ? (r.clique_proven ? "max clique" : "clique (budget hit)") : "k-core",
                 r.pruned_inliers, r.final_inliers);
     std::printf("hypotheses verified %d, reported #%d (0 = the maximum clique)\n", r.hypotheses, r.hypothesis);
     std::printf("refined: %s, overlap %.3f, structure overlap %.3f\n", r.refined ? "yes" : "no", r.overlap,
@@ -142,9 +153,9 @@ int main(int argc, char** argv) {
     }
     std::printf(" | total %.1f\n", o.total_ms);
     if (o.error)
-      std::printf("error vs expected: %.4f m, %.4f deg -> %s\n", o.error->translation_m, o.error->rotation_deg,
-                  (r.valid && o.error->translation_m <= max_trans && o.error->rotation_deg <= max_rot) ? "SUCCESS"
-                                                                                                      : "FAILURE");
+      std::printf(
+          "error vs expected: %.4f m, %.4f deg -> %s\n", o.error->translation_m, o.error->rotation_deg,
+          (r.valid && o.error->translation_m <= max_trans && o.error->rotation_deg <= max_rot) ? "SUCCESS" : "FAILURE");
     return r.valid ? 0 : 1;
   } catch (const std::exception& e) {
     std::cerr << "cosmo_register: " << e.what() << "\n";

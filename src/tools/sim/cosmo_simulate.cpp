@@ -34,7 +34,8 @@ using namespace cosmo;
 namespace {
 
 void usage() {
-  std::cerr << "usage: cosmo_simulate [--config FILE | --small] [--layout L] [--out DIR] [--cache-dir DIR] [--no-cache] [--force]\n"
+  std::cerr << "usage: cosmo_simulate [--config FILE | --small] [--layout L] [--out DIR] [--cache-dir DIR] "
+               "[--no-cache] [--force]\n"
                "  --config FILE    generation parameters (default: config/sim/default.yaml of the source tree)\n"
                "  --small          use config/sim/ci.yaml (a CI-sized sequence)\n"
                "  --layout L       cosmo (default): <trial>.bag + <trial>_pose_inW.csv;\n"
@@ -47,7 +48,8 @@ void usage() {
                "  --cache-dir DIR  cache root (default: $COSMO_SIM_CACHE, else ~/.cache/cosmo/sim)\n"
                "  --no-cache       generate straight into --out, do not read or fill the cache\n"
                "  --force          regenerate even when the cache holds this sequence\n"
-               "  --plan-only      write only the reference trajectories, the sequence config and network.csv (junctions and\n"
+               "  --plan-only      write only the reference trajectories, the sequence config and network.csv "
+               "(junctions and\n"
                "                   paths, for choosing start_node / waypoints) into --out (preview)\n";
 }
 
@@ -72,13 +74,14 @@ void writeNetworkCsv(const std::string& path, const sim::PathNetwork& net) {
 }
 
 // The sequence config of a trial set written in a real layout (paths relative to the config's folder).
-void writeLayoutSequenceConfig(const std::string& path, const sim::SimulationParams& params, ros_glue::TrialLayout layout,
-                               const std::vector<ros_glue::WrittenTrial>& written) {
+void writeLayoutSequenceConfig(const std::string& path, const sim::SimulationParams& params,
+                               ros_glue::TrialLayout layout, const std::vector<ros_glue::WrittenTrial>& written) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot write sequence config");
   out << std::setprecision(17);
-  out << "# Synthetic sequence in the " << ros_glue::trialLayoutName(layout) << " layout, written by cosmo_simulate (code "
-      << sim::kSimCodeVersion << ", parameter hash " << params.hash() << ")\n";
+  out << "# Synthetic sequence in the " << ros_glue::trialLayoutName(layout)
+      << " layout, written by cosmo_simulate (code " << sim::kSimCodeVersion << ", parameter hash " << params.hash()
+      << ")\n";
   if (layout == ros_glue::TrialLayout::CuMulti)
     out << "# ground truth positions carry a UTM-like offset: x + " << ros_glue::kSimulatedUtmOffset.x() << ", y + "
         << ros_glue::kSimulatedUtmOffset.y() << "\n";
@@ -115,9 +118,9 @@ void generate(const sim::SimulationParams& params, const fs::path& dir, bool pla
   if (plan_only) writeNetworkCsv((dir / "network.csv").string(), world.network());
   for (const auto& t : seq.trials) {
     const auto& tp = t.params;
-    std::printf("trial %s (robot %s, %s): %zu junctions, %.0f m, %.1f s, %zu scans\n", tp.name.c_str(), tp.robot.c_str(),
-                tp.platform.c_str(), t.route.size(), t.body.length(), toSeconds(t.body.endStamp() - t.body.startStamp()),
-                t.scan_stamps.size());
+    std::printf("trial %s (robot %s, %s): %zu junctions, %.0f m, %.1f s, %zu scans\n", tp.name.c_str(),
+                tp.robot.c_str(), tp.platform.c_str(), t.route.size(), t.body.length(),
+                toSeconds(t.body.endStamp() - t.body.startStamp()), t.scan_stamps.size());
     std::printf("  route:");
     for (int n : t.route) std::printf(" %d", n);
     std::printf("\n");
@@ -150,8 +153,10 @@ void generate(const sim::SimulationParams& params, const fs::path& dir, bool pla
       points += scan.size();
       if (pending.valid()) pending.get();  // the previous scan is written while this one is cast
       pending = std::async(std::launch::async, [&own_bag, &layout_writer, &params, s = std::move(scan)]() {
-        if (own_bag) own_bag->write(params.topic, s, params.frame_id);
-        else layout_writer->write(s);
+        if (own_bag)
+          own_bag->write(params.topic, s, params.frame_id);
+        else
+          layout_writer->write(s);
       });
       if ((k + 1) % std::max<std::size_t>(1, n / 10) == 0 || k + 1 == n) {
         const double sec = sw.elapsedMs() * 1e-3;
@@ -162,8 +167,10 @@ void generate(const sim::SimulationParams& params, const fs::path& dir, bool pla
       }
     }
     if (pending.valid()) pending.get();
-    if (own_bag) own_bag->close();
-    else written.push_back(layout_writer->finish(t.body, extrinsic));
+    if (own_bag)
+      own_bag->close();
+    else
+      written.push_back(layout_writer->finish(t.body, extrinsic));
   }
   if (!own_layout) writeLayoutSequenceConfig((dir / (params.name + ".yaml")).string(), params, layout, written);
   std::ofstream(dir / "parameters.txt") << params.describe() << "\n";
@@ -184,28 +191,45 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (a == "--config") config = value();
-    else if (a == "--out") out = value();
-    else if (a == "--layout") layout_name = value();
-    else if (a == "--cache-dir") cache_dir = value();
-    else if (a == "--small") small = true;
-    else if (a == "--no-cache") no_cache = true;
-    else if (a == "--force") force = true;
-    else if (a == "--plan-only") plan_only = true;
-    else if (a == "-h" || a == "--help") { usage(); return 0; }
-    else { std::cerr << "unknown argument " << a << "\n"; usage(); return 2; }
+    if (a == "--config")
+      config = value();
+    else if (a == "--out")
+      out = value();
+    else if (a == "--layout")
+      layout_name = value();
+    else if (a == "--cache-dir")
+      cache_dir = value();
+    else if (a == "--small")
+      small = true;
+    else if (a == "--no-cache")
+      no_cache = true;
+    else if (a == "--force")
+      force = true;
+    else if (a == "--plan-only")
+      plan_only = true;
+    else if (a == "-h" || a == "--help") {
+      usage();
+      return 0;
+    } else {
+      std::cerr << "unknown argument " << a << "\n";
+      usage();
+      return 2;
+    }
   }
-  if (config.empty()) config = std::string(COSMO_SOURCE_DIR) + (small ? "/config/sim/ci.yaml" : "/config/sim/default.yaml");
+  if (config.empty())
+    config = std::string(COSMO_SOURCE_DIR) + (small ? "/config/sim/ci.yaml" : "/config/sim/default.yaml");
   if ((no_cache || plan_only) && out.empty()) {
     std::cerr << "--no-cache and --plan-only need --out DIR\n";
     return 2;
   }
   try {
     const ros_glue::TrialLayout layout = ros_glue::parseTrialLayout(layout_name);
-    if (plan_only && layout != ros_glue::TrialLayout::Cosmo) throw std::runtime_error("--plan-only writes the cosmo layout only");
+    if (plan_only && layout != ros_glue::TrialLayout::Cosmo)
+      throw std::runtime_error("--plan-only writes the cosmo layout only");
     auto params = sim::SimulationParams::load(config);
     if (layout == ros_glue::TrialLayout::CuMulti) params.lidar.rate_hz = 20.0;  // CU-Multi's Ouster runs at 20 Hz
-    const std::string key = params.name + "-" + params.hash() + (layout == ros_glue::TrialLayout::Cosmo ? "" : "-" + layout_name);
+    const std::string key =
+        params.name + "-" + params.hash() + (layout == ros_glue::TrialLayout::Cosmo ? "" : "-" + layout_name);
     const fs::path cache = cache_dir.empty() ? defaultCacheDir() : fs::path(cache_dir);
     if (plan_only) no_cache = true;
     const fs::path final_dir = no_cache ? fs::path(out) : cache / key;
