@@ -72,6 +72,19 @@ inline Matrix66 adjoint(const Eigen::Matrix3d& R, const Eigen::Vector3d& t) {
   return A;
 }
 
+/// The whitened residual W·Log(q, t) into `residuals`; with `jr_inv`, also Log's inverse right Jacobian there.
+inline void whitenedLog(const Eigen::Quaterniond& q, const Eigen::Vector3d& t, const Matrix6& whitener,
+                        double* residuals, Matrix66* jr_inv) {
+  Eigen::Map<Vector6> residual(residuals);
+  if (jr_inv == nullptr) {
+    residual = whitener * logPose<double>(q, t);
+    return;
+  }
+  Vector6 r;
+  logPoseAndJacobian(q, t, r, *jr_inv);
+  residual = whitener * r;
+}
+
 /// Between factor on two PoseManifold blocks.
 class BetweenResidual final : public ceres::SizedCostFunction<6, 7, 7> {
  public:
@@ -86,15 +99,12 @@ class BetweenResidual final : public ceres::SizedCostFunction<6, 7, 7> {
     const Eigen::Map<const Eigen::Vector3d> t1(parameters[0] + 4), t2(parameters[1] + 4);
     const Eigen::Quaterniond q_err = m_inv_q_ * (q1.conjugate() * q2);
     const Eigen::Vector3d t_err = m_inv_q_ * (q1.conjugate() * (t2 - t1) - m_t_);
-    Eigen::Map<Vector6> residual(residuals);
     if (jacobians == nullptr) {
-      residual = whitener_ * logPose<double>(q_err, t_err);
+      whitenedLog(q_err, t_err, whitener_, residuals, nullptr);
       return true;
     }
-    Vector6 r;
     Matrix66 jr_inv;
-    logPoseAndJacobian(q_err, t_err, r, jr_inv);
-    residual = whitener_ * r;
+    whitenedLog(q_err, t_err, whitener_, residuals, &jr_inv);
     const Matrix66 d2 = whitener_ * jr_inv;  // by δ2
     const Eigen::Matrix3d R1 = q1.toRotationMatrix(), R2 = q2.toRotationMatrix();
     if (jacobians[0] != nullptr) {
@@ -132,15 +142,12 @@ class PriorResidual final : public ceres::SizedCostFunction<6, 7> {
     const Eigen::Map<const Eigen::Vector3d> t(parameters[0] + 4);
     const Eigen::Quaterniond q_err = p_inv_q_ * q;
     const Eigen::Vector3d t_err = p_inv_q_ * (t - p_t_);
-    Eigen::Map<Vector6> residual(residuals);
     if (jacobians == nullptr || jacobians[0] == nullptr) {
-      residual = whitener_ * logPose<double>(q_err, t_err);
+      whitenedLog(q_err, t_err, whitener_, residuals, nullptr);
       return true;
     }
-    Vector6 r;
     Matrix66 jr_inv;
-    logPoseAndJacobian(q_err, t_err, r, jr_inv);
-    residual = whitener_ * r;
+    whitenedLog(q_err, t_err, whitener_, residuals, &jr_inv);
     Eigen::Map<Matrix67> j(jacobians[0]);
     j = toAmbient(whitener_ * jr_inv, q, q.toRotationMatrix());
     return true;
