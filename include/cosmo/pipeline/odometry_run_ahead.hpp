@@ -11,12 +11,12 @@
 // kMaxAhead scans ahead of the team (a bound on the keyframe scans waiting in memory). Admission keeps the team's
 // thread, the serial part of a run, from being starved: a worker starts a scan only while fewer threads than cores are
 // busy, counting the team's thread whenever it is not waiting for a result, and the worker the team waits for always
-// may. With more threads than cores the workers otherwise ran ahead at the team's expense, finished first, and left the
-// team's loop-closure work (concentrated late in a sequence) to run alone on one core at the end. Registration features
-// are left to the registrations (on the team's thread, or on TeamRun's RegistrationPool), which compute them only for
-// the keyframes that become loop-closure candidates (about 70 % of them on the default sequence): computed ahead for
-// every keyframe they cost more CPU in all, and the CPU in all is what bounds a run on two cores. The pool's threads
-// are not counted by the admission rule (see team_run.hpp).
+// may: with more threads than cores the workers would run ahead at the team's expense and leave the team's
+// loop-closure work, concentrated late in a sequence, to run alone on one core at the end. Registration features are
+// left to the registrations (on the team's thread, or on TeamRun's RegistrationPool), which compute them only for
+// the keyframes that become loop-closure candidates: computing them ahead for every keyframe would cost more CPU in
+// all, and the CPU in all is what bounds a run on two cores. The pool's threads are not counted by the admission rule
+// (see team_run.hpp).
 #include <atomic>
 #include <condition_variable>
 #include <deque>
