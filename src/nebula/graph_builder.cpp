@@ -144,28 +144,36 @@ NebulaGraph GraphBuilder::build() const {
   g.edges_read = edges_read_;
   g.repeated_nodes = repeated_nodes_;
   g.repeated_edges = repeated_edges_;
+  const std::map<char, OdometryLinks> links = odometryLinks(g.warnings);
+  const std::map<char, std::string> names = robotNames(g.warnings);
+  for (const auto& [c, robot_links] : links) g.robots.emplace(c, chainRobot(c, robot_links, names, g.warnings));
+  collectLoopClosures(g);
+  return g;
+}
 
-  // 1. Robots: characters with odometry between their own poses; their odometry links.
-  std::map<char, std::map<std::uint64_t, const Between*>> links;  // per robot: index i -> link (i-1 -> i)
+std::map<char, GraphBuilder::OdometryLinks> GraphBuilder::odometryLinks(Warnings& warnings) const {
+  std::map<char, OdometryLinks> links;
   for (const auto& [id, edge] : edges_) {
     const auto& [from, to, type] = id;
     if (type != kOdom || !edge.between) continue;
     if (jrl::robotOf(from) != jrl::robotOf(to) || to != from + 1) {
-      g.warnings.add("ODOM edges not between consecutive poses of one robot (ignored)",
-                     edgeText(from, to, type, edge.source));
+      warnings.add("ODOM edges not between consecutive poses of one robot (ignored)",
+                   edgeText(from, to, type, edge.source));
       continue;
     }
     links[jrl::robotOf(to)][jrl::indexOf(to)] = &*edge.between;
   }
+  return links;
+}
 
-  // 2. Names: the topic namespace whose odometry is that one robot's.
-  std::map<char, std::string> names, name_places;
+std::map<char, std::string> GraphBuilder::robotNames(Warnings& warnings) const {
+  std::map<char, std::string> names;
   for (const auto& [name, characters] : odometry_characters_) {
     if (characters.size() != 1) {
       std::string list;
       for (char c : characters) list += std::string(list.empty() ? "" : ", ") + c;
-      g.warnings.add("topics carrying odometry of several robots (no robot named after them)",
-                     name + " (" + list + ") in " + name_sources_.at(name));
+      warnings.add("topics carrying odometry of several robots (no robot named after them)",
+                   name + " (" + list + ") in " + name_sources_.at(name));
       continue;
     }
     const char c = *characters.begin();
@@ -174,48 +182,50 @@ NebulaGraph GraphBuilder::build() const {
       throw GraphError(std::string("robot character '") + c + "' is used by two robots: " + it->second + " (" +
                        name_sources_.at(it->second) + ") and " + name + " (" + name_sources_.at(name) + ")");
   }
+  return names;
+}
 
-  // 3. Each robot's chain 0..n-1: every pose has a node and a link from its predecessor.
-  for (const auto& [c, robot_links] : links) {
-    RobotGraph r;
-    r.character = c;
-    if (const auto it = names.find(c); it != names.end()) r.name = it->second;
-    if (!std::isprint(static_cast<unsigned char>(c)) || c == ' ' || c == '"' || c == '\\')
-      throw GraphError(robotLabel(r) + ": character " + std::to_string(int(static_cast<unsigned char>(c))) +
-                       " cannot name a JRL robot");
-    const auto node0 = nodes_.find(jrl::symbol(c, 0));
-    if (node0 == nodes_.end())
-      throw GraphError(robotLabel(r) + ": no node for its first pose " + jrl::keyName(jrl::symbol(c, 0)) +
-                       " (odometry " + robot_links.begin()->second->source + ")");
-    r.stamps.push_back(node0->second.stamp);
-    for (std::uint64_t i = 1;; ++i) {
-      const auto link = robot_links.find(i);
-      const auto node = nodes_.find(jrl::symbol(c, i));
-      if (link == robot_links.end()) break;
-      if (node == nodes_.end())
-        throw GraphError(robotLabel(r) + ": odometry edge " +
-                         edgeText(link->second->key1, link->second->key2, kOdom, link->second->source) + " leads to " +
-                         jrl::keyName(jrl::symbol(c, i)) + ", which has no node (no stamp)");
-      if (node->second.stamp < r.stamps.back())
-        throw GraphError(robotLabel(r) + ": the stamp of " + jrl::keyName(jrl::symbol(c, i)) + " (" +
-                         node->second.source + ") is earlier than that of " + jrl::keyName(jrl::symbol(c, i - 1)));
-      r.stamps.push_back(node->second.stamp);
-      r.odometry.push_back(*link->second);
-    }
-    const std::uint64_t n = r.stamps.size();
-    const auto later_link = robot_links.upper_bound(n);
-    if (later_link != robot_links.end())
-      throw GraphError(robotLabel(r) + ": odometry chain broken: no ODOM edge " + jrl::keyName(jrl::symbol(c, n - 1)) +
-                       " -> " + jrl::keyName(jrl::symbol(c, n)) + " (poses 0.." + std::to_string(n - 1) +
-                       " are chained; a later one is: " + later_link->second->source + ")");
-    for (auto it = nodes_.lower_bound(jrl::symbol(c, n)); it != nodes_.end() && jrl::robotOf(it->first) == c; ++it)
-      g.warnings.add("poses after the last odometry edge of their robot (left out)",
-                     keyText(it->first) + " (" + it->second.source + ")");
-    g.robots.emplace(c, std::move(r));
+RobotGraph GraphBuilder::chainRobot(char c, const OdometryLinks& robot_links, const std::map<char, std::string>& names,
+                                    Warnings& warnings) const {
+  RobotGraph r;
+  r.character = c;
+  if (const auto it = names.find(c); it != names.end()) r.name = it->second;
+  if (!std::isprint(static_cast<unsigned char>(c)) || c == ' ' || c == '"' || c == '\\')
+    throw GraphError(robotLabel(r) + ": character " + std::to_string(int(static_cast<unsigned char>(c))) +
+                     " cannot name a JRL robot");
+  const auto node0 = nodes_.find(jrl::symbol(c, 0));
+  if (node0 == nodes_.end())
+    throw GraphError(robotLabel(r) + ": no node for its first pose " + jrl::keyName(jrl::symbol(c, 0)) +
+                     " (odometry " + robot_links.begin()->second->source + ")");
+  r.stamps.push_back(node0->second.stamp);
+  for (std::uint64_t i = 1;; ++i) {
+    const auto link = robot_links.find(i);
+    const auto node = nodes_.find(jrl::symbol(c, i));
+    if (link == robot_links.end()) break;
+    if (node == nodes_.end())
+      throw GraphError(robotLabel(r) + ": odometry edge " +
+                       edgeText(link->second->key1, link->second->key2, kOdom, link->second->source) + " leads to " +
+                       jrl::keyName(jrl::symbol(c, i)) + ", which has no node (no stamp)");
+    if (node->second.stamp < r.stamps.back())
+      throw GraphError(robotLabel(r) + ": the stamp of " + jrl::keyName(jrl::symbol(c, i)) + " (" +
+                       node->second.source + ") is earlier than that of " + jrl::keyName(jrl::symbol(c, i - 1)));
+    r.stamps.push_back(node->second.stamp);
+    r.odometry.push_back(*link->second);
   }
+  const std::uint64_t n = r.stamps.size();
+  const auto later_link = robot_links.upper_bound(n);
+  if (later_link != robot_links.end())
+    throw GraphError(robotLabel(r) + ": odometry chain broken: no ODOM edge " + jrl::keyName(jrl::symbol(c, n - 1)) +
+                     " -> " + jrl::keyName(jrl::symbol(c, n)) + " (poses 0.." + std::to_string(n - 1) +
+                     " are chained; a later one is: " + later_link->second->source + ")");
+  for (auto it = nodes_.lower_bound(jrl::symbol(c, n)); it != nodes_.end() && jrl::robotOf(it->first) == c; ++it)
+    warnings.add("poses after the last odometry edge of their robot (left out)",
+                 keyText(it->first) + " (" + it->second.source + ")");
+  return r;
+}
 
-  // 4. Loop closures between two chained robot poses; everything else counted.
-  auto chained = [&](jrl::Key key) {
+void GraphBuilder::collectLoopClosures(NebulaGraph& g) const {
+  const auto chained = [&](jrl::Key key) {
     const auto it = g.robots.find(jrl::robotOf(key));
     return it != g.robots.end() && jrl::indexOf(key) < it->second.stamps.size();
   };
@@ -246,7 +256,6 @@ NebulaGraph GraphBuilder::build() const {
   }
   for (const auto& [key, node] : nodes_)
     if (!g.robots.count(jrl::robotOf(key))) ++g.other_nodes[jrl::robotOf(key)];
-  return g;
 }
 
 }  // namespace cosmo::nebula

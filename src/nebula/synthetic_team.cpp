@@ -64,18 +64,13 @@ struct Step {
   std::vector<PoseGraphNode> nodes;
   std::vector<PoseGraphEdge> edges;
 };
+using Steps = std::map<char, std::vector<Step>>;
 
-}  // namespace
-
-SyntheticTeam makeSyntheticTeam(const SyntheticTeamParams& params, std::mt19937_64& rng) {
-  SyntheticTeam team;
-  team.odometry_covariance = denseCovariance(0.002, 0.02);
-  team.loop_closure_covariance = denseCovariance(0.005, 0.05);
+/// Reference trajectories (laps of a circle per robot, alternate robots the other way round, gently rolling) and
+/// stamps.
+void makeTrajectories(const SyntheticTeamParams& params, SyntheticTeam& team, std::mt19937_64& rng) {
   std::normal_distribution<double> turn(0.0, 0.12), climb(0.0, 0.01);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-
-  // 1. Reference trajectories (laps of a circle per robot, alternate robots the other way round, gently
-  //    rolling) and stamps.
   for (std::size_t k = 0; k < params.robots.size(); ++k) {
     const auto& [name, c] = params.robots[k];
     team.names[c] = name;
@@ -90,9 +85,42 @@ SyntheticTeam makeSyntheticTeam(const SyntheticTeamParams& params, std::mt19937_
       t += params.period_s + 0.5 * unit(rng);
     }
   }
+}
 
-  // 2. What each robot publishes at each pose.
-  std::map<char, std::vector<Step>> steps;
+/// An IMU attitude edge: a unit vector in the position, no rotation (quaternion all zero).
+PoseGraphEdge imuEdge(jrl::Key key) {
+  PoseGraphEdge imu;
+  imu.key_from = imu.key_to = key;
+  imu.type = kImu;
+  imu.pose.position = {0.0, 0.0, 1.0};
+  imu.pose.orientation = {0.0, 0.0, 0.0, 0.0};
+  return imu;
+}
+
+/// An artifact and a UWB anchor seen from robot c's pose `key` (number `landmark`, counted up).
+void addLandmarks(char c, jrl::Key key, StampNs stamp, std::size_t& landmark, SyntheticTeam& team, Step& s) {
+  const Pose3& T = team.truth.at(key);
+  const jrl::Key artifact = jrl::symbol(static_cast<char>(std::toupper(c)), landmark);
+  const jrl::Key anchor = jrl::symbol('u', landmark++);
+  const Pose3 A = T * makePose(4.0, 1.0, 0.5, 0, 0, 0), U = T * makePose(-2.0, 3.0, 1.0, 0, 0, 0);
+  team.landmarks[artifact] = A;
+  team.landmarks[anchor] = U;
+  s.nodes.push_back(node(artifact, stamp, A, "artifact-" + std::to_string(landmark)));
+  s.nodes.push_back(node(anchor, stamp, U, "uwb-" + std::to_string(landmark)));
+  s.edges.push_back(edge(key, artifact, kArtifact, T.inverse() * A, Matrix6::Identity() * 0.01));
+  PoseGraphEdge range = edge(key, anchor, kUwbRange, Pose3::Identity(), Matrix6::Identity());
+  range.range = (U.translation() - T.translation()).norm();
+  range.range_error = 0.1;
+  s.edges.push_back(range);
+  s.edges.push_back(edge(key, anchor, kUwbBetween, T.inverse() * U, Matrix6::Identity() * 0.01));
+  team.other_edges["ARTIFACT"] += 1;
+  team.other_edges["UWB_RANGE"] += 1;
+  team.other_edges["UWB_BETWEEN"] += 1;
+}
+
+/// What each robot publishes at each pose: its node, the prior or odometry, IMU and landmarks now and then.
+Steps makeSteps(const SyntheticTeamParams& params, SyntheticTeam& team, std::mt19937_64& rng) {
+  Steps steps;
   std::size_t landmark = 0;
   for (const auto& [name, c] : params.robots) {
     auto& list = steps[c];
@@ -111,91 +139,93 @@ SyntheticTeam makeSyntheticTeam(const SyntheticTeamParams& params, std::mt19937_
         s.edges.push_back(edge(prev, key, kOdom, m, team.odometry_covariance));
         team.g2o_edges[name].push_back({prev, key, m, team.odometry_covariance, 0});
       }
-      if (i % 10 == 5) {  // IMU attitude: a unit vector in the position, no rotation (quaternion all zero)
-        PoseGraphEdge imu;
-        imu.key_from = imu.key_to = key;
-        imu.type = kImu;
-        imu.pose.position = {0.0, 0.0, 1.0};
-        imu.pose.orientation = {0.0, 0.0, 0.0, 0.0};
-        s.edges.push_back(imu);
+      if (i % 10 == 5) {
+        s.edges.push_back(imuEdge(key));
         ++team.other_edges["IMU"];
       }
-      if (i % 25 == 12) {  // an artifact and a UWB anchor seen from here
-        const jrl::Key artifact = jrl::symbol(static_cast<char>(std::toupper(c)), landmark);
-        const jrl::Key anchor = jrl::symbol('u', landmark++);
-        const Pose3 A = T * makePose(4.0, 1.0, 0.5, 0, 0, 0), U = T * makePose(-2.0, 3.0, 1.0, 0, 0, 0);
-        team.landmarks[artifact] = A;
-        team.landmarks[anchor] = U;
-        s.nodes.push_back(node(artifact, team.stamps[c][i], A, "artifact-" + std::to_string(landmark)));
-        s.nodes.push_back(node(anchor, team.stamps[c][i], U, "uwb-" + std::to_string(landmark)));
-        s.edges.push_back(edge(key, artifact, kArtifact, T.inverse() * A, Matrix6::Identity() * 0.01));
-        PoseGraphEdge range = edge(key, anchor, kUwbRange, Pose3::Identity(), Matrix6::Identity());
-        range.range = (U.translation() - T.translation()).norm();
-        range.range_error = 0.1;
-        s.edges.push_back(range);
-        s.edges.push_back(edge(key, anchor, kUwbBetween, T.inverse() * U, Matrix6::Identity() * 0.01));
-        team.other_edges["ARTIFACT"] += 1;
-        team.other_edges["UWB_RANGE"] += 1;
-        team.other_edges["UWB_BETWEEN"] += 1;
-      }
+      if (i % 25 == 12) addLandmarks(c, key, team.stamps[c][i], landmark, team, s);
     }
   }
+  return steps;
+}
 
-  // 3. Loop closures (random orientation, one per pose pair; a known share wrong) and inter-robot ranges.
-  std::set<std::pair<jrl::Key, jrl::Key>> closed;
-  // A random pose of robot `c` among 0..end-1 within 25 m of `key` (where a real closure could be found).
-  auto nearby = [&](jrl::Key key, char c, std::size_t end) -> std::optional<jrl::Key> {
+/// Loop closures (random orientation, one per pose pair; a known share wrong) and inter-robot ranges.
+class ClosureMaker {
+ public:
+  ClosureMaker(const SyntheticTeamParams& params, SyntheticTeam& team, Steps& steps, std::mt19937_64& rng)
+      : params_(params), team_(team), steps_(steps), rng_(rng) {}
+
+  void run() {
+    for (const auto& [name, c] : params_.robots)
+      for (std::size_t i = 8; i < params_.poses_per_robot; ++i) closeAt(name, c, i);
+  }
+
+ private:
+  double unit() { return unit_(rng_); }
+
+  /// A random pose of robot `c` among 0..end-1 within 25 m of `key` (where a real closure could be found).
+  std::optional<jrl::Key> nearby(jrl::Key key, char c, std::size_t end) {
     std::vector<jrl::Key> candidates;
     for (std::size_t j = 0; j < end; ++j)
-      if ((team.truth.at(jrl::symbol(c, j)).translation() - team.truth.at(key).translation()).norm() < 25.0)
+      if ((team_.truth.at(jrl::symbol(c, j)).translation() - team_.truth.at(key).translation()).norm() < 25.0)
         candidates.push_back(jrl::symbol(c, j));
     if (candidates.empty()) return std::nullopt;
-    return candidates[static_cast<std::size_t>(unit(rng) * double(candidates.size())) % candidates.size()];
-  };
-  for (const auto& [name, c] : params.robots) {
-    for (std::size_t i = 8; i < params.poses_per_robot; ++i) {
-      const jrl::Key key = jrl::symbol(c, i);
-      auto close = [&](jrl::Key other, std::int32_t type) {
-        if (!closed.insert({std::min(key, other), std::max(key, other)}).second) return false;
-        const bool forward = unit(rng) < 0.5;
-        const jrl::Key from = forward ? key : other, to = forward ? other : key;
-        const Pose3 truth = team.truth.at(from).inverse() * team.truth.at(to);
-        const bool wrong = unit(rng) < params.wrong_ratio;
-        const Pose3 m = wrong ? wrongBy(truth, rng) : noisy(truth, team.loop_closure_covariance, rng);
-        if (wrong) team.wrong_closures.insert({from, to});
-        steps[c][i].edges.push_back(edge(from, to, type, m, team.loop_closure_covariance));
-        team.g2o_edges[name].push_back({from, to, m, team.loop_closure_covariance, 0});
-        return true;
-      };
-      if (unit(rng) < params.lc_probability) {
-        const auto j = nearby(key, c, i - 5);
-        if (j && close(*j, kLoopClose)) ++team.intra;
-      }
-      if (params.robots.size() > 1 && unit(rng) < params.irlc_probability) {
-        char other = c;
-        while (other == c)
-          other =
-              params.robots[static_cast<std::size_t>(unit(rng) * params.robots.size()) % params.robots.size()].second;
-        const auto j = nearby(key, other, params.poses_per_robot);
-        if (!j) continue;
-        const jrl::Key key2 = *j;
-        const std::int32_t type = unit(rng) < 0.5 ? kInterRobotBetween : kLoopClose;
-        if (close(key2, type)) ++team.inter;
-        if (i % 4 == 0) {
-          PoseGraphEdge range = edge(key, key2, kInterRobotRange, Pose3::Identity(), Matrix6::Identity());
-          range.range = (team.truth.at(key).translation() - team.truth.at(key2).translation()).norm();
-          range.range_error = 0.2;
-          steps[c][i].edges.push_back(range);
-          ++team.other_edges["INTERROB_RANGE"];
-        }
+    return candidates[static_cast<std::size_t>(unit() * double(candidates.size())) % candidates.size()];
+  }
+
+  /// A closure between `key` (robot c's pose i) and `other`, once per pair; false when the pair has one.
+  bool close(const std::string& name, char c, std::size_t i, jrl::Key key, jrl::Key other, std::int32_t type) {
+    if (!closed_.insert({std::min(key, other), std::max(key, other)}).second) return false;
+    const bool forward = unit() < 0.5;
+    const jrl::Key from = forward ? key : other, to = forward ? other : key;
+    const Pose3 truth = team_.truth.at(from).inverse() * team_.truth.at(to);
+    const bool wrong = unit() < params_.wrong_ratio;
+    const Pose3 m = wrong ? wrongBy(truth, rng_) : noisy(truth, team_.loop_closure_covariance, rng_);
+    if (wrong) team_.wrong_closures.insert({from, to});
+    steps_[c][i].edges.push_back(edge(from, to, type, m, team_.loop_closure_covariance));
+    team_.g2o_edges[name].push_back({from, to, m, team_.loop_closure_covariance, 0});
+    return true;
+  }
+
+  void closeAt(const std::string& name, char c, std::size_t i) {
+    const jrl::Key key = jrl::symbol(c, i);
+    if (unit() < params_.lc_probability) {
+      const auto j = nearby(key, c, i - 5);
+      if (j && close(name, c, i, key, *j, kLoopClose)) ++team_.intra;
+    }
+    if (params_.robots.size() > 1 && unit() < params_.irlc_probability) {
+      char other = c;
+      while (other == c)
+        other = params_.robots[static_cast<std::size_t>(unit() * params_.robots.size()) % params_.robots.size()].second;
+      const auto j = nearby(key, other, params_.poses_per_robot);
+      if (!j) return;
+      const jrl::Key key2 = *j;
+      const std::int32_t type = unit() < 0.5 ? kInterRobotBetween : kLoopClose;
+      if (close(name, c, i, key, key2, type)) ++team_.inter;
+      if (i % 4 == 0) {
+        PoseGraphEdge range = edge(key, key2, kInterRobotRange, Pose3::Identity(), Matrix6::Identity());
+        range.range = (team_.truth.at(key).translation() - team_.truth.at(key2).translation()).norm();
+        range.range_error = 0.2;
+        steps_[c][i].edges.push_back(range);
+        ++team_.other_edges["INTERROB_RANGE"];
       }
     }
   }
 
-  // 4. Incremental messages: every poses_per_message poses; halfway a full re-publication; the last node of a
-  //    message repeated in the next one.
+  const SyntheticTeamParams& params_;
+  SyntheticTeam& team_;
+  Steps& steps_;
+  std::mt19937_64& rng_;
+  std::uniform_real_distribution<double> unit_{0.0, 1.0};
+  std::set<std::pair<jrl::Key, jrl::Key>> closed_;
+};
+
+/// Incremental messages: every poses_per_message poses; halfway a full re-publication; the last node of a message
+/// repeated in the next one.
+void makeMessages(const SyntheticTeamParams& params, const Steps& steps, SyntheticTeam& team) {
   for (const auto& [name, c] : params.robots) {
     auto& out = team.messages[name];
+    const std::vector<Step>& list = steps.at(c);
     std::uint32_t seq = 0;
     PoseGraph all;
     all.incremental = false;
@@ -203,15 +233,15 @@ SyntheticTeam makeSyntheticTeam(const SyntheticTeamParams& params, std::mt19937_
       const std::size_t end = std::min(begin + params.poses_per_message, params.poses_per_robot);
       PoseGraph msg;
       msg.incremental = true;
-      if (begin > 0) msg.nodes.push_back(steps[c][begin - 1].nodes.front());
+      if (begin > 0) msg.nodes.push_back(list[begin - 1].nodes.front());
       for (std::size_t i = begin; i < end; ++i) {
-        const Step& s = steps[c][i];
+        const Step& s = list[i];
         msg.nodes.insert(msg.nodes.end(), s.nodes.begin(), s.nodes.end());
         msg.edges.insert(msg.edges.end(), s.edges.begin(), s.edges.end());
         all.nodes.insert(all.nodes.end(), s.nodes.begin(), s.nodes.end());
         all.edges.insert(all.edges.end(), s.edges.begin(), s.edges.end());
       }
-      msg.header = steps[c][end - 1].nodes.front().header;
+      msg.header = list[end - 1].nodes.front().header;
       msg.header.seq = seq++;
       out.push_back(msg);
       if (begin < params.poses_per_robot / 2 && end >= params.poses_per_robot / 2) {
@@ -221,6 +251,18 @@ SyntheticTeam makeSyntheticTeam(const SyntheticTeamParams& params, std::mt19937_
       }
     }
   }
+}
+
+}  // namespace
+
+SyntheticTeam makeSyntheticTeam(const SyntheticTeamParams& params, std::mt19937_64& rng) {
+  SyntheticTeam team;
+  team.odometry_covariance = denseCovariance(0.002, 0.02);
+  team.loop_closure_covariance = denseCovariance(0.005, 0.05);
+  makeTrajectories(params, team, rng);
+  Steps steps = makeSteps(params, team, rng);
+  ClosureMaker(params, team, steps, rng).run();
+  makeMessages(params, steps, team);
   return team;
 }
 

@@ -96,6 +96,17 @@ class GraphBuilder {
   void addNode(jrl::Key key, StampNs stamp, const std::string& source);
   void addEdge(const PoseGraphEdge& edge, const std::string& source, CovarianceOrder order);
   void addBetween(Between between);
+  /// build()'s steps. Per robot: index i -> its odometry link (i-1 -> i).
+  using OdometryLinks = std::map<std::uint64_t, const Between*>;
+  /// Robots: characters with odometry between their own consecutive poses, and those links.
+  std::map<char, OdometryLinks> odometryLinks(Warnings& warnings) const;
+  /// Names: the topic namespace whose odometry is that one robot's.
+  std::map<char, std::string> robotNames(Warnings& warnings) const;
+  /// Robot c's chain 0..n-1: every pose has a node and a link from its predecessor.
+  RobotGraph chainRobot(char c, const OdometryLinks& links, const std::map<char, std::string>& names,
+                        Warnings& warnings) const;
+  /// Loop closures between two chained robot poses; every other edge and node counted.
+  void collectLoopClosures(NebulaGraph& g) const;
 
   std::map<jrl::Key, Node> nodes_;
   std::map<std::tuple<jrl::Key, jrl::Key, std::int32_t>, Edge> edges_;
