@@ -92,44 +92,42 @@ __attribute__((always_inline)) inline void pairFeatureBlock(const float* pn, con
   storeBin(a_s, -1.f, 1.f, 2 * kBins, b3);
 }
 
-}  // namespace
+using AlignedFloats = std::vector<float, Eigen::aligned_allocator<float>>;
 
-FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& input, const FastFeatureParams& params,
-                                 StageObserver* observer) {
-  FastFeatures out;
-  const std::size_t n_input = input.size();
-  if (n_input == 0) {
-    out.features = FpfhMatrix(kFpfhDim, 0);
-    return out;
-  }
-  const double spfh_r = params.spfh_radius > 0.0 ? params.spfh_radius : params.fpfh_radius;
-  const float rf2 = static_cast<float>(params.fpfh_radius * params.fpfh_radius);
-  const float rs2 = static_cast<float>(spfh_r * spfh_r);
-  const float rn2 = static_cast<float>(params.normal_radius * params.normal_radius);
-  const float rsearch = static_cast<float>(std::max({spfh_r, params.normal_radius, params.fpfh_radius}));
-  // Every neighbour pair once, at the largest of the three radii, numbered by position in the grid's cell
-  // order: the per-point work below runs on the points in that order (a cell's points contiguous in memory) and
-  // only the outputs go back to input order. The pairs come in the same sequence as with input numbering, so
-  // every per-point sum accumulates in the same order (same bits).
+/// The input's neighbour pairs at the largest radius, numbered by position in the grid's cell order: the
+/// per-point work runs on the points in that order (a cell's points contiguous in memory) and only the outputs go
+/// back to input order. The pairs come in the same sequence as with input numbering, so every per-point sum
+/// accumulates in the same order (same bits).
+struct OrderedCloud {
+  NeighbourPairs pairs;
+  std::vector<Eigen::Vector3f> points;  ///< by position
+  std::vector<int> position;            ///< by input index: its position, -1 without one
+};
+
+OrderedCloud orderCloud(const std::vector<Eigen::Vector3f>& input, float radius) {
+  OrderedCloud c;
   std::vector<std::uint32_t> order;
-  const NeighbourPairs pairs = findNeighbourPairs(input, rsearch, order);
+  c.pairs = findNeighbourPairs(input, radius, order);
   const std::size_t n = order.size();
-  std::vector<Eigen::Vector3f> points(n);
-  for (std::size_t s = 0; s < n; ++s) points[s] = input[order[s]];
-  std::vector<int> position(n_input, -1);
-  for (std::size_t s = 0; s < n; ++s) position[order[s]] = static_cast<int>(s);
-  const std::size_t np = pairs.size();
-  notifyStage(observer, "neighbours");
+  c.points.resize(n);
+  for (std::size_t s = 0; s < n; ++s) c.points[s] = input[order[s]];
+  c.position.assign(input.size(), -1);
+  for (std::size_t s = 0; s < n; ++s) c.position[order[s]] = static_cast<int>(s);
+  return c;
+}
 
-  // Normals: covariance moments relative to each point (small numbers: float accumulation and a float
-  // eigensolver are accurate enough), accumulated per pair into both points (q and -q give the same second
-  // moments).
-  // Rows of kMoments floats, three Float4: [x y z 0 | xx xy xz yy | yz zz 0 0].
-  constexpr std::size_t kMoments = 12;
-  std::vector<float, Eigen::aligned_allocator<float>> mom(n * kMoments, 0.f);
-  std::vector<std::uint32_t> count(n, 1);  // the point itself
-  // In chunks: the pairs within the normal radius listed first without a branch (the test is data-dependent
-  // and would mispredict), in pair order, so the moments accumulate in the same order as a direct loop.
+/// Rows of kMoments floats, three Float4: [x y z 0 | xx xy xz yy | yz zz 0 0].
+constexpr std::size_t kMoments = 12;
+
+/// Covariance moments relative to each point (small numbers: float accumulation is accurate enough),
+/// accumulated per pair within `rn2` into both points (q and -q give the same second moments); `count`: the
+/// points summed, the point itself included. In chunks: the pairs within the radius listed first without a
+/// branch (the test is data-dependent and would mispredict), in pair order, so the moments accumulate in the same
+/// order as a direct loop.
+void accumulateMoments(const OrderedCloud& c, float rn2, AlignedFloats& mom, std::vector<std::uint32_t>& count) {
+  const std::size_t n = c.points.size(), np = c.pairs.size();
+  mom.assign(n * kMoments, 0.f);
+  count.assign(n, 1);
   constexpr std::size_t kSelect = 512;
   std::uint32_t selected[kSelect];
   for (std::size_t e0 = 0; e0 < np; e0 += kSelect) {
@@ -137,13 +135,13 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& input, cons
     std::size_t ns = 0;
     for (std::size_t e = e0; e < e1; ++e) {
       selected[ns] = static_cast<std::uint32_t>(e);
-      ns += pairs[e].squared_distance > rn2 ? 0 : 1;
+      ns += c.pairs[e].squared_distance > rn2 ? 0 : 1;
     }
     for (std::size_t s = 0; s < ns; ++s) {
       const std::size_t e = selected[s];
-      const std::uint32_t i = pairs[e].first, j = pairs[e].second;
+      const std::uint32_t i = c.pairs[e].first, j = c.pairs[e].second;
       ++count[i], ++count[j];
-      const Eigen::Vector3f q = points[j] - points[i];
+      const Eigen::Vector3f q = c.points[j] - c.points[i];
       const float x = q.x(), y = q.y(), z = q.z();
       const Float4 first(x, y, z, 0.f);
       const Float4 second = Float4(x, x, x, y) * Float4(x, y, z, y);
@@ -158,8 +156,16 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& input, cons
       (Float4::load(mj + 8) + third).store(mj + 8);
     }
   }
-  std::vector<Eigen::Vector3f> normals(n, Eigen::Vector3f::Zero());
-  std::vector<unsigned char> valid(n, 0);
+}
+
+/// Each point's normal (the float eigensolver's smallest eigenvector, oriented towards the origin), valid with
+/// enough neighbours and a covariance that is not too linear.
+void normalsFromMoments(const std::vector<Eigen::Vector3f>& points, const AlignedFloats& mom,
+                        const std::vector<std::uint32_t>& count, const FastFeatureParams& params,
+                        std::vector<Eigen::Vector3f>& normals, std::vector<unsigned char>& valid) {
+  const std::size_t n = points.size();
+  normals.assign(n, Eigen::Vector3f::Zero());
+  valid.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t k = count[i];
     if (k < std::max<std::size_t>(params.min_neighbors, 3)) continue;
@@ -181,46 +187,50 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& input, cons
     normals[i] = nrm;
     valid[i] = 1;
   }
-  notifyStage(observer, "normals");
+}
 
-  // SPFH of every valid point over its valid neighbours within the SPFH radius. PCL's pair feature is
-  // symmetric (swapping the two points selects the same source normal), so each pair is computed once and
-  // counted in both histograms; the feature itself runs on kBlock pairs at a time (Float4).
-  // Rows padded to kRow floats (16-byte aligned) so the FPFH sums run on Float4.
-  // Integer bin counts first (exact, as the float counts were; integer increments are cheaper), then scaled.
+/// Integer SPFH bin counts (rows of kRow) of every valid point over its valid neighbours within `rs2`. PCL's pair
+/// feature is symmetric (swapping the two points selects the same source normal), so each pair is computed once
+/// and counted in both histograms. Chunks of up to kChunk selected pairs (selected without a branch), features
+/// in blocks of kBlock gathered from packed [point normal] rows, then the histogram increments.
+std::vector<std::uint16_t> countSpfhBins(const OrderedCloud& c, const std::vector<Eigen::Vector3f>& normals,
+                                         const std::vector<unsigned char>& valid, float rs2) {
+  const std::size_t n = c.points.size(), np = c.pairs.size();
   std::vector<std::uint16_t> bins(n * kRow, 0);
-  {
-    // Chunks of up to kChunk selected pairs (within the SPFH radius, both valid; selected without a branch),
-    // features in blocks of kBlock gathered from the packed [point normal] rows, then the histogram increments.
-    std::vector<float, Eigen::aligned_allocator<float>> pn(n * 8, 0.f);
-    for (std::size_t i = 0; i < n; ++i)
-      for (int k = 0; k < 3; ++k) pn[8 * i + k] = points[i][k], pn[8 * i + 4 + k] = normals[i][k];
-    constexpr std::size_t kChunk = 256;
-    alignas(16) std::int32_t b1[kChunk], b2[kChunk], b3[kChunk], ok[kChunk];
-    std::uint32_t ci[kChunk + kBlock], cj[kChunk + kBlock];
-    std::size_t e = 0;
-    while (e < np) {
-      std::size_t len = 0;
-      for (; e < np && len < kChunk; ++e) {
-        const std::uint32_t i = pairs[e].first, j = pairs[e].second;
-        ci[len] = i, cj[len] = j;
-        len += (pairs[e].squared_distance <= rs2) & (valid[i] != 0) & (valid[j] != 0) ? 1 : 0;
-      }
-      if (len == 0) break;
-      const std::size_t padded = (len + kBlock - 1) / kBlock * kBlock;
-      for (std::size_t l = len; l < padded; ++l) ci[l] = ci[len - 1], cj[l] = cj[len - 1];  // not counted
-      for (std::size_t l = 0; l < padded; l += kBlock)
-        pairFeatureBlock(pn.data(), ci + l, cj + l, b1 + l, b2 + l, b3 + l, ok + l);
-      for (std::size_t l = 0; l < len; ++l) {
-        if (!ok[l]) continue;
-        std::uint16_t* hi = &bins[ci[l] * kRow];
-        std::uint16_t* hj = &bins[cj[l] * kRow];
-        ++hi[b1[l]], ++hi[b2[l]], ++hi[b3[l]];
-        ++hj[b1[l]], ++hj[b2[l]], ++hj[b3[l]];
-      }
+  AlignedFloats pn(n * 8, 0.f);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) pn[8 * i + k] = c.points[i][k], pn[8 * i + 4 + k] = normals[i][k];
+  constexpr std::size_t kChunk = 256;
+  alignas(16) std::int32_t b1[kChunk], b2[kChunk], b3[kChunk], ok[kChunk];
+  std::uint32_t ci[kChunk + kBlock], cj[kChunk + kBlock];
+  std::size_t e = 0;
+  while (e < np) {
+    std::size_t len = 0;
+    for (; e < np && len < kChunk; ++e) {
+      const std::uint32_t i = c.pairs[e].first, j = c.pairs[e].second;
+      ci[len] = i, cj[len] = j;
+      len += (c.pairs[e].squared_distance <= rs2) & (valid[i] != 0) & (valid[j] != 0) ? 1 : 0;
+    }
+    if (len == 0) break;
+    const std::size_t padded = (len + kBlock - 1) / kBlock * kBlock;
+    for (std::size_t l = len; l < padded; ++l) ci[l] = ci[len - 1], cj[l] = cj[len - 1];  // not counted
+    for (std::size_t l = 0; l < padded; l += kBlock)
+      pairFeatureBlock(pn.data(), ci + l, cj + l, b1 + l, b2 + l, b3 + l, ok + l);
+    for (std::size_t l = 0; l < len; ++l) {
+      if (!ok[l]) continue;
+      std::uint16_t* hi = &bins[ci[l] * kRow];
+      std::uint16_t* hj = &bins[cj[l] * kRow];
+      ++hi[b1[l]], ++hi[b2[l]], ++hi[b3[l]];
+      ++hj[b1[l]], ++hj[b2[l]], ++hj[b3[l]];
     }
   }
-  std::vector<float, Eigen::aligned_allocator<float>> spfh(n * kRow, 0.f);
+  return bins;
+}
+
+/// The SPFH rows (kRow floats, 16-byte aligned so that the FPFH sums run on Float4): the bin counts scaled so
+/// that each sub-histogram sums to 100.
+AlignedFloats scaleSpfh(const std::vector<std::uint16_t>& bins, std::size_t n) {
+  AlignedFloats spfh(n * kRow, 0.f);
   for (std::size_t i = 0; i < n; ++i) {
     // Pairs counted in the point's SPFH = the sum of any one sub-histogram (each pair adds one to each).
     int pairs_counted = 0;
@@ -228,11 +238,16 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& input, cons
     const float s = pairs_counted > 0 ? 100.f / static_cast<float>(pairs_counted) : 1.f;
     for (int b = 0; b < kFpfhDim; ++b) spfh[i * kRow + b] = static_cast<float>(bins[i * kRow + b]) * s;
   }
-  notifyStage(observer, "spfh");
+  return spfh;
+}
 
-  // Keypoints: the first valid point (in input order) of each keypoint voxel, or every valid point.
-  std::vector<int> kept_index(n, -1);  // by position
-  for (std::size_t i = 0; i < n_input; ++i) {
+/// out.kept / out.normals: the valid points in input order; out.keypoints: the first valid point (in input order)
+/// of each keypoint voxel, or every valid point.
+void selectKeypoints(const std::vector<Eigen::Vector3f>& input, const std::vector<int>& position,
+                     const std::vector<Eigen::Vector3f>& normals, const std::vector<unsigned char>& valid,
+                     double keypoint_voxel, FastFeatures& out) {
+  std::vector<int> kept_index(normals.size(), -1);  // by position
+  for (std::size_t i = 0; i < input.size(); ++i) {
     const int s = position[i];
     if (s >= 0 && valid[static_cast<std::size_t>(s)]) {
       kept_index[static_cast<std::size_t>(s)] = static_cast<int>(out.kept.size());
@@ -240,9 +255,9 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& input, cons
       out.normals.push_back(normals[static_cast<std::size_t>(s)]);
     }
   }
-  if (params.keypoint_voxel > 0.0) {
+  if (keypoint_voxel > 0.0) {
     std::vector<std::pair<std::uint64_t, int>> keyed;
-    const double inv = 1.0 / params.keypoint_voxel;
+    const double inv = 1.0 / keypoint_voxel;
     for (const int i : out.kept) {
       const Eigen::Vector3f& p = input[static_cast<std::size_t>(i)];
       keyed.emplace_back(packVoxelKey(voxelCoord(p.x(), inv), voxelCoord(p.y(), inv), voxelCoord(p.z(), inv)),
@@ -256,58 +271,103 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& input, cons
     out.keypoints.resize(out.kept.size());
     for (std::size_t c = 0; c < out.kept.size(); ++c) out.keypoints[c] = static_cast<int>(c);
   }
+}
 
-  // FPFH = own SPFH + distance-weighted mean of the neighbours' SPFH (within fpfh_radius); sub-histograms
-  // normalised to 100. The sums run over the pair list into the keypoints' columns.
-  std::vector<int> key_col(n, -1);  // by position
-  auto keypointPosition = [&](std::size_t c) {
-    return static_cast<std::size_t>(
-        position[static_cast<std::size_t>(out.kept[static_cast<std::size_t>(out.keypoints[c])])]);
-  };
-  for (std::size_t c = 0; c < out.keypoints.size(); ++c) key_col[keypointPosition(c)] = static_cast<int>(c);
-  const std::size_t nk = out.keypoints.size();
-  std::vector<float, Eigen::aligned_allocator<float>> sums(nk * kRow, 0.f);
-  std::vector<int> weight_count(nk, 0);
-  {
-    // The (keypoint column, neighbour row, squared distance) terms in pair order (for a pair: the first point's
-    // term, then the second's), listed without data-dependent branches, then summed with weight 1 / |p - q|
-    // (computed only for the listed terms): each column receives the same terms in the same order as a direct
-    // loop over the pairs.
-    constexpr std::size_t kChunk = 256;
-    std::uint32_t term_col[2 * kChunk], term_row[2 * kChunk];
-    float term_d2[2 * kChunk];
-    for (std::size_t e0 = 0; e0 < np; e0 += kChunk) {
-      const std::size_t e1 = std::min(np, e0 + kChunk);
-      std::size_t nt = 0;
-      for (std::size_t e = e0; e < e1; ++e) {
-        const float d2 = pairs[e].squared_distance;
-        const std::uint32_t i = pairs[e].first, j = pairs[e].second;
-        const bool ok = (d2 <= rf2) & (d2 > 0.f) & (valid[i] != 0) & (valid[j] != 0);
-        const int ki = key_col[i], kj = key_col[j];
-        term_col[nt] = static_cast<std::uint32_t>(ki), term_row[nt] = j, term_d2[nt] = d2;
-        nt += ok & (ki >= 0) ? 1 : 0;
-        term_col[nt] = static_cast<std::uint32_t>(kj), term_row[nt] = i, term_d2[nt] = d2;
-        nt += ok & (kj >= 0) ? 1 : 0;
-      }
-      for (std::size_t t = 0; t < nt; ++t) {
-        const float w = 1.f / std::sqrt(term_d2[t]);
-        addScaledRow(&sums[static_cast<std::size_t>(term_col[t]) * kRow], &spfh[term_row[t] * kRow], w);
-        ++weight_count[term_col[t]];
-      }
+/// Position of keypoint c.
+std::size_t keypointPosition(const FastFeatures& out, const std::vector<int>& position, std::size_t c) {
+  return static_cast<std::size_t>(
+      position[static_cast<std::size_t>(out.kept[static_cast<std::size_t>(out.keypoints[c])])]);
+}
+
+/// The neighbours' SPFH summed with weight 1 / |p - q| (within `rf2`) into the keypoints' rows (`sums`), and
+/// their number (`weight_count`). The (keypoint column, neighbour row, squared distance) terms are listed in pair
+/// order (for a pair: the first point's term, then the second's) without data-dependent branches, then summed
+/// (the weight computed only for the listed terms): each column receives the same terms in the same order as a
+/// direct loop over the pairs.
+void sumNeighbourSpfh(const NeighbourPairs& pairs, const std::vector<int>& key_col,
+                      const std::vector<unsigned char>& valid, const AlignedFloats& spfh, float rf2,
+                      AlignedFloats& sums, std::vector<int>& weight_count) {
+  const std::size_t np = pairs.size();
+  constexpr std::size_t kChunk = 256;
+  std::uint32_t term_col[2 * kChunk], term_row[2 * kChunk];
+  float term_d2[2 * kChunk];
+  for (std::size_t e0 = 0; e0 < np; e0 += kChunk) {
+    const std::size_t e1 = std::min(np, e0 + kChunk);
+    std::size_t nt = 0;
+    for (std::size_t e = e0; e < e1; ++e) {
+      const float d2 = pairs[e].squared_distance;
+      const std::uint32_t i = pairs[e].first, j = pairs[e].second;
+      const bool ok = (d2 <= rf2) & (d2 > 0.f) & (valid[i] != 0) & (valid[j] != 0);
+      const int ki = key_col[i], kj = key_col[j];
+      term_col[nt] = static_cast<std::uint32_t>(ki), term_row[nt] = j, term_d2[nt] = d2;
+      nt += ok & (ki >= 0) ? 1 : 0;
+      term_col[nt] = static_cast<std::uint32_t>(kj), term_row[nt] = i, term_d2[nt] = d2;
+      nt += ok & (kj >= 0) ? 1 : 0;
+    }
+    for (std::size_t t = 0; t < nt; ++t) {
+      const float w = 1.f / std::sqrt(term_d2[t]);
+      addScaledRow(&sums[static_cast<std::size_t>(term_col[t]) * kRow], &spfh[term_row[t] * kRow], w);
+      ++weight_count[term_col[t]];
     }
   }
+}
+
+/// FPFH = own SPFH + distance-weighted mean of the neighbours' SPFH (within `rf2`), each sub-histogram
+/// normalised to 100, for the keypoints.
+void computeFpfh(const OrderedCloud& c, const std::vector<unsigned char>& valid, const AlignedFloats& spfh,
+                 float rf2, FastFeatures& out) {
+  std::vector<int> key_col(c.points.size(), -1);  // by position
+  for (std::size_t k = 0; k < out.keypoints.size(); ++k)
+    key_col[keypointPosition(out, c.position, k)] = static_cast<int>(k);
+  const std::size_t nk = out.keypoints.size();
+  AlignedFloats sums(nk * kRow, 0.f);
+  std::vector<int> weight_count(nk, 0);
+  sumNeighbourSpfh(c.pairs, key_col, valid, spfh, rf2, sums, weight_count);
   out.features.resize(kFpfhDim, static_cast<Eigen::Index>(nk));
-  for (std::size_t c = 0; c < out.keypoints.size(); ++c) {
-    const std::size_t i = keypointPosition(c);
-    auto acc = out.features.col(static_cast<Eigen::Index>(c));
-    acc = Eigen::Map<const Eigen::Matrix<float, kFpfhDim, 1>>(&sums[c * kRow]);
-    if (weight_count[c] > 0) acc /= static_cast<float>(weight_count[c]);
+  for (std::size_t k = 0; k < nk; ++k) {
+    const std::size_t i = keypointPosition(out, c.position, k);
+    auto acc = out.features.col(static_cast<Eigen::Index>(k));
+    acc = Eigen::Map<const Eigen::Matrix<float, kFpfhDim, 1>>(&sums[k * kRow]);
+    if (weight_count[k] > 0) acc /= static_cast<float>(weight_count[k]);
     acc += Eigen::Map<const Eigen::Matrix<float, kFpfhDim, 1>>(&spfh[i * kRow]);
     for (int s = 0; s < 3; ++s) {
       const float sum = acc.segment<kBins>(s * kBins).sum();
       if (sum > 0.f) acc.segment<kBins>(s * kBins) *= 100.f / sum;
     }
   }
+}
+
+}  // namespace
+
+FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& input, const FastFeatureParams& params,
+                                 StageObserver* observer) {
+  FastFeatures out;
+  if (input.empty()) {
+    out.features = FpfhMatrix(kFpfhDim, 0);
+    return out;
+  }
+  const double spfh_r = params.spfh_radius > 0.0 ? params.spfh_radius : params.fpfh_radius;
+  const float rf2 = static_cast<float>(params.fpfh_radius * params.fpfh_radius);
+  const float rs2 = static_cast<float>(spfh_r * spfh_r);
+  const float rn2 = static_cast<float>(params.normal_radius * params.normal_radius);
+  const float rsearch = static_cast<float>(std::max({spfh_r, params.normal_radius, params.fpfh_radius}));
+
+  const OrderedCloud cloud = orderCloud(input, rsearch);
+  notifyStage(observer, "neighbours");
+
+  AlignedFloats moments;
+  std::vector<std::uint32_t> count;
+  accumulateMoments(cloud, rn2, moments, count);
+  std::vector<Eigen::Vector3f> normals;
+  std::vector<unsigned char> valid;
+  normalsFromMoments(cloud.points, moments, count, params, normals, valid);
+  notifyStage(observer, "normals");
+
+  const AlignedFloats spfh = scaleSpfh(countSpfhBins(cloud, normals, valid, rs2), cloud.points.size());
+  notifyStage(observer, "spfh");
+
+  selectKeypoints(input, cloud.position, normals, valid, params.keypoint_voxel, out);
+  computeFpfh(cloud, valid, spfh, rf2, out);
   notifyStage(observer, "fpfh");
   return out;
 }
