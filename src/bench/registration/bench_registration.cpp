@@ -127,143 +127,175 @@ SynthPair syntheticPair(const Scan& scan, double offset, double yaw, double dir,
   return p;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Options {
   std::string config_path, write_pairs;
   std::vector<double> yaws{0, 90, 180};
   int speed_repeats = 1, synthetic = 0;
   bool dense = false;
   std::uint64_t seed = 7;
+};
+
+/// False (with a message) on an unknown option.
+bool parseArgs(int argc, char** argv, Options& o) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto val = [&]() { return std::string(i + 1 < argc ? argv[++i] : ""); };
     if (a == "--config")
-      config_path = val();
+      o.config_path = val();
     else if (a == "--write-pairs")
-      write_pairs = val();
+      o.write_pairs = val();
     else if (a == "--speed-repeats")
-      speed_repeats = std::stoi(val());
+      o.speed_repeats = std::stoi(val());
     else if (a == "--dense")
-      dense = true;
+      o.dense = true;
     else if (a == "--synthetic")
-      synthetic = std::stoi(val());
+      o.synthetic = std::stoi(val());
     else if (a == "--seed")
-      seed = std::stoull(val());
+      o.seed = std::stoull(val());
     else if (a == "--yaws") {
-      yaws.clear();
+      o.yaws.clear();
       std::stringstream ss(val());
-      for (std::string t; std::getline(ss, t, ',');) yaws.push_back(std::stod(t));
+      for (std::string t; std::getline(ss, t, ',');) o.yaws.push_back(std::stod(t));
     } else {
       std::fprintf(stderr, "unknown option %s\n", a.c_str());
-      return 2;
+      return false;
     }
   }
+  return true;
+}
+
+/// Scan files read once.
+class ScanCache {
+ public:
+  const Scan& load(const std::string& f) {
+    auto it = cache_.find(f);
+    if (it == cache_.end()) it = cache_.emplace(f, readScanFile(f)).first;
+    return it->second;
+  }
+
+ private:
+  std::map<std::string, Scan> cache_;
+};
+
+bool isKitti(const ScanPair& p) { return p.name.rfind("kitti", 0) == 0; }
+
+/// (a) accuracy on the real pairs at every yaw; returns the KITTI runs (for the speed figures).
+std::vector<Run> realPairs(const GlobalRegistration& reg, const std::vector<ScanPair>& pairs,
+                           const std::vector<double>& yaws, ScanCache& scans) {
+  std::printf("(a) real pairs, success = accepted and error <= 0.3 m and <= 1 deg\n");
+  printHeader();
+  std::vector<Run> kitti_runs;
+  int near_ok = 0, near_n = 0, far_ok = 0, far_n = 0;
+  for (const auto& p : pairs) {
+    for (const double yaw : yaws) {
+      const Run x = runOne(reg, p.name, scans.load(p.source), scans.load(p.target), p.T_target_source, yaw, 0.3, 1.0);
+      printRun(x);
+      if (isKitti(p)) kitti_runs.push_back(x);
+      (p.distance_m <= 10.0 ? near_n : far_n)++;
+      (p.distance_m <= 10.0 ? near_ok : far_ok) += x.success;
+    }
+  }
+  std::printf("pairs <= 10 m: %d / %d succeeded; farther (17-19 m): %d / %d\n", near_ok, near_n, far_ok, far_n);
+  return kitti_runs;
+}
+
+/// (b) speed: the KITTI pairs (repeated), and with --dense each KITTI scan plus a jittered copy of itself.
+void speed(const GlobalRegistration& reg, const std::vector<ScanPair>& pairs, const Options& o,
+           std::vector<Run> kitti_runs, ScanCache& scans) {
+  for (int rep = 1; rep < o.speed_repeats; ++rep)
+    for (const auto& p : pairs)
+      if (isKitti(p))
+        kitti_runs.push_back(
+            runOne(reg, p.name, scans.load(p.source), scans.load(p.target), p.T_target_source, 0, 0.3, 1.0));
+  printSpeed("KITTI HDL-64E (64 beams, ~120k points)", kitti_runs);
+  if (!o.dense) return;
+  std::mt19937_64 rng(o.seed);
+  std::vector<Run> dense_runs;
+  std::size_t n_points = 0;
+  for (const auto& p : pairs) {
+    if (!isKitti(p)) continue;
+    const Scan s = densify(scans.load(p.source), rng), t = densify(scans.load(p.target), rng);
+    n_points = s.size();
+    dense_runs.push_back(runOne(reg, p.name, s, t, p.T_target_source, 0, 0.3, 1.0));
+  }
+  printSpeed("128x1024-sized (KITTI + jittered copy, " + std::to_string(n_points) + " points)", dense_runs);
+}
+
+/// (c) synthetic loop pairs cut from the real scans.
+void syntheticPairs(const GlobalRegistration& reg, const std::vector<ScanPair>& pairs, int synthetic,
+                    std::uint64_t seed, ScanCache& scans) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<std::string> bases;
+  for (const auto& p : pairs) bases.push_back(p.target);
+  int ok = 0, accepted = 0;
+  std::printf(
+      "\n(c) %d synthetic pairs (crop 40 m radius around two virtual sensors 0-10 m apart in one real scan,"
+      " random yaw, 2 cm noise, 20 %% drop), success = accepted and < 0.5 m, < 2 deg\n",
+      synthetic);
+  for (int k = 0; k < synthetic; ++k) {
+    const std::string& base = bases[static_cast<std::size_t>(k) % bases.size()];
+    const double off = 10.0 * u(rng), yaw = 2 * M_PI * u(rng), dir = 2 * M_PI * u(rng);
+    const SynthPair sp = syntheticPair(scans.load(base), off, yaw, dir, 40.0, rng);
+    const Run x = runOne(reg, "synth" + std::to_string(k), sp.source, sp.target, sp.T_target_source, 0, 0.5, 2.0);
+    ok += x.success;
+    accepted += x.r.valid;
+    if (!x.success) printRun(x);
+  }
+  std::printf("synthetic success: %d / %d (%.1f %%), accepted %d\n", ok, synthetic, 100.0 * ok / synthetic, accepted);
+}
+
+/// (c') the gate on non-overlapping real pairs: different places of KITTI 00 (>= 80 m apart) and different
+/// datasets.
+void nonOverlappingPairs(const GlobalRegistration& reg, const std::string& root, ScanCache& scans) {
+  const std::string k = root + "/kitti00/velodyne/";
+  const std::string m = root + "/mulran_kaist03_keyframes/Scans/";
+  const std::string h = root + "/hdl32_pair/";
+  const std::vector<std::pair<std::string, std::string>> neg = {
+      {k + "000000.bin", k + "000094.bin"},    {k + "000000.bin", k + "000198.bin"},
+      {k + "000094.bin", k + "000198.bin"},    {k + "000040.bin", k + "000198.bin"},
+      {k + "000020.bin", k + "000094.bin"},    {k + "000040.bin", k + "000094.bin"},
+      {k + "000001.bin", k + "000199.bin"},    {k + "000095.bin", k + "000199.bin"},
+      {m + "000000.pcd", k + "000000.bin"},    {m + "000010.pcd", k + "000094.bin"},
+      {m + "000020.pcd", h + "251370668.pcd"}, {h + "251371071.pcd", k + "000198.bin"},
+      {m + "000000.pcd", m + "000020.pcd"}};
+  std::printf("\n(c') gate on non-overlapping real pairs (different places / datasets), yaw 0 and 90\n");
+  printHeader();
+  int acc = 0, n = 0;
+  for (const auto& [s, t] : neg)
+    for (const double yaw : {0.0, 90.0}) {
+      const Run x =
+          runOne(reg, std::filesystem::path(s).stem().string() + "/" + std::filesystem::path(t).stem().string(),
+                 scans.load(s), scans.load(t), Pose3::Identity(), yaw, 0.0, 0.0);
+      printRun(x);
+      acc += x.r.valid;
+      ++n;
+    }
+  std::printf("false accepts: %d / %d (%.1f %%)\n", acc, n, 100.0 * acc / n);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  if (!parseArgs(argc, argv, o)) return 2;
   const auto root = sharedPath("data/scan_snippets");
   if (!root) {
     std::printf("../shared/data/scan_snippets not found (set COSMO_SHARED_DIR): nothing to measure\n");
     return 0;
   }
   const RegistrationParams params =
-      config_path.empty() ? RegistrationParams{} : RegistrationParams::fromConfig(ConfigNode::load(config_path));
+      o.config_path.empty() ? RegistrationParams{} : RegistrationParams::fromConfig(ConfigNode::load(o.config_path));
   const GlobalRegistration reg(params);
   const auto pairs = bench::snippetPairs(*root, true);
-  if (!write_pairs.empty()) {
-    writePairList(write_pairs, pairs);
-    std::printf("wrote %zu pairs to %s\n", pairs.size(), write_pairs.c_str());
+  if (!o.write_pairs.empty()) {
+    writePairList(o.write_pairs, pairs);
+    std::printf("wrote %zu pairs to %s\n", pairs.size(), o.write_pairs.c_str());
     return 0;
   }
-
-  // (a) accuracy on real pairs.
-  std::printf("(a) real pairs, success = accepted and error <= 0.3 m and <= 1 deg\n");
-  printHeader();
-  std::vector<Run> runs, kitti_runs;
-  std::map<std::string, Scan> cache;
-  auto load = [&](const std::string& f) -> const Scan& {
-    auto it = cache.find(f);
-    if (it == cache.end()) it = cache.emplace(f, readScanFile(f)).first;
-    return it->second;
-  };
-  int near_ok = 0, near_n = 0, far_ok = 0, far_n = 0;
-  for (const auto& p : pairs) {
-    for (const double yaw : yaws) {
-      const Run x = runOne(reg, p.name, load(p.source), load(p.target), p.T_target_source, yaw, 0.3, 1.0);
-      printRun(x);
-      runs.push_back(x);
-      if (p.name.rfind("kitti", 0) == 0) kitti_runs.push_back(x);
-      (p.distance_m <= 10.0 ? near_n : far_n)++;
-      (p.distance_m <= 10.0 ? near_ok : far_ok) += x.success;
-    }
-  }
-  std::printf("pairs <= 10 m: %d / %d succeeded; farther (17-19 m): %d / %d\n", near_ok, near_n, far_ok, far_n);
-
-  // (b) speed.
-  for (int rep = 1; rep < speed_repeats; ++rep)
-    for (const auto& p : pairs)
-      if (p.name.rfind("kitti", 0) == 0)
-        kitti_runs.push_back(runOne(reg, p.name, load(p.source), load(p.target), p.T_target_source, 0, 0.3, 1.0));
-  printSpeed("KITTI HDL-64E (64 beams, ~120k points)", kitti_runs);
-  if (dense) {
-    std::mt19937_64 rng(seed);
-    std::vector<Run> dense_runs;
-    std::size_t n_points = 0;
-    for (const auto& p : pairs) {
-      if (p.name.rfind("kitti", 0) != 0) continue;
-      const Scan s = densify(load(p.source), rng), t = densify(load(p.target), rng);
-      n_points = s.size();
-      dense_runs.push_back(runOne(reg, p.name, s, t, p.T_target_source, 0, 0.3, 1.0));
-    }
-    printSpeed("128x1024-sized (KITTI + jittered copy, " + std::to_string(n_points) + " points)", dense_runs);
-  }
-
-  // (c) synthetic loop pairs cut from real scans, and the gate on non-overlapping real pairs.
-  if (synthetic > 0) {
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    std::vector<std::string> bases;
-    for (const auto& p : pairs) bases.push_back(p.target);
-    int ok = 0, accepted = 0;
-    std::printf(
-        "\n(c) %d synthetic pairs (crop 40 m radius around two virtual sensors 0-10 m apart in one real scan,"
-        " random yaw, 2 cm noise, 20 %% drop), success = accepted and < 0.5 m, < 2 deg\n",
-        synthetic);
-    for (int k = 0; k < synthetic; ++k) {
-      const std::string& base = bases[static_cast<std::size_t>(k) % bases.size()];
-      const double off = 10.0 * u(rng), yaw = 2 * M_PI * u(rng), dir = 2 * M_PI * u(rng);
-      const SynthPair sp = syntheticPair(load(base), off, yaw, dir, 40.0, rng);
-      const Run x = runOne(reg, "synth" + std::to_string(k), sp.source, sp.target, sp.T_target_source, 0, 0.5, 2.0);
-      ok += x.success;
-      accepted += x.r.valid;
-      if (!x.success) printRun(x);
-    }
-    std::printf("synthetic success: %d / %d (%.1f %%), accepted %d\n", ok, synthetic, 100.0 * ok / synthetic, accepted);
-  }
-  // Non-overlapping real pairs: different places of KITTI 00 (>= 80 m apart) and different datasets.
-  {
-    const std::string k = *root + "/kitti00/velodyne/";
-    const std::string m = *root + "/mulran_kaist03_keyframes/Scans/";
-    const std::string h = *root + "/hdl32_pair/";
-    const std::vector<std::pair<std::string, std::string>> neg = {
-        {k + "000000.bin", k + "000094.bin"},    {k + "000000.bin", k + "000198.bin"},
-        {k + "000094.bin", k + "000198.bin"},    {k + "000040.bin", k + "000198.bin"},
-        {k + "000020.bin", k + "000094.bin"},    {k + "000040.bin", k + "000094.bin"},
-        {k + "000001.bin", k + "000199.bin"},    {k + "000095.bin", k + "000199.bin"},
-        {m + "000000.pcd", k + "000000.bin"},    {m + "000010.pcd", k + "000094.bin"},
-        {m + "000020.pcd", h + "251370668.pcd"}, {h + "251371071.pcd", k + "000198.bin"},
-        {m + "000000.pcd", m + "000020.pcd"}};
-    std::printf("\n(c') gate on non-overlapping real pairs (different places / datasets), yaw 0 and 90\n");
-    printHeader();
-    int acc = 0, n = 0;
-    for (const auto& [s, t] : neg)
-      for (const double yaw : {0.0, 90.0}) {
-        const Run x =
-            runOne(reg, std::filesystem::path(s).stem().string() + "/" + std::filesystem::path(t).stem().string(),
-                   load(s), load(t), Pose3::Identity(), yaw, 0.0, 0.0);
-        printRun(x);
-        acc += x.r.valid;
-        ++n;
-      }
-    std::printf("false accepts: %d / %d (%.1f %%)\n", acc, n, 100.0 * acc / n);
-  }
+  ScanCache scans;
+  speed(reg, pairs, o, realPairs(reg, pairs, o.yaws, scans), scans);
+  if (o.synthetic > 0) syntheticPairs(reg, pairs, o.synthetic, o.seed, scans);
+  nonOverlappingPairs(reg, *root, scans);
   return 0;
 }

@@ -123,123 +123,158 @@ void writeCache(const std::string& path, double kf_m, const std::vector<Keyframe
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Options {
   std::string seq, config, cache;
   int n_pairs = 100, n_neg = 50;
   double kf_m = 2.0, max_offset = 10.0, min_sep = 100.0;
   std::uint64_t seed = 1;
+};
+
+/// False (with the usage) on an unknown option.
+bool parseArgs(int argc, char** argv, Options& o) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto val = [&]() { return std::string(i + 1 < argc ? argv[++i] : ""); };
     if (a == "--config")
-      config = val();
+      o.config = val();
     else if (a == "--pairs")
-      n_pairs = std::stoi(val());
+      o.n_pairs = std::stoi(val());
     else if (a == "--negatives")
-      n_neg = std::stoi(val());
+      o.n_neg = std::stoi(val());
     else if (a == "--kf")
-      kf_m = std::stod(val());
+      o.kf_m = std::stod(val());
     else if (a == "--max-offset")
-      max_offset = std::stod(val());
+      o.max_offset = std::stod(val());
     else if (a == "--min-separation")
-      min_sep = std::stod(val());
+      o.min_sep = std::stod(val());
     else if (a == "--seed")
-      seed = std::stoull(val());
+      o.seed = std::stoull(val());
     else if (a == "--cache")
-      cache = val();
+      o.cache = val();
     else if (!a.empty() && a[0] != '-')
-      seq = a;
+      o.seq = a;
     else {
       std::cerr << "usage: bench_registration_sim <sequence.yaml> [--config f] [--pairs N] [--negatives N] [--kf m] "
                    "[--max-offset m] [--min-separation m] [--seed S] [--cache FILE]\n";
-      return 2;
+      return false;
     }
   }
-  if (seq.empty()) {
+  return true;
+}
+
+/// The keyframes, from the cache when it holds them, else from the bags (then written to the cache).
+std::vector<Keyframe> keyframes(const Options& o) {
+  std::vector<Keyframe> kfs;
+  if (o.cache.empty() || !readCache(o.cache, o.kf_m, kfs)) {
+    kfs = loadKeyframes(o.seq, o.kf_m);
+    if (!o.cache.empty()) writeCache(o.cache, o.kf_m, kfs);
+  } else {
+    std::printf("  %zu keyframes from the cache %s\n", kfs.size(), o.cache.c_str());
+  }
+  return kfs;
+}
+
+using Pairs = std::vector<std::pair<int, int>>;
+
+/// Keyframe pairs of different robots: `near` within max_offset, `far` beyond min_separation; shuffled (seeded)
+/// and cut to their counts.
+void samplePairs(const std::vector<Keyframe>& kfs, const Options& o, std::mt19937_64& rng, Pairs& near, Pairs& far) {
+  for (std::size_t i = 0; i < kfs.size(); ++i)
+    for (std::size_t j = 0; j < kfs.size(); ++j) {
+      if (kfs[i].robot == kfs[j].robot || i == j) continue;
+      const double d = (kfs[i].pose.translation() - kfs[j].pose.translation()).norm();
+      if (d <= o.max_offset) near.emplace_back(static_cast<int>(i), static_cast<int>(j));
+      if (d > o.min_sep) far.emplace_back(static_cast<int>(i), static_cast<int>(j));
+    }
+  std::shuffle(near.begin(), near.end(), rng);
+  std::shuffle(far.begin(), far.end(), rng);
+  if (static_cast<int>(near.size()) > o.n_pairs) near.resize(static_cast<std::size_t>(o.n_pairs));
+  if (static_cast<int>(far.size()) > o.n_neg) far.resize(static_cast<std::size_t>(o.n_neg));
+}
+
+/// The loop pairs, each with the source rotated by a random yaw: a line per pair, then the success by offset.
+void loopPairs(const GlobalRegistration& reg, const std::vector<Keyframe>& kfs, const Pairs& near, double max_offset,
+               std::mt19937_64& rng, std::uniform_real_distribution<double>& u) {
+  std::printf(
+      "loop pairs (different robots, <= %.0f m apart, random yaw): %zu; success = accepted and < 0.5 m, "
+      "< 2 deg\n",
+      max_offset, near.size());
+  std::printf("%-10s %6s %7s %6s %6s %6s %5s %5s %4s %8s %8s %7s\n", "pair", "dist", "yaw", "corr", "clique", "final",
+              "ovl", "sovl", "acc", "err_m", "err_deg", "cpu_ms");
+  int ok = 0, acc = 0;
+  std::vector<double> ms;
+  int bins_ok[3] = {0, 0, 0}, bins_n[3] = {0, 0, 0};
+  for (const auto& [s, t] : near) {
+    const double yaw = u(rng);
+    const Pose3 Rz(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+    const Pose3 expected = kfs[t].pose.inverse() * kfs[s].pose * Rz.inverse();
+    StageTimer timer;
+    timer.restart();
+    const RegistrationResult r = reg.align(rotateScanYaw(kfs[s].scan, yaw), kfs[t].scan, &timer);
+    ms.push_back(timer.total());
+    const PoseError e = poseError(r.T_target_source, expected);
+    const bool success = r.valid && e.translation_m < 0.5 && e.rotation_deg < 2.0;
+    const double d = (kfs[s].pose.translation() - kfs[t].pose.translation()).norm();
+    const int b = d < 3.0 ? 0 : (d < 6.0 ? 1 : 2);
+    bins_n[b]++, bins_ok[b] += success;
+    ok += success, acc += r.valid;
+    std::printf("%4d-%-5d %6.2f %7.1f %6zu %6zu %6zu %5.2f %5.2f %4s %8.3f %8.3f %7.1f %s\n", s, t, d,
+                yaw * 180 / M_PI, r.correspondences, r.pruned_inliers, r.final_inliers, r.overlap, r.structure_overlap,
+                r.valid ? "yes" : "no", e.translation_m, e.rotation_deg, timer.total(), success ? "OK" : "FAIL");
+    std::fflush(stdout);
+  }
+  std::printf(
+      "success: %d / %zu (%.1f %%), accepted %d; by offset 0-3 m %d/%d, 3-6 m %d/%d, 6-10 m %d/%d; "
+      "median cpu %.1f ms\n",
+      ok, near.size(), near.empty() ? 0.0 : 100.0 * ok / near.size(), acc, bins_ok[0], bins_n[0], bins_ok[1],
+      bins_n[1], bins_ok[2], bins_n[2], bench::quantile(ms, 0.5));
+}
+
+/// The non-overlapping pairs: what the gate saw, and its false accepts.
+void farPairs(const GlobalRegistration& reg, const std::vector<Keyframe>& kfs, const Pairs& far, double min_sep,
+              std::mt19937_64& rng, std::uniform_real_distribution<double>& u) {
+  int false_acc = 0;
+  std::vector<double> neg_final, neg_overlap, neg_structure;
+  for (const auto& [s, t] : far) {
+    const RegistrationResult r = reg.align(rotateScanYaw(kfs[s].scan, u(rng)), kfs[t].scan);
+    false_acc += r.valid;
+    neg_final.push_back(static_cast<double>(r.final_inliers));
+    neg_overlap.push_back(r.overlap);
+    neg_structure.push_back(r.structure_overlap);
+    if (r.valid)
+      std::printf("  false accept %d-%d: %.0f m apart, final inliers %zu\n", s, t,
+                  (kfs[s].pose.translation() - kfs[t].pose.translation()).norm(), r.final_inliers);
+  }
+  std::printf(
+      "non-overlapping pairs: final inliers median %.0f max %.0f; overlap median %.2f max %.2f; "
+      "structure overlap median %.2f max %.2f\n",
+      bench::quantile(neg_final, 0.5), bench::quantile(neg_final, 1.0), bench::quantile(neg_overlap, 0.5),
+      bench::quantile(neg_overlap, 1.0), bench::quantile(neg_structure, 0.5), bench::quantile(neg_structure, 1.0));
+  std::printf("non-overlapping pairs (> %.0f m apart): %d / %zu accepted by the gate (false-accept rate %.1f %%)\n",
+              min_sep, false_acc, far.size(), far.empty() ? 0.0 : 100.0 * false_acc / far.size());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  if (!parseArgs(argc, argv, o)) return 2;
+  if (o.seq.empty()) {
     std::cerr << "bench_registration_sim: give a sequence yaml (from cosmo_simulate)\n";
     return 2;
   }
   try {
     const RegistrationParams params =
-        config.empty() ? RegistrationParams{} : RegistrationParams::fromConfig(ConfigNode::load(config));
+        o.config.empty() ? RegistrationParams{} : RegistrationParams::fromConfig(ConfigNode::load(o.config));
     const GlobalRegistration reg(params);
-    std::printf("== %s ==\n", seq.c_str());
-    std::vector<Keyframe> kfs;
-    if (cache.empty() || !readCache(cache, kf_m, kfs)) {
-      kfs = loadKeyframes(seq, kf_m);
-      if (!cache.empty()) writeCache(cache, kf_m, kfs);
-    } else {
-      std::printf("  %zu keyframes from the cache %s\n", kfs.size(), cache.c_str());
-    }
-    std::vector<std::pair<int, int>> near, far;
-    for (std::size_t i = 0; i < kfs.size(); ++i)
-      for (std::size_t j = 0; j < kfs.size(); ++j) {
-        if (kfs[i].robot == kfs[j].robot || i == j) continue;
-        const double d = (kfs[i].pose.translation() - kfs[j].pose.translation()).norm();
-        if (d <= max_offset) near.emplace_back(static_cast<int>(i), static_cast<int>(j));
-        if (d > min_sep) far.emplace_back(static_cast<int>(i), static_cast<int>(j));
-      }
-    std::mt19937_64 rng(seed);
-    std::shuffle(near.begin(), near.end(), rng);
-    std::shuffle(far.begin(), far.end(), rng);
-    if (static_cast<int>(near.size()) > n_pairs) near.resize(static_cast<std::size_t>(n_pairs));
-    if (static_cast<int>(far.size()) > n_neg) far.resize(static_cast<std::size_t>(n_neg));
+    std::printf("== %s ==\n", o.seq.c_str());
+    const std::vector<Keyframe> kfs = keyframes(o);
+    Pairs near, far;
+    std::mt19937_64 rng(o.seed);
+    samplePairs(kfs, o, rng, near, far);
     std::uniform_real_distribution<double> u(-M_PI, M_PI);
-    std::printf(
-        "loop pairs (different robots, <= %.0f m apart, random yaw): %zu; success = accepted and < 0.5 m, "
-        "< 2 deg\n",
-        max_offset, near.size());
-    std::printf("%-10s %6s %7s %6s %6s %6s %5s %5s %4s %8s %8s %7s\n", "pair", "dist", "yaw", "corr", "clique", "final",
-                "ovl", "sovl", "acc", "err_m", "err_deg", "cpu_ms");
-    int ok = 0, acc = 0;
-    std::vector<double> ms;
-    int bins_ok[3] = {0, 0, 0}, bins_n[3] = {0, 0, 0};
-    for (const auto& [s, t] : near) {
-      const double yaw = u(rng);
-      const Pose3 Rz(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
-      const Pose3 expected = kfs[t].pose.inverse() * kfs[s].pose * Rz.inverse();
-      StageTimer timer;
-      timer.restart();
-      const RegistrationResult r = reg.align(rotateScanYaw(kfs[s].scan, yaw), kfs[t].scan, &timer);
-      ms.push_back(timer.total());
-      const PoseError e = poseError(r.T_target_source, expected);
-      const bool success = r.valid && e.translation_m < 0.5 && e.rotation_deg < 2.0;
-      const double d = (kfs[s].pose.translation() - kfs[t].pose.translation()).norm();
-      const int b = d < 3.0 ? 0 : (d < 6.0 ? 1 : 2);
-      bins_n[b]++, bins_ok[b] += success;
-      ok += success, acc += r.valid;
-      std::printf("%4d-%-5d %6.2f %7.1f %6zu %6zu %6zu %5.2f %5.2f %4s %8.3f %8.3f %7.1f %s\n", s, t, d,
-                  yaw * 180 / M_PI, r.correspondences, r.pruned_inliers, r.final_inliers, r.overlap,
-                  r.structure_overlap, r.valid ? "yes" : "no", e.translation_m, e.rotation_deg, timer.total(),
-                  success ? "OK" : "FAIL");
-      std::fflush(stdout);
-    }
-    std::printf(
-        "success: %d / %zu (%.1f %%), accepted %d; by offset 0-3 m %d/%d, 3-6 m %d/%d, 6-10 m %d/%d; "
-        "median cpu %.1f ms\n",
-        ok, near.size(), near.empty() ? 0.0 : 100.0 * ok / near.size(), acc, bins_ok[0], bins_n[0], bins_ok[1],
-        bins_n[1], bins_ok[2], bins_n[2], bench::quantile(ms, 0.5));
-    int false_acc = 0;
-    std::vector<double> neg_final, neg_overlap, neg_structure;
-    for (const auto& [s, t] : far) {
-      const RegistrationResult r = reg.align(rotateScanYaw(kfs[s].scan, u(rng)), kfs[t].scan);
-      false_acc += r.valid;
-      neg_final.push_back(static_cast<double>(r.final_inliers));
-      neg_overlap.push_back(r.overlap);
-      neg_structure.push_back(r.structure_overlap);
-      if (r.valid)
-        std::printf("  false accept %d-%d: %.0f m apart, final inliers %zu\n", s, t,
-                    (kfs[s].pose.translation() - kfs[t].pose.translation()).norm(), r.final_inliers);
-    }
-    std::printf(
-        "non-overlapping pairs: final inliers median %.0f max %.0f; overlap median %.2f max %.2f; "
-        "structure overlap median %.2f max %.2f\n",
-        bench::quantile(neg_final, 0.5), bench::quantile(neg_final, 1.0), bench::quantile(neg_overlap, 0.5),
-        bench::quantile(neg_overlap, 1.0), bench::quantile(neg_structure, 0.5), bench::quantile(neg_structure, 1.0));
-    std::printf("non-overlapping pairs (> %.0f m apart): %d / %zu accepted by the gate (false-accept rate %.1f %%)\n",
-                min_sep, false_acc, far.size(), far.empty() ? 0.0 : 100.0 * false_acc / far.size());
+    loopPairs(reg, kfs, near, o.max_offset, rng, u);
+    farPairs(reg, kfs, far, o.min_sep, rng, u);
   } catch (const std::exception& e) {
     std::cerr << "bench_registration_sim: " << e.what() << "\n";
     return 1;

@@ -80,113 +80,143 @@ void printSummary(const cosmo::ros_glue::NebulaConversion& c) {
   }
 }
 
+struct Args {
+  cosmo::ros_glue::NebulaOptions options;
+  std::string out_dir, noise_file, name;
+  bool estimate = false, help = false;
+};
+
+cosmo::nebula::CovarianceOrder covarianceOrder(const std::string& o) {
+  if (o == "translation-first") return cosmo::nebula::CovarianceOrder::TranslationFirst;
+  if (o == "rotation-first") return cosmo::nebula::CovarianceOrder::RotationFirst;
+  throw std::invalid_argument("--covariance-order: expected translation-first or rotation-first, got " + o);
+}
+
+/// Throws std::invalid_argument on a bad command line.
+Args parseArgs(int argc, char** argv) {
+  Args args;
+  cosmo::ros_glue::NebulaOptions& options = args.options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> const char* {
+      if (i + 1 >= argc) throw std::invalid_argument(a + ": missing value");
+      return argv[++i];
+    };
+    if (a == "-h" || a == "--help") {
+      args.help = true;
+      return args;
+    } else if (a == "--out") {
+      args.out_dir = value();
+    } else if (a == "--name") {
+      args.name = value();
+    } else if (a == "--noise-models") {
+      args.noise_file = value();
+    } else if (a == "--estimate-noise-models") {
+      args.estimate = true;
+    } else if (a == "--max-translation") {
+      options.params.estimation.max_translation_error = positive(a, value());
+    } else if (a == "--max-rotation") {
+      options.params.estimation.max_rotation_error = positive(a, value());
+    } else if (a == "--outlier-rule") {
+      const auto rule = cosmo::parseOutlierRule(value());
+      if (!rule) throw std::invalid_argument("--outlier-rule: expected fidelity or squared");
+      options.params.rule = *rule;
+    } else if (a == "--covariance-order") {
+      options.covariance_order = covarianceOrder(value());
+    } else if (a == "--from-g2o") {
+      options.from_g2o = true;
+    } else if (!a.empty() && a[0] == '-') {
+      throw std::invalid_argument("unknown option " + a);
+    } else if (options.dataset_dir.empty()) {
+      options.dataset_dir = a;
+    } else {
+      throw std::invalid_argument("unexpected argument " + a);
+    }
+  }
+  if (options.dataset_dir.empty()) throw std::invalid_argument("need DATASET_DIR");
+  if (args.out_dir.empty()) throw std::invalid_argument("need --out DIR");
+  if (args.estimate && !args.noise_file.empty())
+    throw std::invalid_argument("--noise-models and --estimate-noise-models exclude each other");
+  return args;
+}
+
+/// The dataset's name (default: the folder's) and noise-model source into the conversion's parameters.
+void resolveParams(Args& args) {
+  auto& params = args.options.params;
+  params.name = args.name;
+  if (params.name.empty()) {
+    fs::path dir = fs::path(args.options.dataset_dir).lexically_normal();
+    if (dir.filename().empty()) dir = dir.parent_path();  // "tunnel/" -> "tunnel"
+    params.name = dir.filename().string();
+  }
+  if (params.name.empty() || params.name == "." || params.name == "..")
+    throw std::runtime_error("give the dataset a name with --name");
+  if (args.estimate) params.noise = cosmo::nebula::NoiseSource::Estimated;
+  if (!args.noise_file.empty()) {
+    params.noise = cosmo::nebula::NoiseSource::Given;
+    params.models = cosmo::NoiseModels::load(args.noise_file);
+  }
+}
+
+/// False (with the violations on stderr) when the dataset is not valid JRL.
+bool validJrl(const cosmo::jrl::Dataset& dataset) {
+  const auto violations = cosmo::jrl::validate(dataset);
+  if (violations.empty()) return true;
+  std::cerr << "cosmo_nebula: the converted dataset is not valid JRL (" << violations.size()
+            << " violations), nothing written:\n";
+  for (std::size_t i = 0; i < violations.size() && i < 20; ++i) std::cerr << "  " << violations[i].str() << "\n";
+  return false;
+}
+
+/// <base>.jrl, .stats.txt, .stats.json, .nebula.yaml, the estimated noise models, then the figures.
+void writeOutputs(const Args& args, const cosmo::ros_glue::NebulaConversion& c) {
+  const auto& options = args.options;
+  const auto& params = options.params;
+  fs::create_directories(args.out_dir);
+  const fs::path base = fs::path(args.out_dir) / params.name;
+  cosmo::jrl::writeJrl(base.string() + ".jrl", c.dataset);
+  const cosmo::jrl::DatasetStats stats = cosmo::jrl::computeStats(c.dataset);
+  cosmo::writeFileAtomically(base.string() + ".stats.txt", cosmo::jrl::formatStats(stats) + "\n");
+  cosmo::writeFileAtomically(base.string() + ".stats.json", cosmo::jrl::statsJson(stats) + "\n");
+  cosmo::nebula::MetadataInputs inputs{options.dataset_dir, c.inputs, options.from_g2o, options.covariance_order};
+  cosmo::writeFileAtomically(base.string() + ".nebula.yaml",
+                             cosmo::nebula::metadataYaml(c.graph, c.report, params, inputs));
+  std::cout << "wrote " << base.string() << ".jrl (+ .stats.txt, .stats.json, .nebula.yaml";
+  if (c.report.estimate) {
+    std::ostringstream header;
+    header << "Noise models estimated by cosmo_nebula from " << options.dataset_dir << ": "
+           << c.report.estimate->odometry.used << " odometry factors, " << c.report.estimate->loop_closure.used
+           << " good loop closures (error < " << params.estimation.max_translation_error << " m and < "
+           << params.estimation.max_rotation_error << " rad)";
+    c.report.estimate->models.save(base.string() + ".noise_models.yaml", header.str());
+    std::cout << ", .noise_models.yaml";
+  }
+  std::cout << ")\n" << cosmo::jrl::formatStats(stats) << "\n";
+  std::cout << cosmo::backend::inliersSolveLine(c.dataset) << "\n"
+            << cosmo::report::writeFiguresBesideJrl(c.dataset, base.string() + ".jrl") << "\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  cosmo::ros_glue::NebulaOptions options;
-  std::string out_dir, noise_file, name;
-  bool estimate = false;
+  Args args;
   try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto value = [&]() -> const char* {
-        if (i + 1 >= argc) throw std::invalid_argument(a + ": missing value");
-        return argv[++i];
-      };
-      if (a == "-h" || a == "--help") {
-        usage(std::cout);
-        return 0;
-      } else if (a == "--out") {
-        out_dir = value();
-      } else if (a == "--name") {
-        name = value();
-      } else if (a == "--noise-models") {
-        noise_file = value();
-      } else if (a == "--estimate-noise-models") {
-        estimate = true;
-      } else if (a == "--max-translation") {
-        options.params.estimation.max_translation_error = positive(a, value());
-      } else if (a == "--max-rotation") {
-        options.params.estimation.max_rotation_error = positive(a, value());
-      } else if (a == "--outlier-rule") {
-        const auto rule = cosmo::parseOutlierRule(value());
-        if (!rule) throw std::invalid_argument("--outlier-rule: expected fidelity or squared");
-        options.params.rule = *rule;
-      } else if (a == "--covariance-order") {
-        const std::string o = value();
-        if (o == "translation-first")
-          options.covariance_order = cosmo::nebula::CovarianceOrder::TranslationFirst;
-        else if (o == "rotation-first")
-          options.covariance_order = cosmo::nebula::CovarianceOrder::RotationFirst;
-        else
-          throw std::invalid_argument("--covariance-order: expected translation-first or rotation-first, got " + o);
-      } else if (a == "--from-g2o") {
-        options.from_g2o = true;
-      } else if (!a.empty() && a[0] == '-') {
-        throw std::invalid_argument("unknown option " + a);
-      } else if (options.dataset_dir.empty()) {
-        options.dataset_dir = a;
-      } else {
-        throw std::invalid_argument("unexpected argument " + a);
-      }
-    }
-    if (options.dataset_dir.empty()) throw std::invalid_argument("need DATASET_DIR");
-    if (out_dir.empty()) throw std::invalid_argument("need --out DIR");
-    if (estimate && !noise_file.empty())
-      throw std::invalid_argument("--noise-models and --estimate-noise-models exclude each other");
+    args = parseArgs(argc, argv);
   } catch (const std::invalid_argument& e) {
     std::cerr << "cosmo_nebula: " << e.what() << "\n";
     usage(std::cerr);
     return 2;
   }
+  if (args.help) {
+    usage(std::cout);
+    return 0;
+  }
   try {
-    auto& params = options.params;
-    params.name = name;
-    if (params.name.empty()) {
-      fs::path dir = fs::path(options.dataset_dir).lexically_normal();
-      if (dir.filename().empty()) dir = dir.parent_path();  // "tunnel/" -> "tunnel"
-      params.name = dir.filename().string();
-    }
-    if (params.name.empty() || params.name == "." || params.name == "..")
-      throw std::runtime_error("give the dataset a name with --name");
-    if (estimate) params.noise = cosmo::nebula::NoiseSource::Estimated;
-    if (!noise_file.empty()) {
-      params.noise = cosmo::nebula::NoiseSource::Given;
-      params.models = cosmo::NoiseModels::load(noise_file);
-    }
-
-    const cosmo::ros_glue::NebulaConversion c = cosmo::ros_glue::convertNebulaDataset(options);
+    resolveParams(args);
+    const cosmo::ros_glue::NebulaConversion c = cosmo::ros_glue::convertNebulaDataset(args.options);
     printSummary(c);
-    const auto violations = cosmo::jrl::validate(c.dataset);
-    if (!violations.empty()) {
-      std::cerr << "cosmo_nebula: the converted dataset is not valid JRL (" << violations.size()
-                << " violations), nothing written:\n";
-      for (std::size_t i = 0; i < violations.size() && i < 20; ++i) std::cerr << "  " << violations[i].str() << "\n";
-      return 1;
-    }
-
-    fs::create_directories(out_dir);
-    const fs::path base = fs::path(out_dir) / params.name;
-    cosmo::jrl::writeJrl(base.string() + ".jrl", c.dataset);
-    const cosmo::jrl::DatasetStats stats = cosmo::jrl::computeStats(c.dataset);
-    cosmo::writeFileAtomically(base.string() + ".stats.txt", cosmo::jrl::formatStats(stats) + "\n");
-    cosmo::writeFileAtomically(base.string() + ".stats.json", cosmo::jrl::statsJson(stats) + "\n");
-    cosmo::nebula::MetadataInputs inputs{options.dataset_dir, c.inputs, options.from_g2o, options.covariance_order};
-    cosmo::writeFileAtomically(base.string() + ".nebula.yaml",
-                               cosmo::nebula::metadataYaml(c.graph, c.report, params, inputs));
-    std::cout << "wrote " << base.string() << ".jrl (+ .stats.txt, .stats.json, .nebula.yaml";
-    if (c.report.estimate) {
-      std::ostringstream header;
-      header << "Noise models estimated by cosmo_nebula from " << options.dataset_dir << ": "
-             << c.report.estimate->odometry.used << " odometry factors, " << c.report.estimate->loop_closure.used
-             << " good loop closures (error < " << params.estimation.max_translation_error << " m and < "
-             << params.estimation.max_rotation_error << " rad)";
-      c.report.estimate->models.save(base.string() + ".noise_models.yaml", header.str());
-      std::cout << ", .noise_models.yaml";
-    }
-    std::cout << ")\n" << cosmo::jrl::formatStats(stats) << "\n";
-    std::cout << cosmo::backend::inliersSolveLine(c.dataset) << "\n"
-              << cosmo::report::writeFiguresBesideJrl(c.dataset, base.string() + ".jrl") << "\n";
+    if (!validJrl(c.dataset)) return 1;
+    writeOutputs(args, c);
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "cosmo_nebula: " << e.what() << "\n";

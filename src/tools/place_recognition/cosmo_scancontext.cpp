@@ -38,131 +38,169 @@ std::size_t poseIndexOf(const std::string& file, std::size_t position) {
   return position;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  using namespace cosmo;
-  std::vector<std::string> positional;
+struct Options {
+  std::vector<std::string> positional;  ///< scan folder, poses file
   std::string calib, config;
   int exclude = -1, stride = -1;
   double radius = 5.0, lo = 0.05, hi = 0.6, step = 0.05;
-  bool list = false;
-  try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto value = [&]() -> std::string {
-        if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
-        return argv[++i];
-      };
-      if (a == "--calib")
-        calib = value();
-      else if (a == "--config")
-        config = value();
-      else if (a == "--exclude")
-        exclude = std::stoi(value());
-      else if (a == "--radius")
-        radius = std::stod(value());
-      else if (a == "--stride")
-        stride = std::stoi(value());
-      else if (a == "--list")
-        list = true;
-      else if (a == "--thresholds") {
-        const std::string v = value();
-        if (std::sscanf(v.c_str(), "%lf:%lf:%lf", &lo, &hi, &step) != 3 || step <= 0.0 || hi < lo)
-          throw std::runtime_error("--thresholds expects lo:hi:step, got '" + v + "'");
-      } else if (a == "-h" || a == "--help") {
-        usage();
-        return 0;
-      } else if (!a.empty() && a[0] == '-')
-        throw std::runtime_error("unknown option " + a);
-      else
-        positional.push_back(a);
+  bool list = false, help = false;
+};
+
+Options parseArgs(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--calib")
+      o.calib = value();
+    else if (a == "--config")
+      o.config = value();
+    else if (a == "--exclude")
+      o.exclude = std::stoi(value());
+    else if (a == "--radius")
+      o.radius = std::stod(value());
+    else if (a == "--stride")
+      o.stride = std::stoi(value());
+    else if (a == "--list")
+      o.list = true;
+    else if (a == "--thresholds") {
+      const std::string v = value();
+      if (std::sscanf(v.c_str(), "%lf:%lf:%lf", &o.lo, &o.hi, &o.step) != 3 || o.step <= 0.0 || o.hi < o.lo)
+        throw std::runtime_error("--thresholds expects lo:hi:step, got '" + v + "'");
+    } else if (a == "-h" || a == "--help") {
+      o.help = true;
+      return o;
+    } else if (!a.empty() && a[0] == '-')
+      throw std::runtime_error("unknown option " + a);
+    else
+      o.positional.push_back(a);
+  }
+  return o;
+}
+
+cosmo::PlaceRecognitionParams placeParams(const Options& o) {
+  cosmo::PlaceRecognitionParams params;
+  if (!o.config.empty()) params = cosmo::PlaceRecognitionParams::fromConfig(cosmo::ConfigNode::load(o.config));
+  if (o.exclude >= 0) params.exclude_recent = o.exclude;
+  if (o.stride > 0) params.sc.point_stride = o.stride;
+  return params;
+}
+
+/// Every scan's descriptor (timed) and reference position.
+struct Described {
+  std::vector<cosmo::ScanContext> descriptors;
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<std::size_t> pose_index;
+  std::vector<double> descriptor_ms;
+  std::size_t points = 0;
+};
+
+Described describeScans(const Options& o, const cosmo::PlaceRecognitionParams& params) {
+  using namespace cosmo;
+  std::vector<Pose3> poses = readKittiPoses(o.positional[1]);
+  if (!o.calib.empty()) poses = kittiPosesToLidar(poses, readKittiCalibTr(o.calib));
+  const std::vector<std::string> files = listScanFiles(o.positional[0]);
+  if (files.empty()) throw std::runtime_error(o.positional[0] + ": no .pcd / .bin scans found");
+  Described d;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    const std::size_t k = poseIndexOf(files[i], i);
+    if (k >= poses.size())
+      throw std::runtime_error(files[i] + ": pose line " + std::to_string(k) + " is beyond " + o.positional[1] + " (" +
+                               std::to_string(poses.size()) + " poses)");
+    const Scan scan = readScanFile(files[i]);
+    d.points += scan.size();
+    bench::Stopwatch sw;
+    d.descriptors.push_back(makeScanContext(scan, params.sc));
+    d.descriptor_ms.push_back(sw.elapsedMs());
+    d.positions.push_back(poses[k].translation());
+    d.pose_index.push_back(k);
+  }
+  return d;
+}
+
+void printOutcome(const Described& d, std::size_t i, const cosmo::QueryOutcome& o) {
+  if (o.has_candidate)
+    std::printf("scan %zu: top %zu distance %.4f yaw %.1f deg  separation %.2f m (nearest %.2f m)\n", d.pose_index[i],
+                d.pose_index[o.match], o.distance, o.yaw * 180.0 / M_PI, o.match_separation, o.nearest_separation);
+  else
+    std::printf("scan %zu: no candidate\n", d.pose_index[i]);
+}
+
+/// Incremental search (each scan against the earlier ones, the most recent excluded), timed per query (search +
+/// insertion): the top candidate of each.
+std::vector<cosmo::QueryOutcome> searchIncrementally(const Described& d, const cosmo::PlaceRecognitionParams& params,
+                                                     bool list, std::vector<double>& query_ms) {
+  using namespace cosmo;
+  std::vector<QueryOutcome> outcomes;
+  ScanContextDatabase db(params.databaseParams());
+  const auto excluded = static_cast<std::size_t>(params.exclude_recent);
+  for (std::size_t i = 0; i < d.descriptors.size(); ++i) {
+    bench::Stopwatch sw;
+    const std::size_t searchable = i > excluded ? i - excluded : 0;
+    const auto matches = db.query(d.descriptors[i], searchable);
+    db.insert(i, d.descriptors[i]);
+    query_ms.push_back(sw.elapsedMs());
+    QueryOutcome o;
+    for (std::size_t j = 0; j < searchable; ++j) {
+      const double dist = (d.positions[j] - d.positions[i]).norm();
+      if (o.nearest_separation < 0.0 || dist < o.nearest_separation) o.nearest_separation = dist;
     }
-    if (positional.size() != 2) {
+    if (!matches.empty()) {
+      o.has_candidate = true;
+      o.match = matches.front().id;
+      o.distance = matches.front().match.distance;
+      o.yaw = matches.front().match.yaw;
+      o.match_separation = (d.positions[o.match] - d.positions[i]).norm();
+    }
+    outcomes.push_back(o);
+    if (list) printOutcome(d, i, o);
+  }
+  return outcomes;
+}
+
+void printReport(const Options& o, const cosmo::PlaceRecognitionParams& params, const Described& d,
+                 const std::vector<cosmo::QueryOutcome>& outcomes, const std::vector<double>& query_ms) {
+  using namespace cosmo;
+  std::printf("%zu scans (%.0f points on average) from %s, exclude_recent %d, revisit radius %.1f m\n",
+              d.descriptors.size(), static_cast<double>(d.points) / d.descriptors.size(), o.positional[0].c_str(),
+              params.exclude_recent, o.radius);
+  std::printf("threshold  detections  true_pos  revisits  precision  recall\n");
+  for (double t = o.lo; t <= o.hi + 1e-9; t += o.step) {
+    const PrPoint p = precisionRecallAt(outcomes, t, o.radius);
+    std::printf("%9.3f  %10zu  %8zu  %8zu  %9.3f  %6.3f%s\n", t, p.detections, p.true_positives, p.revisits,
+                p.precision, p.recall, std::abs(t - params.threshold) < 1e-9 ? "   <- default" : "");
+  }
+  const PrPoint dp = precisionRecallAt(outcomes, params.threshold, o.radius);
+  std::printf("default threshold %.3f: precision %.3f recall %.3f (%zu/%zu detections correct, %zu revisits)\n",
+              params.threshold, dp.precision, dp.recall, dp.true_positives, dp.detections, dp.revisits);
+  std::printf("descriptor time: median %.3f ms, p95 %.3f ms (point_stride %d)\n", bench::quantile(d.descriptor_ms, 0.5),
+              bench::quantile(d.descriptor_ms, 0.95), params.sc.point_stride);
+  std::printf("query+insert time: median %.3f ms, p95 %.3f ms, max %.3f ms (database of up to %zu entries)\n",
+              bench::quantile(query_ms, 0.5), bench::quantile(query_ms, 0.95), bench::quantile(query_ms, 1.0),
+              d.descriptors.size());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options o = parseArgs(argc, argv);
+    if (o.help) {
+      usage();
+      return 0;
+    }
+    if (o.positional.size() != 2) {
       usage();
       return 2;
     }
-    PlaceRecognitionParams params;
-    if (!config.empty()) params = PlaceRecognitionParams::fromConfig(ConfigNode::load(config));
-    if (exclude >= 0) params.exclude_recent = exclude;
-    if (stride > 0) params.sc.point_stride = stride;
-
-    std::vector<Pose3> poses = readKittiPoses(positional[1]);
-    if (!calib.empty()) poses = kittiPosesToLidar(poses, readKittiCalibTr(calib));
-    const std::vector<std::string> files = listScanFiles(positional[0]);
-    if (files.empty()) throw std::runtime_error(positional[0] + ": no .pcd / .bin scans found");
-
-    std::vector<ScanContext> descriptors;
-    std::vector<Eigen::Vector3d> positions;
-    std::vector<std::size_t> pose_index;
-    std::vector<double> descriptor_ms;
-    std::size_t points = 0;
-    for (std::size_t i = 0; i < files.size(); ++i) {
-      const std::size_t k = poseIndexOf(files[i], i);
-      if (k >= poses.size())
-        throw std::runtime_error(files[i] + ": pose line " + std::to_string(k) + " is beyond " + positional[1] + " (" +
-                                 std::to_string(poses.size()) + " poses)");
-      const Scan scan = readScanFile(files[i]);
-      points += scan.size();
-      bench::Stopwatch sw;
-      descriptors.push_back(makeScanContext(scan, params.sc));
-      descriptor_ms.push_back(sw.elapsedMs());
-      positions.push_back(poses[k].translation());
-      pose_index.push_back(k);
-    }
-
-    // Incremental search, timed per query (search + insertion).
+    const cosmo::PlaceRecognitionParams params = placeParams(o);
+    const Described described = describeScans(o, params);
     std::vector<double> query_ms;
-    std::vector<QueryOutcome> outcomes;
-    {
-      ScanContextDatabase db(params.databaseParams());
-      const auto excluded = static_cast<std::size_t>(params.exclude_recent);
-      for (std::size_t i = 0; i < descriptors.size(); ++i) {
-        bench::Stopwatch sw;
-        const std::size_t searchable = i > excluded ? i - excluded : 0;
-        const auto matches = db.query(descriptors[i], searchable);
-        db.insert(i, descriptors[i]);
-        query_ms.push_back(sw.elapsedMs());
-        QueryOutcome o;
-        for (std::size_t j = 0; j < searchable; ++j) {
-          const double d = (positions[j] - positions[i]).norm();
-          if (o.nearest_separation < 0.0 || d < o.nearest_separation) o.nearest_separation = d;
-        }
-        if (!matches.empty()) {
-          o.has_candidate = true;
-          o.match = matches.front().id;
-          o.distance = matches.front().match.distance;
-          o.yaw = matches.front().match.yaw;
-          o.match_separation = (positions[o.match] - positions[i]).norm();
-        }
-        outcomes.push_back(o);
-        if (list) {
-          if (o.has_candidate)
-            std::printf("scan %zu: top %zu distance %.4f yaw %.1f deg  separation %.2f m (nearest %.2f m)\n",
-                        pose_index[i], pose_index[o.match], o.distance, o.yaw * 180.0 / M_PI, o.match_separation,
-                        o.nearest_separation);
-          else
-            std::printf("scan %zu: no candidate\n", pose_index[i]);
-        }
-      }
-    }
-
-    std::printf("%zu scans (%.0f points on average) from %s, exclude_recent %d, revisit radius %.1f m\n", files.size(),
-                static_cast<double>(points) / files.size(), positional[0].c_str(), params.exclude_recent, radius);
-    std::printf("threshold  detections  true_pos  revisits  precision  recall\n");
-    for (double t = lo; t <= hi + 1e-9; t += step) {
-      const PrPoint p = precisionRecallAt(outcomes, t, radius);
-      std::printf("%9.3f  %10zu  %8zu  %8zu  %9.3f  %6.3f%s\n", t, p.detections, p.true_positives, p.revisits,
-                  p.precision, p.recall, std::abs(t - params.threshold) < 1e-9 ? "   <- default" : "");
-    }
-    const PrPoint d = precisionRecallAt(outcomes, params.threshold, radius);
-    std::printf("default threshold %.3f: precision %.3f recall %.3f (%zu/%zu detections correct, %zu revisits)\n",
-                params.threshold, d.precision, d.recall, d.true_positives, d.detections, d.revisits);
-    std::printf("descriptor time: median %.3f ms, p95 %.3f ms (point_stride %d)\n", bench::quantile(descriptor_ms, 0.5),
-                bench::quantile(descriptor_ms, 0.95), params.sc.point_stride);
-    std::printf("query+insert time: median %.3f ms, p95 %.3f ms, max %.3f ms (database of up to %zu entries)\n",
-                bench::quantile(query_ms, 0.5), bench::quantile(query_ms, 0.95), bench::quantile(query_ms, 1.0),
-                descriptors.size());
+    const std::vector<cosmo::QueryOutcome> outcomes = searchIncrementally(described, params, o.list, query_ms);
+    printReport(o, params, described, outcomes, query_ms);
   } catch (const std::exception& e) {
     std::cerr << "cosmo_scancontext: " << e.what() << "\n";
     return 1;
