@@ -10,6 +10,8 @@
 // bytes (with --size-model real the payload is S * 0.653, there being no scan to compress). Robots are off
 // before their first pose and stay on at their last pose until the latest end (+ --tail seconds).
 // Writes the CSV (sender,receiver,keyframe,start,end,bytes,outcome) and <out>.summary.json; prints the summary.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -32,104 +34,132 @@ int usage(const char* msg) {
   std::fprintf(stderr, "comm_simulate: %s\n%s", msg, kUsage);
   return 2;
 }
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Options {
   std::string comm = "wifi", out, size_model, timeout_mode;
   std::uint64_t seed = 0;
   double kf_distance = 2.0, tail = 0.0;
   std::size_t scan_points = 65536;
   std::map<char, Trajectory> trajectories;
-  try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto next = [&]() -> std::string {
-        if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
-        return argv[++i];
-      };
-      if (a == "-h" || a == "--help") {
-        std::fputs(kUsage, stdout);
-        return 0;
-      }
-      if (a == "--comm")
-        comm = next();
-      else if (a == "--seed")
-        seed = std::stoull(next());
-      else if (a == "--kf-distance")
-        kf_distance = std::stod(next());
-      else if (a == "--scan-points")
-        scan_points = std::stoul(next());
-      else if (a == "--size-model")
-        size_model = next();
-      else if (a == "--timeout-mode")
-        timeout_mode = next();
-      else if (a == "--tail")
-        tail = std::stod(next());
-      else if (a == "--out")
-        out = next();
-      else if (a.size() > 2 && a[1] == '=') {
-        std::string path = a.substr(2);
-        double offset = 0.0;
-        const auto at = path.rfind('@');
-        if (at != std::string::npos) {
-          offset = std::stod(path.substr(at + 1));
-          path = path.substr(0, at);
-        }
-        const bool csv = path.size() > 4 && path.compare(path.size() - 4, 4, ".csv") == 0;
-        Trajectory t = csv ? readMcdPoseCsv(path) : readTumTrajectory(path);
-        if (t.empty()) throw std::invalid_argument(path + ": empty trajectory");
-        trajectories[a[0]] = t.shifted(static_cast<long long>(offset * 1e9));
-      } else {
-        return usage(("unknown argument '" + a + "'").c_str());
-      }
-    }
-    if (out.empty()) return usage("--out is required");
-    if (trajectories.empty()) return usage("no robot trajectories given");
-    if (!(kf_distance > 0)) return usage("--kf-distance must be > 0");
+  bool help = false;
+};
 
-    RadioParams params = (comm.size() > 5 && comm.compare(comm.size() - 5, 5, ".yaml") == 0)
-                             ? RadioParams::fromConfig(ConfigNode::load(comm))
-                             : RadioParams::byName(comm);
-    if (!size_model.empty()) params.size_model = sizeModelFromString(size_model, "--size-model");
-    if (!timeout_mode.empty()) params.timeout_mode = timeoutModeFromString(timeout_mode, "--timeout-mode");
+/// A robot's argument r=<traj>[@offset_s]: its trajectory, shifted by the offset.
+Trajectory readRobotTrajectory(const std::string& arg) {
+  std::string path = arg.substr(2);
+  double offset = 0.0;
+  const auto at = path.rfind('@');
+  if (at != std::string::npos) {
+    offset = std::stod(path.substr(at + 1));
+    path = path.substr(0, at);
+  }
+  const bool csv = path.size() > 4 && path.compare(path.size() - 4, 4, ".csv") == 0;
+  Trajectory t = csv ? readMcdPoseCsv(path) : readTumTrajectory(path);
+  if (t.empty()) throw std::invalid_argument(path + ": empty trajectory");
+  return t.shifted(static_cast<long long>(offset * 1e9));
+}
 
-    std::vector<char> ids;
-    StampNs t0 = ~StampNs{0}, t1 = 0;
-    for (const auto& [r, t] : trajectories) {
-      ids.push_back(r);
-      t0 = std::min(t0, t.startStamp());
-      t1 = std::max(t1, t.endStamp());
+/// Throws std::invalid_argument on a missing value; returns an error message for anything else wrong ("" if none).
+std::string parseArgs(int argc, char** argv, Options& o) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "-h" || a == "--help") {
+      o.help = true;
+      return "";
     }
-    RadioSimulator sim(params, ids, seed);
-    const double start = std::ceil(toSeconds(t0) / params.step) * params.step;
-    const double end = toSeconds(t1) + tail;
-    sim.setStartTime(start);
-    std::map<char, Eigen::Vector3d> last_pos;
-    std::map<char, double> travelled;
-    std::map<char, std::size_t> next_kf;
-    const std::size_t raw = 12 * scan_points;
-    const std::size_t real = static_cast<std::size_t>(0.653 * raw);
-    for (double t = sim.nextStepTime(); t <= end + 1e-9; t = sim.nextStepTime()) {
-      const StampNs stamp = static_cast<StampNs>(std::llround(t * 1e9));
-      for (const auto& [r, traj] : trajectories) {
-        if (stamp < traj.startStamp()) continue;  // off before its first measurement
-        const Eigen::Vector3d p = traj.atClamped(stamp).translation();
-        sim.setRobotState(r, p, true);
-        if (!last_pos.count(r)) {
-          last_pos[r] = p;
+    if (a == "--comm")
+      o.comm = next();
+    else if (a == "--seed")
+      o.seed = std::stoull(next());
+    else if (a == "--kf-distance")
+      o.kf_distance = std::stod(next());
+    else if (a == "--scan-points")
+      o.scan_points = std::stoul(next());
+    else if (a == "--size-model")
+      o.size_model = next();
+    else if (a == "--timeout-mode")
+      o.timeout_mode = next();
+    else if (a == "--tail")
+      o.tail = std::stod(next());
+    else if (a == "--out")
+      o.out = next();
+    else if (a.size() > 2 && a[1] == '=')
+      o.trajectories[a[0]] = readRobotTrajectory(a);
+    else
+      return "unknown argument '" + a + "'";
+  }
+  if (o.out.empty()) return "--out is required";
+  if (o.trajectories.empty()) return "no robot trajectories given";
+  if (!(o.kf_distance > 0)) return "--kf-distance must be > 0";
+  return "";
+}
+
+RadioParams radioParams(const Options& o) {
+  RadioParams params = (o.comm.size() > 5 && o.comm.compare(o.comm.size() - 5, 5, ".yaml") == 0)
+                           ? RadioParams::fromConfig(ConfigNode::load(o.comm))
+                           : RadioParams::byName(o.comm);
+  if (!o.size_model.empty()) params.size_model = sizeModelFromString(o.size_model, "--size-model");
+  if (!o.timeout_mode.empty()) params.timeout_mode = timeoutModeFromString(o.timeout_mode, "--timeout-mode");
+  return params;
+}
+
+/// Every step from the earliest start to the latest end (+ tail): robots on from their first pose, a keyframe
+/// offered at the first pose and every kf_distance of travel.
+void simulate(const Options& o, RadioSimulator& sim) {
+  StampNs t0 = ~StampNs{0}, t1 = 0;
+  for (const auto& [r, t] : o.trajectories) {
+    t0 = std::min(t0, t.startStamp());
+    t1 = std::max(t1, t.endStamp());
+  }
+  const double step = sim.params().step;
+  sim.setStartTime(std::ceil(toSeconds(t0) / step) * step);
+  const double end = toSeconds(t1) + o.tail;
+  std::map<char, Eigen::Vector3d> last_pos;
+  std::map<char, double> travelled;
+  std::map<char, std::size_t> next_kf;
+  const std::size_t raw = 12 * o.scan_points;
+  const std::size_t real = static_cast<std::size_t>(0.653 * raw);
+  for (double t = sim.nextStepTime(); t <= end + 1e-9; t = sim.nextStepTime()) {
+    const StampNs stamp = static_cast<StampNs>(std::llround(t * 1e9));
+    for (const auto& [r, traj] : o.trajectories) {
+      if (stamp < traj.startStamp()) continue;  // off before its first measurement
+      const Eigen::Vector3d p = traj.atClamped(stamp).translation();
+      sim.setRobotState(r, p, true);
+      if (!last_pos.count(r)) {
+        last_pos[r] = p;
+        sim.offerKeyframe(r, next_kf[r]++, real, raw);
+      } else if (stamp <= traj.endStamp()) {
+        travelled[r] += (p - last_pos[r]).norm();
+        last_pos[r] = p;
+        if (travelled[r] > o.kf_distance) {
+          travelled[r] = 0.0;
           sim.offerKeyframe(r, next_kf[r]++, real, raw);
-        } else if (stamp <= traj.endStamp()) {
-          travelled[r] += (p - last_pos[r]).norm();
-          last_pos[r] = p;
-          if (travelled[r] > kf_distance) {
-            travelled[r] = 0.0;
-            sim.offerKeyframe(r, next_kf[r]++, real, raw);
-          }
         }
       }
-      sim.step(t);
     }
-    writeTransferLog(out, sim.transferLog(), sim.stats(), sim.params());
+    sim.step(t);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    Options o;
+    const std::string error = parseArgs(argc, argv, o);
+    if (o.help) {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+    if (!error.empty()) return usage(error.c_str());
+    std::vector<char> ids;
+    for (const auto& [r, t] : o.trajectories) ids.push_back(r);
+    RadioSimulator sim(radioParams(o), ids, o.seed);
+    simulate(o, sim);
+    writeTransferLog(o.out, sim.transferLog(), sim.stats(), sim.params());
     std::cout << transferSummaryJson(sim.stats(), sim.params()) << "\n";
   } catch (const std::exception& e) {
     std::fprintf(stderr, "comm_simulate: %s\n", e.what());
