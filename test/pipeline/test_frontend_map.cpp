@@ -2,23 +2,15 @@
 // or the aligned odometry, loop closures between known keyframes with their labels.
 #include <gtest/gtest.h>
 
+#include "../support/keyframe_records.hpp"
 #include "cosmo/pipeline/frontend_map.hpp"
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
 
 namespace {
-Pose3 at(double x, double y, double yaw = 0.0) {
-  return makePose(Eigen::Vector3d(x, y, 0), Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())));
-}
-KeyframeRecord keyframe(std::size_t index, const Pose3& odom, std::optional<Pose3> reference) {
-  KeyframeRecord kf;
-  kf.robot = 'a';
-  kf.index = index;
-  kf.odom_pose = odom;
-  kf.reference = reference;
-  return kf;
-}
+using test::keyframeRecord;
+Pose3 at(double x, double y, double yaw = 0.0) { return test::planarPose(x, y, yaw); }
 LoopClosureAttempt closure(char r1, std::size_t i1, char r2, std::size_t i2, const Pose3& m, bool accepted = true) {
   LoopClosureAttempt a;
   a.owner = a.robot1 = r1;
@@ -33,8 +25,8 @@ LoopClosureAttempt closure(char r1, std::size_t i1, char r2, std::size_t i2, con
 
 TEST(FrontendMap, KeyframesWithoutReferenceAreAlignedByTheFirstKeyframesReference) {
   FrontendMap map('a');
-  map.addKeyframe(keyframe(0, at(1, 0), at(11, 5)));
-  map.addKeyframe(keyframe(1, at(3, 0), std::nullopt));
+  map.addKeyframe(keyframeRecord(0, at(1, 0), at(11, 5)));
+  map.addKeyframe(keyframeRecord(1, at(3, 0), std::nullopt));
   ASSERT_EQ(map.trajectory().size(), 2u);
   EXPECT_TRUE(map.trajectory()[0].isApprox(Eigen::Vector3d(11, 5, 0)));
   EXPECT_TRUE(map.trajectory()[1].isApprox(Eigen::Vector3d(13, 5, 0)));
@@ -43,8 +35,8 @@ TEST(FrontendMap, KeyframesWithoutReferenceAreAlignedByTheFirstKeyframesReferenc
 
 TEST(FrontendMap, ClosuresJoinKnownKeyframesAndCarryTheirLabels) {
   FrontendMap map('a', NoiseModels{});
-  map.addKeyframe(keyframe(0, at(0, 0), at(0, 0)));
-  map.addKeyframe(keyframe(1, at(2, 0), at(2, 0)));
+  map.addKeyframe(keyframeRecord(0, at(0, 0), at(0, 0)));
+  map.addKeyframe(keyframeRecord(1, at(2, 0), at(2, 0)));
   map.addTeammateKeyframe('b', 4, at(2, 1));
   map.addClosure(closure('a', 1, 'b', 4, at(0, 1)));         // the truth: inlier
   map.addClosure(closure('a', 0, 'b', 4, at(9, 9, 1.0)));    // far off: outlier
@@ -61,8 +53,8 @@ TEST(FrontendMap, ClosuresJoinKnownKeyframesAndCarryTheirLabels) {
 
 TEST(FrontendMap, AcceptedClosuresAreUnlabelledWithoutNoiseModels) {
   FrontendMap map('a');
-  map.addKeyframe(keyframe(0, at(0, 0), at(0, 0)));
-  map.addKeyframe(keyframe(1, at(2, 0), at(2, 0)));
+  map.addKeyframe(keyframeRecord(0, at(0, 0), at(0, 0)));
+  map.addKeyframe(keyframeRecord(1, at(2, 0), at(2, 0)));
   map.addClosure(closure('a', 0, 'a', 1, at(2, 0)));
   EXPECT_FALSE(map.hasNoiseModels());
   ASSERT_EQ(map.closures().size(), 1u);

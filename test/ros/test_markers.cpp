@@ -2,6 +2,7 @@
 // gets no empty or one-point line, closures carry their label's colour, poses travel bit-exact.
 #include <gtest/gtest.h>
 
+#include "../support/keyframe_records.hpp"
 #include "cosmo/ros/frontend_msgs.hpp"
 #include "cosmo/ros/markers.hpp"
 #include "cosmo/ros/pose_msg.hpp"
@@ -9,15 +10,9 @@
 using namespace cosmo;
 
 namespace {
-Pose3 at(double x, double y) { return makePose(Eigen::Vector3d(x, y, 0), Eigen::Quaterniond::Identity()); }
-pipeline::KeyframeRecord keyframe(std::size_t index, const Pose3& pose) {
-  pipeline::KeyframeRecord kf;
-  kf.robot = 'a';
-  kf.index = index;
-  kf.odom_pose = pose;
-  kf.reference = pose;
-  return kf;
-}
+Pose3 at(double x, double y) { return test::planarPose(x, y); }
+/// A keyframe whose odometry is its reference.
+pipeline::KeyframeRecord keyframe(std::size_t index, const Pose3& pose) { return test::keyframeRecord(index, pose, pose); }
 }  // namespace
 
 TEST(Markers, ALineIsDeletedUntilItHasContent) {
