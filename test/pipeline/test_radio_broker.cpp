@@ -69,6 +69,16 @@ RadioBroker lockstepBroker(bool compress) {
   return broker;
 }
 
+/// A lockstep broker started on sequence seed 3, robot a standing at x = 0 and b at x = `b_x`.
+RadioBroker startedBroker(bool compress, double b_x) {
+  RadioBroker broker = lockstepBroker(compress);
+  broker.setSequence(kStart, 3, {'a', 'b'});
+  broker.setReference('a', standing(0.0));
+  broker.setReference('b', standing(b_x));
+  broker.start();
+  return broker;
+}
+
 }  // namespace
 
 TEST(RadioBroker, LockstepRequestsWaitForTheSequenceTheReferencesAndTheOffers) {
@@ -169,11 +179,7 @@ TEST(RadioBroker, RobotsOffOrWithoutAReferenceAtTheirReportedPosition) {
 }
 
 TEST(RadioBroker, CompressedPayloadsArriveDecompressedWithTheKeyframeStamp) {
-  RadioBroker broker = lockstepBroker(true);
-  broker.setSequence(kStart, 3, {'a', 'b'});
-  broker.setReference('a', standing(0.0));
-  broker.setReference('b', standing(2.0));
-  broker.start();
+  RadioBroker broker = startedBroker(true, 2.0);
   const auto sent = scanOf(200, kStart + 777);
   broker.offer('a', 4, broker.pack(sent));
   Recorded rec;
@@ -192,11 +198,7 @@ TEST(RadioBroker, CompressedPayloadsArriveDecompressedWithTheKeyframeStamp) {
 }
 
 TEST(RadioBroker, AHandOverTheCallerRefusesIsNotCounted) {
-  RadioBroker broker = lockstepBroker(false);
-  broker.setSequence(kStart, 3, {'a', 'b'});
-  broker.setReference('a', standing(0.0));
-  broker.setReference('b', standing(2.0));
-  broker.start();
+  RadioBroker broker = startedBroker(false, 2.0);
   broker.offer('a', 0, broker.pack(scanOf(50, kStart)));
   std::size_t seen = 0;
   std::vector<RadioBroker::StepDone> done;
