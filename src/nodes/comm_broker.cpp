@@ -37,12 +37,12 @@
 #include "cosmo/comm/radio_status.hpp"
 #include "cosmo/comm/transfer_log.hpp"
 #include "cosmo/pipeline/radio_broker.hpp"
+#include "cosmo/ros/comm_broker_options.hpp"
 #include "cosmo/ros/lockstep_msgs.hpp"
 #include "cosmo/ros/markers.hpp"
 #include "cosmo/ros/node_main.hpp"
 #include "cosmo/ros/point_cloud.hpp"
 #include "cosmo/ros/pose_msg.hpp"
-#include "cosmo/ros/robot_list.hpp"
 #include "cosmo/ros/team_sequence_msg.hpp"
 
 using namespace cosmo;
@@ -50,43 +50,7 @@ using namespace cosmo;
 namespace {
 
 using pipeline::RadioBroker;
-
-struct Options {
-  std::vector<char> robots;
-  RadioParams radio;
-  int seed = 0, xz_preset = 6;
-  std::string log_file, frame_id = "world";
-  bool compress = true, lockstep = false;
-};
-
-RadioParams readRadioParams(const ros::NodeHandle& pnh) {
-  std::string comm = "wifi", config, size_model, timeout_mode;
-  pnh.param<std::string>("comm", comm, comm);
-  pnh.param<std::string>("config", config, "");
-  RadioParams params = config.empty() ? RadioParams::byName(comm) : RadioParams::fromConfig(ConfigNode::load(config));
-  if (pnh.getParam("size_model", size_model)) params.size_model = sizeModelFromString(size_model, "~size_model");
-  if (pnh.getParam("timeout_mode", timeout_mode))
-    params.timeout_mode = timeoutModeFromString(timeout_mode, "~timeout_mode");
-  return params;
-}
-
-Options readOptions(const ros::NodeHandle& pnh) {
-  Options o;
-  o.robots = ros_glue::readTeamRobots(pnh);
-  o.radio = readRadioParams(pnh);
-  pnh.param("seed", o.seed, 0);
-  pnh.param("xz_preset", o.xz_preset, 6);
-  if (o.xz_preset < 0 || o.xz_preset > 9) throw std::runtime_error("~xz_preset: must be in 0..9");
-  pnh.param<std::string>("log_file", o.log_file, "");
-  pnh.param<std::string>("frame_id", o.frame_id, "world");
-  pnh.param("compress_payload", o.compress, true);
-  if (!o.compress && o.radio.size_model == RadioParams::SizeModel::RealCompressed) {
-    ROS_WARN("comm_broker: ~compress_payload false ignored: the real size model needs the xz payload");
-    o.compress = true;
-  }
-  pnh.param("lockstep", o.lockstep, false);
-  return o;
-}
+using Options = ros_glue::CommBrokerOptions;
 
 class CommBroker {
  public:
@@ -313,7 +277,7 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "comm_broker");
   return ros_glue::runNode("comm_broker", [] {
     ros::NodeHandle nh, pnh("~");
-    CommBroker broker(nh, readOptions(pnh));
+    CommBroker broker(nh, ros_glue::readCommBrokerOptions(pnh));
     ros::AsyncSpinner spinner(2);  // compression of offered scans does not hold up the steps
     spinner.start();
     ros::waitForShutdown();
