@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -37,6 +38,16 @@ nlohmann::json errorJson(const jrl::PoseErrorRmse& e) {
   return {{"ate_m", rounded(e.trans_m, 1e6)}, {"rot_rmse_deg", rounded(e.rot_rad * kDeg, 1e6)}};
 }
 
+SelectionCheck solveAndMeasure(const jrl::PoseGraph& graph, FactorSelection selection) {
+  SolverOptions options;
+  options.selection = selection;
+  SelectionCheck c;
+  c.selection = selection;
+  c.solve = solvePoseGraph(graph, options);
+  c.error = jrl::trajectoryError(graph.robots, c.solve.poses, graph.groundtruth);
+  return c;
+}
+
 }  // namespace
 
 DatasetCheck checkDataset(const jrl::Dataset& dataset, const std::vector<FactorSelection>& selections) {
@@ -49,15 +60,10 @@ DatasetCheck checkDataset(const jrl::Dataset& dataset, const std::vector<FactorS
   check.poses = graph.initialization.size();
   check.factors = graph.factors.size();
   check.init = jrl::trajectoryError(graph.robots, graph.initialization, graph.groundtruth);
-  for (FactorSelection s : selections) {
-    SolverOptions options;
-    options.selection = s;
-    SelectionCheck c;
-    c.selection = s;
-    c.solve = solvePoseGraph(graph, options);
-    c.error = jrl::trajectoryError(graph.robots, c.solve.poses, graph.groundtruth);
-    check.solves.push_back(std::move(c));
-  }
+  std::vector<std::future<SelectionCheck>> runs;
+  for (FactorSelection s : selections)
+    runs.push_back(std::async(std::launch::async, [&graph, s] { return solveAndMeasure(graph, s); }));
+  for (auto& run : runs) check.solves.push_back(run.get());
   return check;
 }
 

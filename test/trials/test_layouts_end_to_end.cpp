@@ -19,6 +19,8 @@
 #include "cosmo/sim/sequence_planner.hpp"
 #include "cosmo/trials/trial_reference.hpp"
 
+#include "tiny_trial.hpp"
+
 using namespace cosmo;
 namespace fs = std::filesystem;
 
@@ -34,31 +36,8 @@ struct TempDir {
   ~TempDir() { fs::remove_all(path); }
 };
 
-sim::LidarModel smallLidar(double rate_hz) {
-  sim::LidarModel m = sim::LidarModel::os1_64();
-  m.beams = kBeams;
-  m.columns = kColumns;
-  m.rate_hz = rate_hz;
-  return m;
-}
-
-sim::PlannedSequence tinyPlan(const sim::LidarModel& lidar) {
-  sim::SimulationParams p;
-  p.world.blocks_x = 1;
-  p.world.blocks_y = 1;
-  p.world.outer_ring = 30;
-  p.world.terrain_margin = 40;
-  p.lidar = lidar;
-  sim::TrialParams t;
-  t.name = "walk_a";
-  t.motion = sim::MotionParams::preset("handheld");
-  t.platform = "handheld";
-  t.length = 30;
-  t.start_node = 0;
-  t.route.return_fraction = 1.0;
-  p.trials.push_back(t);
-  return sim::planSequence(p);
-}
+sim::LidarModel smallLidar(double rate_hz) { return test::smallLidar(kBeams, kColumns, rate_hz); }
+using test::tinyPlan;
 
 /// One simulated trial written in `layout` into `dir`, its sequence config beside it.
 struct LayoutTrial {

@@ -27,7 +27,8 @@ struct DatasetCheck {
   std::vector<SelectionCheck> solves;  ///< in the order asked
 };
 
-/// Solves `dataset` once per selection. Throws std::runtime_error when the dataset has no ground truth or no
+/// Solves `dataset` once per selection, the selections in parallel threads (each solve is single-threaded and
+/// independent, so the results do not depend on the scheduling). Throws std::runtime_error when the dataset has no ground truth or no
 /// initialization, or as solvePoseGraph() does (Inliers without outlier labels).
 DatasetCheck checkDataset(const jrl::Dataset& dataset, const std::vector<FactorSelection>& selections);
 
