@@ -147,9 +147,19 @@ class FrontendNode {
         if (std::optional<NoiseModels> noise = sequenceNoiseModels()) map_.setNoiseModels(std::move(*noise));
       }
       if (reference.empty()) ROS_WARN("frontend %c: the sequence has no reference for this robot", o_.robot);
+      useSequenceRegistration();
       frontend_ = std::make_unique<pipeline::RobotFrontend>(o_.robot, params_, std::move(reference));
     } catch (const std::exception& e) { ROS_ERROR("frontend %c: lockstep: %s; no reference", o_.robot, e.what()); }
     drainPending();
+  }
+
+  // The registration setting of the player's sequence: its `registration:` keys on top of ~config_dir's file
+  // (as cosmo_generate does).
+  void useSequenceRegistration() {
+    std::string path, data_root;
+    if (!ros::param::get(ros_glue::kResolvedSequenceParam, path) || path.empty()) return;
+    ros::param::get(ros_glue::kResolvedDataRootParam, data_root);
+    params_.registration = pipeline::SequenceConfig::load(path, data_root).registrationParams(o_.config_dir);
   }
 
   // The markers' inlier / outlier colours use the noise models the recorder labels with: without ~noise_models,

@@ -60,6 +60,24 @@ ReferenceOffsetConfig readReferenceOffset(const ConfigNode& root) {
   return r;
 }
 
+/// The `registration:` section: a map of scalar values, checked against RegistrationParams here, so that a typo
+/// stops the run when the sequence is read, naming this file.
+std::map<std::string, std::string> readRegistration(const ConfigNode& root) {
+  std::map<std::string, std::string> keys;
+  if (!root.has("registration")) return keys;
+  const ConfigNode section = root["registration"];
+  if (!section.node.IsMap())
+    throw std::runtime_error(section.where + ": expected a map of config/registration.yaml keys");
+  for (const auto& kv : section.node) {
+    const std::string key = kv.first.as<std::string>();
+    if (!kv.second.IsScalar())
+      throw std::runtime_error(section.where + "." + key + ": expected a single value (a config/registration.yaml key)");
+    keys[key] = kv.second.as<std::string>();
+  }
+  RegistrationParams::fromConfig(section);
+  return keys;
+}
+
 }  // namespace
 
 SequenceConfig SequenceConfig::load(const std::string& path, const std::string& data_root) {
@@ -85,6 +103,7 @@ SequenceConfig SequenceConfig::load(const std::string& path, const std::string& 
     cfg.data_root_from = "config folder";
   }
   cfg.reference_offset = readReferenceOffset(root);
+  cfg.registration = readRegistration(root);
   if (!root.has("name")) throw std::runtime_error(path + ": name: missing");
   root.read("name", cfg.name);
   if (cfg.name.empty()) throw std::runtime_error(path + ": name: empty");
@@ -134,6 +153,21 @@ SequenceConfig SequenceConfig::load(const std::string& path, const std::string& 
   if (!seen.count(cfg.anchor))
     throw std::runtime_error(path + ": anchor: robot '" + std::string(1, cfg.anchor) + "' has no trial");
   return cfg;
+}
+
+RegistrationParams SequenceConfig::registrationParams(const std::string& config_dir) const {
+  const std::string file = (std::filesystem::path(config_dir) / "registration.yaml").string();
+  YAML::Node merged(YAML::NodeType::Map);
+  std::string where = "compiled-in defaults";
+  if (std::filesystem::exists(file)) {
+    const ConfigNode loaded = ConfigNode::load(file);
+    const ConfigNode section = loaded.has("registration") ? loaded["registration"] : loaded;
+    if (section.node.IsMap()) merged = YAML::Clone(section.node);
+    where = section.where;
+  }
+  for (const auto& [key, value] : registration) merged[key] = value;
+  if (!registration.empty()) where += " with " + (path.empty() ? "sequence " + name : path) + ": registration";
+  return RegistrationParams::fromConfig(ConfigNode{merged, where});
 }
 
 std::vector<char> SequenceConfig::robots() const {

@@ -79,6 +79,10 @@ void writeSequenceConfig(const std::string& path, const SimulationParams& params
     for (std::size_t k = 0; k < t.extrinsic.size(); ++k) out << (k ? ", " : "") << t.extrinsic[k];
     out << "]\n";
   }
+  if (!params.registration.empty()) {
+    out << "registration:  # this sequence's registration keys, on top of config/registration.yaml\n";
+    for (const auto& [key, value] : params.registration) out << "  " << key << ": " << value << "\n";
+  }
   if (!out) throw std::runtime_error(path + ": write failed");
 }
 

@@ -45,6 +45,16 @@ SimulationParams SimulationParams::fromConfig(const ConfigNode& node) {
   node.read("frame_id", p.frame_id);
   p.world = WorldParams::fromConfig(node["world"]);
   p.lidar = LidarModel::fromConfig(node["lidar"]);
+  if (node.has("registration")) {
+    const ConfigNode registration = node["registration"];
+    if (!registration.node.IsMap())
+      throw std::runtime_error(registration.where + ": expected a map of config/registration.yaml keys");
+    for (const auto& kv : registration.node) {
+      const std::string key = kv.first.as<std::string>();
+      if (!kv.second.IsScalar()) throw std::runtime_error(registration.where + "." + key + ": expected a single value");
+      p.registration[key] = kv.second.as<std::string>();
+    }
+  }
   const ConfigNode trials = node["trials"];
   if (!trials.node || !trials.node.IsSequence() || trials.node.size() == 0)
     throw std::runtime_error(trials.where + ": expected a non-empty list of trials");
@@ -86,6 +96,10 @@ std::string SimulationParams::describe() const {
      << ";trial_epoch_spacing=" << trial_epoch_spacing << ";topic=" << topic << ";frame_id=" << frame_id
      << "\nworld:" << world.describe() << "\nlidar:" << lidar.describe();
   for (const auto& t : trials) os << "\ntrial:" << t.describe();
+  if (!registration.empty()) {  // only when set: the cache keys of configs without it stay valid
+    os << "\nregistration:";
+    for (const auto& [key, value] : registration) os << key << '=' << value << ';';
+  }
   return os.str();
 }
 

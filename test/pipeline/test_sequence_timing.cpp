@@ -5,8 +5,11 @@
 #include <filesystem>
 #include <fstream>
 
+#include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/pipeline/sequence_timing.hpp"
+#include "cosmo/sim/sequence_planner.hpp"
+#include "cosmo/sim/simulation_params.hpp"
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
@@ -170,4 +173,87 @@ TEST(SequenceConfig, TheTwelveCosmoBenchSequencesLoad) {
   }
   EXPECT_EQ(SequenceConfig::load(std::string(COSMO_SOURCE_DIR) + "/config/sequences/ntu_r3_00.yaml").trials[1].name,
             "ntu_night_04");
+}
+
+namespace {
+
+const char* kTwoTrials = R"(
+trials:
+  - robot: a
+    bag: a.bag
+  - robot: b
+    bag: b.bag
+)";
+
+}  // namespace
+
+TEST(SequenceConfig, RegistrationKeysGoOnTopOfTheConfigFolderAndReachRegistrationParams) {
+  const auto dir = std::filesystem::temp_directory_path() / "cosmo_pipeline_test" / "reg_config";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "registration.yaml") << "registration:\n  icp_iterations: 7\n  refine: true\n  gate: strict\n"
+                                              "  min_overlap: 0.4\n";
+  const auto plain = SequenceConfig::load(writeTemp("seq_reg_none.yaml", std::string("name: s\n") + kTwoTrials));
+  EXPECT_TRUE(plain.registration.empty());
+  const RegistrationParams folder = plain.registrationParams(dir.string());
+  EXPECT_TRUE(folder.refine);
+  EXPECT_EQ(folder.gate, "strict");
+  EXPECT_EQ(folder.icp_iterations, 7);
+  EXPECT_DOUBLE_EQ(folder.min_overlap, 0.4);
+
+  const auto paper = SequenceConfig::load(
+      writeTemp("seq_reg_paper.yaml", std::string("name: s\nregistration:\n  refine: false\n  gate: paper\n") + kTwoTrials));
+  ASSERT_EQ(paper.registration.size(), 2u);
+  const RegistrationParams p = paper.registrationParams(dir.string());
+  EXPECT_FALSE(p.refine);
+  EXPECT_EQ(p.gate, "paper");
+  EXPECT_DOUBLE_EQ(p.min_overlap, 0.0);  // the paper gate: KISS-Matcher's own checks only
+  EXPECT_DOUBLE_EQ(p.min_structure_overlap, 0.0);
+  EXPECT_EQ(p.icp_iterations, 7);  // every other key stays the folder's
+
+  // Without a registration.yaml in the folder: the compiled-in defaults, then the sequence's keys.
+  const auto empty_dir = std::filesystem::temp_directory_path() / "cosmo_pipeline_test" / "reg_empty";
+  std::filesystem::create_directories(empty_dir);
+  std::filesystem::remove(empty_dir / "registration.yaml");
+  EXPECT_FALSE(paper.registrationParams(empty_dir.string()).refine);
+  EXPECT_EQ(paper.registrationParams(empty_dir.string()).icp_iterations, RegistrationParams{}.icp_iterations);
+
+  // The shipped folder: a sequence without the key gets what every front-end gets from it.
+  const RegistrationParams shipped = plain.registrationParams(defaultConfigDir());
+  const RegistrationParams front = FrontendParams::loadDir(defaultConfigDir()).registration;
+  EXPECT_EQ(shipped.refine, front.refine);
+  EXPECT_EQ(shipped.gate, front.gate);
+  EXPECT_DOUBLE_EQ(shipped.min_structure_overlap, front.min_structure_overlap);
+}
+
+TEST(SequenceConfig, ARegistrationKeyNobodyReadsOrABadValueNamesTheFileAndKey) {
+  for (const char* section : {"registration:\n  refien: false\n", "registration:\n  gate: loose\n",
+                              "registration:\n  refine: [false]\n", "registration: paper\n"}) {
+    const auto path = writeTemp("seq_reg_bad.yaml", std::string("name: s\n") + section + kTwoTrials);
+    try {
+      SequenceConfig::load(path);
+      ADD_FAILURE() << "accepted: " << section;
+    } catch (const std::runtime_error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(path), std::string::npos) << what;
+      EXPECT_NE(what.find("registration"), std::string::npos) << what;
+    }
+  }
+}
+
+TEST(SequenceConfig, TheDemoWritesThePaperRegistrationIntoItsSequenceAndTheCiSequenceNone) {
+  const std::string sim_dir = std::string(COSMO_SOURCE_DIR) + "/config/sim/";
+  const auto demo = sim::SimulationParams::load(sim_dir + "default.yaml");
+  const std::string demo_path = writeTemp("demo_seq.yaml", "");
+  sim::writeSequenceConfig(demo_path, demo);
+  const RegistrationParams p = SequenceConfig::load(demo_path).registrationParams(defaultConfigDir());
+  EXPECT_FALSE(p.refine);
+  EXPECT_EQ(p.gate, "paper");
+  EXPECT_NE(demo.describe().find("registration:"), std::string::npos);  // part of the cache key
+
+  const auto ci = sim::SimulationParams::load(sim_dir + "ci.yaml");
+  EXPECT_TRUE(ci.registration.empty());
+  EXPECT_EQ(ci.describe().find("registration"), std::string::npos);  // its cache key is unchanged
+  const std::string ci_path = writeTemp("ci_seq.yaml", "");
+  sim::writeSequenceConfig(ci_path, ci);
+  EXPECT_TRUE(SequenceConfig::load(ci_path).registration.empty());
 }

@@ -7,10 +7,17 @@
 // Data root, first one set wins: the caller's argument (cosmo_generate / cosmo_check --data-root, the launch's
 // data_root:=), the file's `data_root:` key (relative to the file's folder), the COSMO_DATA_ROOT environment
 // variable, the config file's folder.
+//
+// `registration:` (optional) sets keys of config/registration.yaml for this sequence's runs only, on top of the
+// config folder's file: a dataset made with a registration setting of its own (the demo: the paper's
+// KISS-Matcher alone, `refine: false`, `gate: paper`) says so in its own config, and every driver that runs it
+// uses the same setting.
+#include <map>
 #include <string>
 #include <vector>
 
 #include "cosmo/common/pose.hpp"
+#include "cosmo/registration/registration_params.hpp"
 
 namespace cosmo::pipeline {
 
@@ -46,12 +53,19 @@ struct SequenceConfig {
   std::string data_root;                   ///< the folder the trials' relative paths were resolved against
   std::string data_root_from;  ///< where it came from: argument, data_root key, COSMO_DATA_ROOT, config folder
   std::vector<TrialConfig> trials;
+  /// `registration:` keys of this sequence (config/registration.yaml keys, scalar values as written); checked by
+  /// load() against RegistrationParams (an unknown key or a bad value names the file and the key).
+  std::map<std::string, std::string> registration;
 
   /// Read and check a sequence config. `data_root`: the caller's data root (empty: the precedence above).
   static SequenceConfig load(const std::string& path, const std::string& data_root = "");
 
   std::vector<char> robots() const;
   const TrialConfig& trial(char robot) const;  ///< throws naming the file when the robot is unknown
+
+  /// The registration parameters of this sequence's runs: `<config_dir>/registration.yaml` (the compiled-in
+  /// defaults when the file is absent) with this sequence's `registration:` keys on top.
+  RegistrationParams registrationParams(const std::string& config_dir) const;
 };
 
 /// `path` when absolute, else `base_dir/path` (an empty path stays empty).

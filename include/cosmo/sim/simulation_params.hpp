@@ -2,6 +2,7 @@
 // Everything that defines a synthetic multi-trial sequence (config/sim/*.yaml): the world, the LiDAR, and
 // one entry per trial (robot, platform, route length, motion overrides). The cache key hashes describe().
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,10 @@ struct SimulationParams {
   WorldParams world;
   LidarModel lidar;
   std::vector<TrialParams> trials;
+  /// `registration:` keys written into the sequence config (config/sequence_format.md): the registration setting
+  /// of this sequence's runs on top of config/registration.yaml (scalar values as written; checked when the
+  /// sequence config is read). Empty: none written.
+  std::map<std::string, std::string> registration;
 
   /// Parses a config/sim/*.yaml file; errors name the file and key.
   static SimulationParams load(const std::string& path);

@@ -301,6 +301,7 @@ TeamRunParams teamRunParams(const SequenceConfig& config, const Options& o) {
   preflightCheck(config, o);
   TeamRunParams params;
   params.frontend = FrontendParams::loadDir(o.config_dir);
+  params.frontend.registration = config.registrationParams(o.config_dir);  // the sequence's `registration:` keys
   params.outlier_rule = *rule;
   params.metadata = trials::sequenceMetadata(config);
   params.reference_odometry = o.reference_odometry;
