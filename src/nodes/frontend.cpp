@@ -128,6 +128,7 @@ class FrontendNode {
 
   void onReference(const geometry_msgs::PoseStamped::ConstPtr& m) {
     if (o_.lockstep) return;  // the sequence's own reference (onTrajectory)
+    useSequenceRegistrationOnce();
     frontend_->appendReference(m->header.stamp.toNSec(), ros_glue::poseFromMsg(m->pose));
     drainPending();
   }
@@ -154,12 +155,29 @@ class FrontendNode {
   }
 
   // The registration setting of the player's sequence: its `registration:` keys on top of ~config_dir's file
-  // (as cosmo_generate does).
-  void useSequenceRegistration() {
+  // (as cosmo_generate does). False when no player resolved a sequence (live robots).
+  bool useSequenceRegistration() {
     std::string path, data_root;
-    if (!ros::param::get(ros_glue::kResolvedSequenceParam, path) || path.empty()) return;
+    if (!ros::param::get(ros_glue::kResolvedSequenceParam, path) || path.empty()) return false;
     ros::param::get(ros_glue::kResolvedDataRootParam, data_root);
-    params_.registration = pipeline::SequenceConfig::load(path, data_root).registrationParams(o_.config_dir);
+    const pipeline::SequenceConfig sequence = pipeline::SequenceConfig::load(path, data_root);
+    params_.registration = sequence.registrationParams(o_.config_dir);
+    if (!sequence.registration.empty())
+      ROS_INFO("frontend %c: registration: %s's own keys over %s/registration.yaml", o_.robot, path.c_str(),
+               o_.config_dir.c_str());
+    return true;
+  }
+
+  // Real time: the same, once, before the front-end holds a reference pose or a scan (it is rebuilt empty).
+  void useSequenceRegistrationOnce() {
+    if (o_.lockstep || registration_resolved_) return;
+    registration_resolved_ = true;
+    try {
+      if (useSequenceRegistration()) frontend_ = std::make_unique<pipeline::RobotFrontend>(o_.robot, params_);
+    } catch (const std::exception& e) {
+      ROS_ERROR("frontend %c: the player's sequence: %s; registration stays %s/registration.yaml's", o_.robot,
+                e.what(), o_.config_dir.c_str());
+    }
   }
 
   // The markers' inlier / outlier colours use the noise models the recorder labels with: without ~noise_models,
@@ -193,6 +211,7 @@ class FrontendNode {
 
   /// Decode, one front-end step, publish; the scan is acknowledged whatever happened to it.
   void process(const sensor_msgs::PointCloud2& m) {
+    useSequenceRegistrationOnce();
     try {
       // Decoded with the topic's stamp convention: stamped at the sweep end as everywhere in the pipeline
       // (trials/point_cloud_decode.hpp); the player publishes scans stamped so.
@@ -305,6 +324,7 @@ class FrontendNode {
   pipeline::ExternalOdometry odom_;
   std::string odom_frame_, base_frame_;
   bool sequence_loaded_ = false;
+  bool registration_resolved_ = false;  // real time: the player's sequence's registration keys looked up
   std::size_t received_dropped_ = 0;
   std::size_t loop_closures_published_ = 0;  ///< counted in the ack (the player's end-of-run handshake)
   ros::Publisher offer_pub_, kf_pub_, lc_pub_, ack_pub_, marker_pub_;

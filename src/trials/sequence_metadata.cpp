@@ -1,6 +1,7 @@
 #include "cosmo/trials/sequence_metadata.hpp"
 
 #include <cstdio>
+#include <string>
 
 #include "cosmo/trials/trial_reference.hpp"
 
@@ -13,6 +14,11 @@ std::vector<std::pair<std::string, std::string>> sequenceMetadata(const pipeline
                 o.y(), o.z());
   std::vector<std::pair<std::string, std::string>> lines{
       {"sequence", config.name}, {"source", config.source}, {"reference_offset", offset}};
+  if (!config.registration.empty()) {
+    std::string keys;
+    for (const auto& [key, value] : config.registration) keys += (keys.empty() ? "" : ", ") + key + ": " + value;
+    lines.push_back({"registration", "{" + keys + "}  # the sequence's own keys over config/registration.yaml"});
+  }
   for (const auto& t : config.trials)
     lines.push_back({std::string("trial_") + t.robot, t.name + "  # stamp " + (t.stamp_at_end ? "end" : "start")});
   return lines;

@@ -9,6 +9,7 @@
 
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
+#include "cosmo/trials/sequence_metadata.hpp"
 #include "cosmo/trials/trial_reference.hpp"
 
 using namespace cosmo;
@@ -210,4 +211,19 @@ TEST(ShippedSequences, CuMultiConfigsNameTheRealFiles) {
       EXPECT_NEAR(t.extrinsic.linear()(2, 2), 1.0, 1e-12);
     }
   }
+}
+
+TEST(SequenceMetadata, NamesTheSequencesOwnRegistrationKeysOnlyWhenItHasAny) {
+  auto lineOf = [](const std::vector<std::pair<std::string, std::string>>& lines, const std::string& key) {
+    for (const auto& [k, v] : lines)
+      if (k == key) return v;
+    return std::string("(none)");
+  };
+  const auto plain = SequenceConfig::load(writeTemp("meta_plain.yaml", kTwoTrials));
+  EXPECT_EQ(lineOf(sequenceMetadata(plain), "registration"), "(none)");
+  const auto paper = SequenceConfig::load(
+      writeTemp("meta_paper.yaml", std::string("registration:\n  refine: false\n  gate: paper\n") + kTwoTrials));
+  const std::string line = lineOf(sequenceMetadata(paper), "registration");
+  EXPECT_EQ(line.substr(0, line.find("  #")), "{gate: paper, refine: false}");
+  EXPECT_EQ(lineOf(sequenceMetadata(paper), "sequence"), "roots");
 }
