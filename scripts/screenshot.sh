@@ -3,13 +3,14 @@
 # `roslaunch cosmo sequence.launch rviz:=true odometry:=reference` on a virtual display (Xvfb), stopped after
 # SECONDS of sequence time (lockstep: the same team state on any machine), then a capture of the whole screen.
 #
-#   scripts/screenshot.sh [OUT.png] [SECONDS]        defaults: docs/rviz.png, 150.1 (a Wi-Fi transfer c -> b
-#                                                     is on then, across the north-east corner: its link is drawn)
+#   scripts/screenshot.sh [OUT.png] [SECONDS]        defaults: docs/rviz.png, 150.1 (all three robots in view;
+#                                                     wrong-place closures, labelled outliers, across the
+#                                                     west block)
 #
 # Uses the workspace $COSMO_BUILD_DIR (default _build; build it first: scripts/setup.sh), its own ROS master on a
 # free port (does not disturb a running roscore) and its own display; KEEP_LOGS=1 keeps the logs and the JRL.
 # Needs xvfb and imagemagick (scripts/debian-packages.txt). The first run also generates the synthetic sequence
-# (~5 GB cache, minutes); a run then takes ~3-4 min (lockstep to 150 s, then 30 s for rviz to catch up).
+# (~5 GB cache, minutes); a run then takes 1-4 min (lockstep to 150 s, then 30 s for rviz to catch up).
 set -eo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 OUT=$(realpath -m "${1:-$ROOT/docs/rviz.png}")
