@@ -32,6 +32,7 @@
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <map>
 #include <memory>
 #include <optional>
 
@@ -154,15 +155,15 @@ class FrontendNode {
     drainPending();
   }
 
-  // The registration setting of the player's sequence: its `registration:` keys on top of ~config_dir's file
-  // (as cosmo_generate does). False when no player resolved a sequence (live robots).
+  // The registration setting of the player's sequence: its `registration:` keys (a parameter, no file read) on
+  // top of ~config_dir's file, as cosmo_generate applies them. False when no player resolved a sequence.
   bool useSequenceRegistration() {
-    std::string path, data_root;
+    std::string path;
     if (!ros::param::get(ros_glue::kResolvedSequenceParam, path) || path.empty()) return false;
-    ros::param::get(ros_glue::kResolvedDataRootParam, data_root);
-    const pipeline::SequenceConfig sequence = pipeline::SequenceConfig::load(path, data_root);
-    params_.registration = sequence.registrationParams(o_.config_dir);
-    if (!sequence.registration.empty())
+    std::map<std::string, std::string> keys;
+    ros::param::get(ros_glue::kResolvedRegistrationParam, keys);
+    params_.registration = pipeline::registrationParamsWith(o_.config_dir, keys, path);
+    if (!keys.empty())
       ROS_INFO("frontend %c: registration: %s's own keys over %s/registration.yaml", o_.robot, path.c_str(),
                o_.config_dir.c_str());
     return true;

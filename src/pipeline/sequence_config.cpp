@@ -156,6 +156,11 @@ SequenceConfig SequenceConfig::load(const std::string& path, const std::string& 
 }
 
 RegistrationParams SequenceConfig::registrationParams(const std::string& config_dir) const {
+  return registrationParamsWith(config_dir, registration, path.empty() ? "sequence " + name : path);
+}
+
+RegistrationParams registrationParamsWith(const std::string& config_dir,
+                                          const std::map<std::string, std::string>& keys, const std::string& from) {
   const std::string file = (std::filesystem::path(config_dir) / "registration.yaml").string();
   YAML::Node merged(YAML::NodeType::Map);
   std::string where = "compiled-in defaults";
@@ -165,8 +170,8 @@ RegistrationParams SequenceConfig::registrationParams(const std::string& config_
     if (section.node.IsMap()) merged = YAML::Clone(section.node);
     where = section.where;
   }
-  for (const auto& [key, value] : registration) merged[key] = value;
-  if (!registration.empty()) where += " with " + (path.empty() ? "sequence " + name : path) + ": registration";
+  for (const auto& [key, value] : keys) merged[key] = value;
+  if (!keys.empty()) where += " with " + from + ": registration";
   return RegistrationParams::fromConfig(ConfigNode{merged, where});
 }
 

@@ -53,8 +53,9 @@ PlayedSequence resolvePlayedSequence(const SequenceChoice& choice) {
   checkBeforePlaying(s.config);
   s.timing = synchronizeSequence(s.config);
   s.references = trials::loadSequenceReferences(s.config, s.timing);
+  if (!s.config.registration.empty()) ROS_INFO("player: the sequence's own registration keys apply (%s)", path.c_str());
   publishResolvedSequence(std::filesystem::absolute(path).string(), s.config.seed,
-                          std::filesystem::absolute(s.config.data_root).string());
+                          std::filesystem::absolute(s.config.data_root).string(), s.config.registration);
   s.end = choice.max_seconds > 0 ? std::min(s.timing.end(), s.timing.start() + toStampNs(choice.max_seconds))
                                  : s.timing.end();
   return s;

@@ -4,9 +4,14 @@
 
 namespace cosmo::ros_glue {
 
-void publishResolvedSequence(const std::string& path, unsigned long long seed, const std::string& data_root) {
+void publishResolvedSequence(const std::string& path, unsigned long long seed, const std::string& data_root,
+                             const std::map<std::string, std::string>& registration) {
   ros::param::set(kResolvedSeedParam, std::to_string(seed));
   ros::param::set(kResolvedDataRootParam, data_root);
+  if (registration.empty())
+    ros::param::del(kResolvedRegistrationParam);  // none left from an earlier sequence on this master
+  else
+    ros::param::set(kResolvedRegistrationParam, registration);
   ros::param::set(kResolvedSequenceParam, path);
 }
 

@@ -210,6 +210,13 @@ TEST(SequenceConfig, RegistrationKeysGoOnTopOfTheConfigFolderAndReachRegistratio
   EXPECT_DOUBLE_EQ(p.min_structure_overlap, 0.0);
   EXPECT_EQ(p.icp_iterations, 7);  // every other key stays the folder's
 
+  // The same keys handed over without the sequence (the front-end nodes get them as a parameter).
+  const RegistrationParams handed = registrationParamsWith(dir.string(), paper.registration, "the player");
+  EXPECT_FALSE(handed.refine);
+  EXPECT_EQ(handed.gate, "paper");
+  EXPECT_EQ(handed.icp_iterations, 7);
+  EXPECT_THROW(registrationParamsWith(dir.string(), {{"refien", "false"}}, "the player"), std::runtime_error);
+
   // Without a registration.yaml in the folder: the compiled-in defaults, then the sequence's keys.
   const auto empty_dir = std::filesystem::temp_directory_path() / "cosmo_pipeline_test" / "reg_empty";
   std::filesystem::create_directories(empty_dir);

@@ -1,8 +1,9 @@
 #pragma once
 // Where the sequence the player replays came from, on the parameter server for users and tools (the rostest runs
 // cosmo_generate on the same file and seed): the config path (the built-in sequence is generated first), its
-// effective seed and the data root. The lockstep nodes do not read these: they take the resolved sequence from the
-// player's latched topics (team_sequence_msg.hpp).
+// effective seed and the data root, and its own registration keys. The lockstep nodes read no file: they take the
+// resolved sequence from the player's latched topics (team_sequence_msg.hpp) and its registration keys from here.
+#include <map>
 #include <string>
 
 namespace cosmo::ros_glue {
@@ -13,7 +14,12 @@ inline constexpr const char* kResolvedSeedParam = "/player/resolved_seed";
 /// The data root the player resolved the trials' paths against (the config's own precedence applies when empty).
 inline constexpr const char* kResolvedDataRootParam = "/player/resolved_data_root";
 
-/// Sets the parameters (the player).
-void publishResolvedSequence(const std::string& path, unsigned long long seed, const std::string& data_root = "");
+/// The sequence's own `registration:` keys (a map of config/registration.yaml keys to their values as written;
+/// absent when it has none): the front-ends apply them over their ~config_dir's registration.yaml.
+inline constexpr const char* kResolvedRegistrationParam = "/player/resolved_registration";
+
+/// Sets the parameters (the player); the path last, once the others are set.
+void publishResolvedSequence(const std::string& path, unsigned long long seed, const std::string& data_root = "",
+                             const std::map<std::string, std::string>& registration = {});
 
 }  // namespace cosmo::ros_glue
