@@ -62,6 +62,12 @@ LidarModel LidarModel::fromConfig(const ConfigNode& node) {
                              "and foliage_mean_free_path must be >= 0");
   if (m.beams < 1 || m.columns < 1 || !(m.rate_hz > 0) || !(m.max_range > m.min_range))
     throw std::runtime_error(node.where + ": LiDAR needs beams, columns >= 1, rate_hz > 0, max_range > min_range");
+  std::vector<std::string> known{"model", "range_sigma_per_m", "beam_angle_sigma_deg", "beam_divergence_mrad",
+                                 "range_walk", "foliage_mean_free_path"};
+#define X(f) known.emplace_back(#f);
+  COSMO_SIM_LIDAR_FIELDS(X)
+#undef X
+  node.rejectUnknownKeys(known);
   return m;
 }
 

@@ -81,10 +81,14 @@ SimulationParams SimulationParams::fromConfig(const ConfigNode& node) {
     if (!robots.insert(tp.robot).second) throw std::runtime_error(t.where + ".robot: duplicate robot id " + tp.robot);
     if (!names.insert(tp.name).second) throw std::runtime_error(t.where + ".name: duplicate trial name " + tp.name);
     if (!(tp.length > 0) && !(tp.duration > 0)) throw std::runtime_error(t.where + ": length or duration must be > 0");
+    t.rejectUnknownKeys({"robot", "name", "platform", "length", "duration", "start_node", "extrinsic", "motion",
+                         "streets_only", "return_fraction", "waypoints"});
     p.trials.push_back(tp);
   }
   if (!robots.count(p.anchor))
     throw std::runtime_error(node.where + "anchor: no trial has robot id '" + p.anchor + "'");
+  node.rejectUnknownKeys({"name", "source", "environment", "seed", "anchor", "time_offset_sigma", "start_epoch",
+                          "trial_epoch_spacing", "topic", "frame_id", "world", "lidar", "registration", "trials"});
   return p;
 }
 

@@ -60,6 +60,11 @@ MotionParams MotionParams::fromConfig(const ConfigNode& node, const std::string&
   if (!(m.cruise_speed > 0) || !(m.max_accel > 0) || !(m.max_decel > 0) || !(m.max_lateral_accel > 0) ||
       !(m.rate_hz >= 1))
     throw std::runtime_error(node.where + ": speeds, accelerations and rate_hz must be positive");
+  std::vector<std::string> known;
+#define X(f) known.emplace_back(#f);
+  COSMO_SIM_MOTION_FIELDS(X)
+#undef X
+  node.rejectUnknownKeys(known);
   return m;
 }
 

@@ -25,6 +25,25 @@ namespace cosmo::sim {
 #define COSMO_SIM_LOOKALIKE_FIELDS(X) X(terrace_fraction) X(p_open)
 #define COSMO_SIM_TERRAIN_FIELDS(X) X(cell) X(amplitude) X(wavelength) X(waves) X(material_cell)
 
+namespace {
+
+/// A key the world's lists do not name is a typo, not a silently kept default.
+void rejectUnknownWorldKeys(const ConfigNode& node) {
+  std::vector<std::string> world{"terrain", "hedge_fraction"}, terrain;
+#define X(f) world.emplace_back(#f);
+  COSMO_SIM_WORLD_FIELDS(X)
+  COSMO_SIM_CHANGE_FIELDS(X)
+  COSMO_SIM_LOOKALIKE_FIELDS(X)
+#undef X
+#define X(f) terrain.emplace_back(#f);
+  COSMO_SIM_TERRAIN_FIELDS(X)
+#undef X
+  node.rejectUnknownKeys(world);
+  if (node.has("terrain")) node["terrain"].rejectUnknownKeys(terrain);
+}
+
+}  // namespace
+
 WorldParams WorldParams::fromConfig(const ConfigNode& node) {
   WorldParams p;
 #define X(f) node.read(#f, p.f);
@@ -41,6 +60,7 @@ WorldParams WorldParams::fromConfig(const ConfigNode& node) {
   node.read("hedge_fraction", p.hedge_fraction);
   if (p.hedge_fraction < 0.0 || p.hedge_fraction > 1.0)
     throw std::runtime_error(node.where + ".hedge_fraction: must be in [0, 1]");
+  rejectUnknownWorldKeys(node);
   return p;
 }
 
