@@ -32,7 +32,6 @@
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
 
-#include <map>
 #include <memory>
 #include <optional>
 
@@ -158,13 +157,11 @@ class FrontendNode {
   // The registration setting of the player's sequence: its `registration:` keys (a parameter, no file read) on
   // top of ~config_dir's file, as cosmo_generate applies them. False when no player resolved a sequence.
   bool useSequenceRegistration() {
-    std::string path;
-    if (!ros::param::get(ros_glue::kResolvedSequenceParam, path) || path.empty()) return false;
-    std::map<std::string, std::string> keys;
-    ros::param::get(ros_glue::kResolvedRegistrationParam, keys);
-    params_.registration = pipeline::registrationParamsWith(o_.config_dir, keys, path);
-    if (!keys.empty())
-      ROS_INFO("frontend %c: registration: %s's own keys over %s/registration.yaml", o_.robot, path.c_str(),
+    const std::optional<ros_glue::ResolvedSequence> sequence = ros_glue::resolvedSequence();
+    if (!sequence) return false;
+    params_.registration = pipeline::registrationParamsWith(o_.config_dir, sequence->registration, sequence->path);
+    if (!sequence->registration.empty())
+      ROS_INFO("frontend %c: registration: %s's own keys over %s/registration.yaml", o_.robot, sequence->path.c_str(),
                o_.config_dir.c_str());
     return true;
   }
@@ -185,11 +182,10 @@ class FrontendNode {
   // those the player's sequence names (its config file and the noise-model file it names are read; none: the
   // colours stay unlabelled).
   std::optional<NoiseModels> sequenceNoiseModels() const {
-    std::string path, data_root;
-    if (!ros::param::get(ros_glue::kResolvedSequenceParam, path) || path.empty()) return std::nullopt;
-    ros::param::get(ros_glue::kResolvedDataRootParam, data_root);
+    const std::optional<ros_glue::ResolvedSequence> sequence = ros_glue::resolvedSequence();
+    if (!sequence) return std::nullopt;
     try {
-      return pipeline::loadSequenceNoiseModels(pipeline::SequenceConfig::load(path, data_root), o_.config_dir);
+      return pipeline::loadSequenceNoiseModels(sequence->load(), o_.config_dir);
     } catch (const std::exception& e) {
       ROS_WARN("frontend %c: no noise models for the loop-closure colours: %s", o_.robot, e.what());
       return std::nullopt;
@@ -262,15 +258,7 @@ class FrontendNode {
   void publishKeyframe(const pipeline::KeyframeRecord& kf) {
     const cosmo::RecorderKeyframe km = ros_glue::recorderKeyframeMsg(kf, o_.world_frame);
     kf_pub_.publish(km);
-    cosmo::Keyframe offer;
-    offer.header.stamp = km.header.stamp;
-    offer.header.frame_id = base_frame_;
-    offer.robot = km.robot;
-    offer.index = km.index;
-    offer.cloud = ros_glue::toPointCloud2(*frontend_->keyframeScan(kf.index), base_frame_);
-    offer.reference = km.reference;
-    offer.has_reference = km.has_reference;
-    offer_pub_.publish(offer);
+    offer_pub_.publish(ros_glue::keyframeOfferMsg(km, *frontend_->keyframeScan(kf.index), base_frame_));
   }
 
   void onReceived(const cosmo::Keyframe::ConstPtr& m) {

@@ -154,19 +154,14 @@ class RecorderNode {
   /// The sequence's metadata lines, once its config can be read (see the file's header).
   void setSequenceMetadata() {
     if (metadata_set_) return;
-    std::string path = sequence_path_, data_root = data_root_;
-    std::string resolved;
-    if (ros::param::get(cosmo::ros_glue::kResolvedSequenceParam, resolved) && !resolved.empty()) {
-      path = resolved;
-      data_root.clear();
-      ros::param::get(cosmo::ros_glue::kResolvedDataRootParam, data_root);
-    }
-    if (path.empty()) return;
+    cosmo::ros_glue::ResolvedSequence sequence{sequence_path_, data_root_, {}};
+    if (const auto resolved = cosmo::ros_glue::resolvedSequence()) sequence = *resolved;
+    if (sequence.path.empty()) return;
     try {
-      recorder_->setMetadata(cosmo::trials::sequenceMetadata(cosmo::pipeline::SequenceConfig::load(path, data_root)));
+      recorder_->setMetadata(cosmo::trials::sequenceMetadata(sequence.load()));
       metadata_set_ = true;
     } catch (const std::exception& e) {
-      ROS_WARN_ONCE("recorder: the sequence's metadata (reference offset) of %s is not written: %s", path.c_str(),
+      ROS_WARN_ONCE("recorder: the sequence's metadata (reference offset) of %s is not written: %s", sequence.path.c_str(),
                     e.what());
     }
   }

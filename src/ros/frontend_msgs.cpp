@@ -1,5 +1,6 @@
 #include "cosmo/ros/frontend_msgs.hpp"
 
+#include "cosmo/ros/point_cloud.hpp"
 #include "cosmo/ros/pose_msg.hpp"
 
 namespace cosmo::ros_glue {
@@ -32,6 +33,19 @@ cosmo::RecorderLoopClosure recorderLoopClosureMsg(const pipeline::LoopClosureAtt
   m.measurement = poseToMsg(a.measurement);
   m.measurement_exact = poseToExact(a.measurement);
   return m;
+}
+
+cosmo::Keyframe keyframeOfferMsg(const cosmo::RecorderKeyframe& keyframe, const Scan& scan,
+                                 const std::string& scan_frame) {
+  cosmo::Keyframe offer;
+  offer.header.stamp = keyframe.header.stamp;
+  offer.header.frame_id = scan_frame;
+  offer.robot = keyframe.robot;
+  offer.index = keyframe.index;
+  offer.cloud = toPointCloud2(scan, scan_frame);
+  offer.reference = keyframe.reference;
+  offer.has_reference = keyframe.has_reference;
+  return offer;
 }
 
 }  // namespace cosmo::ros_glue

@@ -4,6 +4,14 @@
 
 namespace cosmo::ros_glue {
 
+std::optional<ResolvedSequence> resolvedSequence() {
+  ResolvedSequence s;
+  if (!ros::param::get(kResolvedSequenceParam, s.path) || s.path.empty()) return std::nullopt;
+  ros::param::get(kResolvedDataRootParam, s.data_root);
+  ros::param::get(kResolvedRegistrationParam, s.registration);
+  return s;
+}
+
 void publishResolvedSequence(const std::string& path, unsigned long long seed, const std::string& data_root,
                              const std::map<std::string, std::string>& registration) {
   ros::param::set(kResolvedSeedParam, std::to_string(seed));

@@ -1,8 +1,10 @@
 #pragma once
 // A front-end's results as the messages the recorder takes (cosmo/RecorderKeyframe, cosmo/RecorderLoopClosure),
-// with the bit-exact pose fields that keep the launch's JRL byte-identical to the offline driver's.
+// with the bit-exact pose fields that keep the launch's JRL byte-identical to the offline driver's, and a
+// keyframe's scan as the offer to the teammates (cosmo/Keyframe, through the comm_broker).
 #include <string>
 
+#include "cosmo/Keyframe.h"
 #include "cosmo/RecorderKeyframe.h"
 #include "cosmo/RecorderLoopClosure.h"
 #include "cosmo/pipeline/robot_frontend.hpp"
@@ -13,5 +15,8 @@ namespace cosmo::ros_glue {
 cosmo::RecorderKeyframe recorderKeyframeMsg(const pipeline::KeyframeRecord& keyframe, const std::string& frame);
 cosmo::RecorderLoopClosure recorderLoopClosureMsg(const pipeline::LoopClosureAttempt& closure,
                                                   const std::string& frame);
+/// The keyframe `keyframe` (as sent to the recorder) with its scan in `scan_frame` (the robot's base frame).
+cosmo::Keyframe keyframeOfferMsg(const cosmo::RecorderKeyframe& keyframe, const Scan& scan,
+                                 const std::string& scan_frame);
 
 }  // namespace cosmo::ros_glue

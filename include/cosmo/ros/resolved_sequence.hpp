@@ -4,7 +4,10 @@
 // effective seed and the data root, and its own registration keys. The lockstep nodes read no file: they take the
 // resolved sequence from the player's latched topics (team_sequence_msg.hpp) and its registration keys from here.
 #include <map>
+#include <optional>
 #include <string>
+
+#include "cosmo/pipeline/sequence_config.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -17,6 +20,18 @@ inline constexpr const char* kResolvedDataRootParam = "/player/resolved_data_roo
 /// The sequence's own `registration:` keys (a map of config/registration.yaml keys to their values as written;
 /// absent when it has none): the front-ends apply them over their ~config_dir's registration.yaml.
 inline constexpr const char* kResolvedRegistrationParam = "/player/resolved_registration";
+
+/// Where the player's sequence is: its config path and the data root it resolved the trials against.
+struct ResolvedSequence {
+  std::string path, data_root;
+  std::map<std::string, std::string> registration;  ///< its own registration keys (kResolvedRegistrationParam)
+  /// Reads the config file (throws naming it when it cannot): for what only the file holds (noise-model file,
+  /// metadata lines); the keys above need no file.
+  pipeline::SequenceConfig load() const { return pipeline::SequenceConfig::load(path, data_root); }
+};
+
+/// The sequence the player resolved, from the parameters; none while no player has resolved one (live robots).
+std::optional<ResolvedSequence> resolvedSequence();
 
 /// Sets the parameters (the player); the path last, once the others are set.
 void publishResolvedSequence(const std::string& path, unsigned long long seed, const std::string& data_root = "",
