@@ -195,8 +195,8 @@ RobotGraph GraphBuilder::chainRobot(char c, const OdometryLinks& robot_links, co
                      " cannot name a JRL robot");
   const auto node0 = nodes_.find(jrl::symbol(c, 0));
   if (node0 == nodes_.end())
-    throw GraphError(robotLabel(r) + ": no node for its first pose " + jrl::keyName(jrl::symbol(c, 0)) +
-                     " (odometry " + robot_links.begin()->second->source + ")");
+    throw GraphError(robotLabel(r) + ": no node for its first pose " + jrl::keyName(jrl::symbol(c, 0)) + " (odometry " +
+                     robot_links.begin()->second->source + ")");
   r.stamps.push_back(node0->second.stamp);
   for (std::uint64_t i = 1;; ++i) {
     const auto link = robot_links.find(i);

@@ -145,10 +145,8 @@ class CommBroker {
     const ros::Time now_ros = ros::Time::now();
     if (now_ros.isZero()) return;  // sim time before the first /clock
     std::lock_guard<std::mutex> lock(mutex_);
-    const RadioBroker::StepBatch batch =
-        radio_.stepRealTime(now_ros.toSec(), [this](const RadioBroker::Delivery& d) {
-          return deliver(d, ros::Time(d.step_time));
-        });
+    const RadioBroker::StepBatch batch = radio_.stepRealTime(
+        now_ros.toSec(), [this](const RadioBroker::Delivery& d) { return deliver(d, ros::Time(d.step_time)); });
     if (batch.grid_restarted)
       ROS_WARN("comm_broker: ROS time jumped forward by more than an hour; restarting the step grid");
     if (batch.time_went_back)
@@ -241,7 +239,8 @@ class CommBroker {
   }
 
   /// After a batch of steps, the latest at `radio_time`: link markers, /comm/stats (at `stats_time`), the log.
-  void publishRadioState(const ros::Time& stamp, double radio_time, double stats_time, const RadioBroker::Links& links) {
+  void publishRadioState(const ros::Time& stamp, double radio_time, double stats_time,
+                         const RadioBroker::Links& links) {
     links_pub_.publish(ros_glue::linkMarkers(radio(), links, radio_time, o_.frame_id, stamp));
     std_msgs::String stats;
     stats.data = radioStatus(radio(), stats_time).dump();

@@ -173,8 +173,8 @@ class FrontendNode {
     try {
       if (useSequenceRegistration()) frontend_ = std::make_unique<pipeline::RobotFrontend>(o_.robot, params_);
     } catch (const std::exception& e) {
-      ROS_ERROR("frontend %c: the player's sequence: %s; registration stays %s/registration.yaml's", o_.robot,
-                e.what(), o_.config_dir.c_str());
+      ROS_ERROR("frontend %c: the player's sequence: %s; registration stays %s/registration.yaml's", o_.robot, e.what(),
+                o_.config_dir.c_str());
     }
   }
 

@@ -161,8 +161,8 @@ class RecorderNode {
       recorder_->setMetadata(cosmo::trials::sequenceMetadata(sequence.load()));
       metadata_set_ = true;
     } catch (const std::exception& e) {
-      ROS_WARN_ONCE("recorder: the sequence's metadata (reference offset) of %s is not written: %s", sequence.path.c_str(),
-                    e.what());
+      ROS_WARN_ONCE("recorder: the sequence's metadata (reference offset) of %s is not written: %s",
+                    sequence.path.c_str(), e.what());
     }
   }
 

@@ -21,7 +21,8 @@ BuiltInSequence builtInSequence(const std::string& simulate_config, const std::s
 }
 
 std::string writeBuiltInSequence(const BuiltInSequence& sequence) {
-  if (std::system(sequence.command.c_str()) != 0) throw std::runtime_error("cosmo_simulate failed: " + sequence.command);
+  if (std::system(sequence.command.c_str()) != 0)
+    throw std::runtime_error("cosmo_simulate failed: " + sequence.command);
   return sequence.path;
 }
 

@@ -71,7 +71,8 @@ std::map<std::string, std::string> readRegistration(const ConfigNode& root) {
   for (const auto& kv : section.node) {
     const std::string key = kv.first.as<std::string>();
     if (!kv.second.IsScalar())
-      throw std::runtime_error(section.where + "." + key + ": expected a single value (a config/registration.yaml key)");
+      throw std::runtime_error(section.where + "." + key +
+                               ": expected a single value (a config/registration.yaml key)");
     keys[key] = kv.second.as<std::string>();
   }
   RegistrationParams::fromConfig(section);
@@ -159,8 +160,8 @@ RegistrationParams SequenceConfig::registrationParams(const std::string& config_
   return registrationParamsWith(config_dir, registration, path.empty() ? "sequence " + name : path);
 }
 
-RegistrationParams registrationParamsWith(const std::string& config_dir,
-                                          const std::map<std::string, std::string>& keys, const std::string& from) {
+RegistrationParams registrationParamsWith(const std::string& config_dir, const std::map<std::string, std::string>& keys,
+                                          const std::string& from) {
   const std::string file = (std::filesystem::path(config_dir) / "registration.yaml").string();
   YAML::Node merged(YAML::NodeType::Map);
   std::string where = "compiled-in defaults";

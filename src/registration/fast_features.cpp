@@ -314,8 +314,8 @@ void sumNeighbourSpfh(const NeighbourPairs& pairs, const std::vector<int>& key_c
 
 /// FPFH = own SPFH + distance-weighted mean of the neighbours' SPFH (within `rf2`), each sub-histogram
 /// normalised to 100, for the keypoints.
-void computeFpfh(const OrderedCloud& c, const std::vector<unsigned char>& valid, const AlignedFloats& spfh,
-                 float rf2, FastFeatures& out) {
+void computeFpfh(const OrderedCloud& c, const std::vector<unsigned char>& valid, const AlignedFloats& spfh, float rf2,
+                 FastFeatures& out) {
   std::vector<int> key_col(c.points.size(), -1);  // by position
   for (std::size_t k = 0; k < out.keypoints.size(); ++k)
     key_col[keypointPosition(out, c.position, k)] = static_cast<int>(k);

@@ -132,8 +132,8 @@ void refineAndMeasure(const FeatureCloud& src, const FeatureCloud& tgt, const Re
   std::optional<Overlaps> overlap;
   if (p.refine && p.icp_iterations > 0) {
     const std::vector<Eigen::Vector3f>& icp_points = in.icp_source.empty() ? src.points : in.icp_source;
-    const IcpResult icp = refinePointToPlane(icp_points, *in.target_tree, tgt.points, tgt.normals,
-                                             cand.T_target_source, p.icp_max_distance, p.icp_iterations);
+    const IcpResult icp = refinePointToPlane(icp_points, *in.target_tree, tgt.points, tgt.normals, cand.T_target_source,
+                                             p.icp_max_distance, p.icp_iterations);
     const Pose3 delta = cand.T_target_source.inverse() * icp.T;
     const bool small = delta.translation().norm() <= p.icp_max_correction_m &&
                        rotationAngle(delta) <= p.icp_max_correction_deg * M_PI / 180.0;

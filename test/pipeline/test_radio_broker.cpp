@@ -161,7 +161,7 @@ TEST(RadioBroker, RobotsOffOrWithoutAReferenceAtTheirReportedPosition) {
   const std::vector<char> missing = broker.setSequence(kStart, 1, {'a'});
   ASSERT_EQ(missing, std::vector<char>{'b'});
   broker.setReference('a', standing(0.0));
-  ASSERT_TRUE(broker.readyToStart());  // b: no reference, positions as reported
+  ASSERT_TRUE(broker.readyToStart());                        // b: no reference, positions as reported
   broker.positionReported('b', Eigen::Vector3d(500, 0, 0));  // far out of range
   broker.start();
   Recorded rec;

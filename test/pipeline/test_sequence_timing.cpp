@@ -200,8 +200,8 @@ TEST(SequenceConfig, RegistrationKeysGoOnTopOfTheConfigFolderAndReachRegistratio
   EXPECT_EQ(folder.icp_iterations, 7);
   EXPECT_DOUBLE_EQ(folder.min_overlap, 0.4);
 
-  const auto paper = SequenceConfig::load(
-      writeTemp("seq_reg_paper.yaml", std::string("name: s\nregistration:\n  refine: false\n  gate: paper\n") + kTwoTrials));
+  const auto paper = SequenceConfig::load(writeTemp(
+      "seq_reg_paper.yaml", std::string("name: s\nregistration:\n  refine: false\n  gate: paper\n") + kTwoTrials));
   ASSERT_EQ(paper.registration.size(), 2u);
   const RegistrationParams p = paper.registrationParams(dir.string());
   EXPECT_FALSE(p.refine);

@@ -12,7 +12,9 @@ using namespace cosmo;
 namespace {
 Pose3 at(double x, double y) { return test::planarPose(x, y); }
 /// A keyframe whose odometry is its reference.
-pipeline::KeyframeRecord keyframe(std::size_t index, const Pose3& pose) { return test::keyframeRecord(index, pose, pose); }
+pipeline::KeyframeRecord keyframe(std::size_t index, const Pose3& pose) {
+  return test::keyframeRecord(index, pose, pose);
+}
 }  // namespace
 
 TEST(Markers, ALineIsDeletedUntilItHasContent) {

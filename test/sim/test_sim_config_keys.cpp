@@ -49,7 +49,8 @@ TEST(SimConfigKeys, EveryShippedSimConfigLoads) {
   for (const fs::path dir : {fs::path(COSMO_SOURCE_DIR) / "config/sim", fs::path(COSMO_SOURCE_DIR) / "test/rostest"})
     for (const auto& e : fs::directory_iterator(dir)) {
       const std::string name = e.path().filename().string();
-      if (e.path().extension() != ".yaml" || (dir.filename() == "rostest" && name.find("_sim.yaml") == std::string::npos))
+      if (e.path().extension() != ".yaml" ||
+          (dir.filename() == "rostest" && name.find("_sim.yaml") == std::string::npos))
         continue;
       EXPECT_NO_THROW(SimulationParams::load(e.path().string())) << e.path();
       ++files;

@@ -28,8 +28,8 @@ struct DatasetCheck {
 };
 
 /// Solves `dataset` once per selection, the selections in parallel threads (each solve is single-threaded and
-/// independent, so the results do not depend on the scheduling). Throws std::runtime_error when the dataset has no ground truth or no
-/// initialization, or as solvePoseGraph() does (Inliers without outlier labels).
+/// independent, so the results do not depend on the scheduling). Throws std::runtime_error when the dataset has no
+/// ground truth or no initialization, or as solvePoseGraph() does (Inliers without outlier labels).
 DatasetCheck checkDataset(const jrl::Dataset& dataset, const std::vector<FactorSelection>& selections);
 
 /// A readable table: per solve its cost, iterations and ATE per robot and overall, and the initialization's.

@@ -38,10 +38,10 @@ class RadioBroker {
   /// A transfer that ended in a step.
   struct Delivery {
     const Transfer& transfer;
-    double step_time = 0.0;             ///< radio time of the step (s)
-    StampNs step_stamp = 0;             ///< lockstep: sequence stamp of the step
-    std::shared_ptr<const Scan> scan;   ///< delivered: what the receiver gets (nullptr: never offered)
-    std::string error;                  ///< delivered, but its payload does not decompress
+    double step_time = 0.0;            ///< radio time of the step (s)
+    StampNs step_stamp = 0;            ///< lockstep: sequence stamp of the step
+    std::shared_ptr<const Scan> scan;  ///< delivered: what the receiver gets (nullptr: never offered)
+    std::string error;                 ///< delivered, but its payload does not decompress
     bool delivered() const { return transfer.outcome == Transfer::Outcome::Delivered; }
   };
   /// Returns whether the delivery was handed to its receiver (counted in delivered()).
@@ -50,9 +50,9 @@ class RadioBroker {
   /// A lockstep request answered.
   struct StepDone {
     std::uint32_t seq = 0;
-    std::size_t steps = 0;    ///< radio steps the request ran
-    StampNs last_step = 0;    ///< the latest step run so far (sequence time)
-    StampNs next_step = 0;    ///< nextRadioStepStamp: a scan stamped at or after it needs a step first
+    std::size_t steps = 0;  ///< radio steps the request ran
+    StampNs last_step = 0;  ///< the latest step run so far (sequence time)
+    StampNs next_step = 0;  ///< nextRadioStepStamp: a scan stamped at or after it needs a step first
     std::map<char, std::uint32_t> delivered;
   };
   using StepDoneFn = std::function<void(const StepDone&)>;
@@ -60,8 +60,8 @@ class RadioBroker {
   /// A batch of real-time steps.
   struct StepBatch {
     std::size_t steps = 0;
-    double last_time = 0.0;  ///< radio time of the latest step
-    Links links;             ///< the links of the batch's steps (the latest per pair)
+    double last_time = 0.0;       ///< radio time of the latest step
+    Links links;                  ///< the links of the batch's steps (the latest per pair)
     bool grid_restarted = false;  ///< time jumped forward by over an hour: the grid restarted
     bool time_went_back = false;  ///< time is over 1 s behind the next step: nothing ran
   };
@@ -117,7 +117,7 @@ class RadioBroker {
   // lockstep
   RadioStepQueue steps_;
   std::optional<std::pair<StampNs, std::uint64_t>> sequence_;  ///< start, seed
-  std::map<char, Trajectory> references_;                     ///< one per robot (empty: none)
+  std::map<char, Trajectory> references_;                      ///< one per robot (empty: none)
   std::map<char, Eigen::Vector3d> last_position_;
   std::vector<EarlyOffer> early_offers_;  ///< offered before the start (the radio is re-seeded then)
   StampNs origin_ = 0, last_step_ = 0;

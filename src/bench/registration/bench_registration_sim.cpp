@@ -218,16 +218,16 @@ void loopPairs(const GlobalRegistration& reg, const std::vector<Keyframe>& kfs, 
     const int b = d < 3.0 ? 0 : (d < 6.0 ? 1 : 2);
     bins_n[b]++, bins_ok[b] += success;
     ok += success, acc += r.valid;
-    std::printf("%4d-%-5d %6.2f %7.1f %6zu %6zu %6zu %5.2f %5.2f %4s %8.3f %8.3f %7.1f %s\n", s, t, d,
-                yaw * 180 / M_PI, r.correspondences, r.pruned_inliers, r.final_inliers, r.overlap, r.structure_overlap,
+    std::printf("%4d-%-5d %6.2f %7.1f %6zu %6zu %6zu %5.2f %5.2f %4s %8.3f %8.3f %7.1f %s\n", s, t, d, yaw * 180 / M_PI,
+                r.correspondences, r.pruned_inliers, r.final_inliers, r.overlap, r.structure_overlap,
                 r.valid ? "yes" : "no", e.translation_m, e.rotation_deg, timer.total(), success ? "OK" : "FAIL");
     std::fflush(stdout);
   }
   std::printf(
       "success: %d / %zu (%.1f %%), accepted %d; by offset 0-3 m %d/%d, 3-6 m %d/%d, 6-10 m %d/%d; "
       "median cpu %.1f ms\n",
-      ok, near.size(), near.empty() ? 0.0 : 100.0 * ok / near.size(), acc, bins_ok[0], bins_n[0], bins_ok[1],
-      bins_n[1], bins_ok[2], bins_n[2], bench::quantile(ms, 0.5));
+      ok, near.size(), near.empty() ? 0.0 : 100.0 * ok / near.size(), acc, bins_ok[0], bins_n[0], bins_ok[1], bins_n[1],
+      bins_ok[2], bins_n[2], bench::quantile(ms, 0.5));
 }
 
 /// The non-overlapping pairs: what the gate saw, and its false accepts.
