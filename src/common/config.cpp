@@ -62,4 +62,16 @@ void ConfigNode::rejectUnknownKeys(const std::vector<std::string>& known) const 
   }
 }
 
+std::map<std::string, std::string> ConfigNode::scalarMap(const std::string& what) const {
+  std::map<std::string, std::string> values;
+  if (!node) return values;
+  if (!node.IsMap()) throw std::runtime_error(where + ": expected a map of " + what);
+  for (const auto& kv : node) {
+    const std::string key = kv.first.as<std::string>();
+    if (!kv.second.IsScalar()) throw std::runtime_error(where + "." + key + ": expected a single value (" + what + ")");
+    values[key] = kv.second.as<std::string>();
+  }
+  return values;
+}
+
 }  // namespace cosmo

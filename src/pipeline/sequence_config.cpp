@@ -63,18 +63,9 @@ ReferenceOffsetConfig readReferenceOffset(const ConfigNode& root) {
 /// The `registration:` section: a map of scalar values, checked against RegistrationParams here, so that a typo
 /// stops the run when the sequence is read, naming this file.
 std::map<std::string, std::string> readRegistration(const ConfigNode& root) {
-  std::map<std::string, std::string> keys;
-  if (!root.has("registration")) return keys;
+  if (!root.has("registration")) return {};
   const ConfigNode section = root["registration"];
-  if (!section.node.IsMap())
-    throw std::runtime_error(section.where + ": expected a map of config/registration.yaml keys");
-  for (const auto& kv : section.node) {
-    const std::string key = kv.first.as<std::string>();
-    if (!kv.second.IsScalar())
-      throw std::runtime_error(section.where + "." + key +
-                               ": expected a single value (a config/registration.yaml key)");
-    keys[key] = kv.second.as<std::string>();
-  }
+  std::map<std::string, std::string> keys = section.scalarMap("config/registration.yaml keys");
   RegistrationParams::fromConfig(section);
   return keys;
 }

@@ -45,16 +45,7 @@ SimulationParams SimulationParams::fromConfig(const ConfigNode& node) {
   node.read("frame_id", p.frame_id);
   p.world = WorldParams::fromConfig(node["world"]);
   p.lidar = LidarModel::fromConfig(node["lidar"]);
-  if (node.has("registration")) {
-    const ConfigNode registration = node["registration"];
-    if (!registration.node.IsMap())
-      throw std::runtime_error(registration.where + ": expected a map of config/registration.yaml keys");
-    for (const auto& kv : registration.node) {
-      const std::string key = kv.first.as<std::string>();
-      if (!kv.second.IsScalar()) throw std::runtime_error(registration.where + "." + key + ": expected a single value");
-      p.registration[key] = kv.second.as<std::string>();
-    }
-  }
+  if (node.has("registration")) p.registration = node["registration"].scalarMap("config/registration.yaml keys");
   const ConfigNode trials = node["trials"];
   if (!trials.node || !trials.node.IsSequence() || trials.node.size() == 0)
     throw std::runtime_error(trials.where + ": expected a non-empty list of trials");

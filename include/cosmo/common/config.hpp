@@ -5,6 +5,7 @@
 // common/param_list.hpp).
 #include <yaml-cpp/yaml.h>
 
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -25,6 +26,10 @@ struct ConfigNode {
   /// Throws, naming the file, the section and the key (and the nearest known key), when this section holds a key
   /// that is not in `known`.
   void rejectUnknownKeys(const std::vector<std::string>& known) const;
+
+  /// This section as a map of single values kept as written (an absent section: empty); throws naming the section,
+  /// or the key, when it is not a map or a value is not a single one. `what`: what the keys are, for the message.
+  std::map<std::string, std::string> scalarMap(const std::string& what) const;
 
   /// Overwrite `value` with the key's value when present.
   template <typename T>
