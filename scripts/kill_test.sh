@@ -38,7 +38,9 @@ import os, sys, xmlrpc.client
 code, _, uri = xmlrpc.client.ServerProxy(os.environ['ROS_MASTER_URI']).lookupNode('/kill_test', sys.argv[1])
 print(xmlrpc.client.ServerProxy(uri).getPid('/kill_test')[2] if code == 1 else '')" "/$1" 2>/dev/null || true
 }
-timeout 600 rostopic echo -n1 /player/progress > /dev/null 2>&1 || true
+timeout 600 rostopic echo -n1 /player/progress > /dev/null 2>&1 & first=$!
+while kill -0 $first 2>/dev/null && kill -0 $launch 2>/dev/null; do sleep 0.2; done  # the first scan, or the end
+kill $first 2>/dev/null || true
 start=$(date +%s.%N)
 for k in "${kills[@]}"; do
   node=${k%@*} at=${k#*@}
