@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
       double mean = 0.0;
       for (double v : values) mean += v / static_cast<double>(values.size());
       const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
-      std::printf(" %.2f (%.2f–%.2f; +%zu) |", mean, *lo, *hi, injected);
+      std::printf(" %.3f (%.3f–%.3f; +%zu) |", mean, *lo, *hi, injected);
       std::fflush(stdout);
     }
     std::printf("\n");
