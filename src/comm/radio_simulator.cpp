@@ -210,7 +210,10 @@ void RadioSimulator::updateActiveCommunications(double t) {
         const LinkSample link = sampleLink(c.sender, c.receiver, t, c.distance);
         (link.from_trace ? c.used_trace : c.used_distance) = true;
         connected = link.connected;
-        if (connected) c.capacity_Bps = link.throughput_Bps, c.latency = link.latency;
+        if (connected) {
+          c.capacity_Bps = link.throughput_Bps;
+          c.latency = link.latency;
+        }
       }
       ++stats_.link_samples;
       if (connected) ++stats_.link_successes;
