@@ -41,10 +41,11 @@ LoopCounts countLoops(const jrl::Dataset& d) {
   return c;
 }
 
-const jrl::PoseFactor& factorAt(const jrl::PoseGraph& g, char robot, const jrl::FactorId& id) {
-  for (const jrl::PoseFactor& f : g.factors)
-    if (f.robot == robot && f.id == id) return f;
-  throw std::out_of_range("no such factor");
+/// The graph's factors by robot and FactorId.
+std::map<std::pair<char, jrl::FactorId>, const jrl::PoseFactor*> byId(const jrl::PoseGraph& g) {
+  std::map<std::pair<char, jrl::FactorId>, const jrl::PoseFactor*> out;
+  for (const jrl::PoseFactor& f : g.factors) out[{f.robot, f.id}] = &f;
+  return out;
 }
 
 InjectionParams params(OutlierKind kind, double rate, ClosureScope scope = ClosureScope::Both) {
@@ -87,11 +88,12 @@ TEST(OutlierInjection, MeasuredRateWithinOneClosureEveryFactorLabelledAndWrong) 
       EXPECT_TRUE(jrl::validate(out).empty()) << jrl::validate(out).front().str();
 
       const jrl::PoseGraph g = jrl::poseGraph(out);
+      const auto factors = byId(g);
       ASSERT_EQ(report.ids.size(), injected);
       for (const auto& [robot, id] : report.ids) {
         EXPECT_TRUE(out.potential_outliers->at(robot).count(id));
         EXPECT_TRUE(out.outliers->at(robot).count(id));
-        const jrl::PoseFactor& f = factorAt(g, robot, id);
+        const jrl::PoseFactor& f = *factors.at({robot, id});
         EXPECT_TRUE(f.isLoopClosure());
         EXPECT_EQ(jrl::robotOf(f.key1), robot);  // stored by the owner of the newer pose, key1 its own
         EXPECT_TRUE(exceedsRule(jrl::closureError(f, g.groundtruth).d2, OutlierRule::Fidelity));
@@ -137,8 +139,9 @@ TEST(OutlierInjection, KindsFollowTheirRules) {
   InjectionReport report;
   jrl::Dataset out = injectOutliers(in, params(OutlierKind::Local, 0.3), &report);
   jrl::PoseGraph g = jrl::poseGraph(out);
+  auto factors = byId(g);
   for (const auto& [robot, id] : report.ids) {
-    const jrl::PoseFactor& f = factorAt(g, robot, id);
+    const jrl::PoseFactor& f = *factors.at({robot, id});
     const double d = std::sqrt(jrl::closureError(f, g.groundtruth).d2);
     EXPECT_GE(d, 1.5 * kChi2Critical95Dof6 - 1e-6);
     EXPECT_LE(d, 3.0 * kChi2Critical95Dof6 + 1e-6);
@@ -147,11 +150,12 @@ TEST(OutlierInjection, KindsFollowTheirRules) {
   // group: runs of 4 consecutive pose pairs that agree with each other through the true motion
   out = injectOutliers(in, params(OutlierKind::Group, 0.3), &report);
   g = jrl::poseGraph(out);
+  factors = byId(g);
   EXPECT_EQ(report.injected_group, report.injected);
   EXPECT_LE(report.groups, report.injected / 4 + 1);
   std::map<std::pair<jrl::Key, jrl::Key>, Pose3> claims;  // (key1, key2) -> claimed T1^-1 T2
   for (const auto& [robot, id] : report.ids) {
-    const jrl::PoseFactor& f = factorAt(g, robot, id);
+    const jrl::PoseFactor& f = *factors.at({robot, id});
     claims[{f.key1, f.key2}] = f.measured;
     claims[{f.key2, f.key1}] = f.measured.inverse();
   }
