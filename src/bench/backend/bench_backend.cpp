@@ -7,12 +7,14 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "cosmo/backend/dataset_check.hpp"
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/common/shared_data.hpp"
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/stats.hpp"
@@ -87,16 +89,13 @@ void benchPlot(int repeats, bool png) {
 int main(int argc, char** argv) {
   int repeats = 5;
   bool png = false;
-  for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc)
-      repeats = std::max(1, std::atoi(argv[++i]));
-    else if (!std::strcmp(argv[i], "--png"))
-      png = true;
-    else {
-      std::fprintf(stderr, "usage: bench_backend [--repeats N] [--png]\n");
-      return 2;
-    }
-  }
+  cosmo::CommandLine app("bench_backend",
+                         "Back-end check and figure times: cosmo_jrl solve on the reference COSMO-Bench file per "
+                         "factor selection, and both figures of a synthetic 5-robot dataset.");
+  app.add_option("--repeats", repeats, "runs per figure (at least 1)")->capture_default_str();
+  app.add_flag("--png", png, "also time the PNG conversion");
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
+  repeats = std::max(1, repeats);
   try {
     if (const auto ref = sharedPath("ref/jrl/tuhh_r3_01_night_wifi.jrl"))
       benchSolve(*ref, repeats);

@@ -11,12 +11,14 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <random>
 #include <string>
 
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/comm/radio_simulator.hpp"
 #include "cosmo/comm/scan_compression.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/common/scan_io.hpp"
 #include "cosmo/common/shared_data.hpp"
 
@@ -280,12 +282,12 @@ void stepCost(double seconds) {
 int main(int argc, char** argv) {
   int samples = 20000;
   double seconds = 3600;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--samples"))
-      samples = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--seconds"))
-      seconds = std::atof(argv[i + 1]);
-  }
+  cosmo::CommandLine app("bench_comm",
+                         "Measured figures of the radio model and the scan payload (wall-clock timings; run on an "
+                         "idle machine for final figures).");
+  app.add_option("--samples", samples, "connectivity and throughput samples")->capture_default_str();
+  app.add_option("--seconds", seconds, "simulated seconds of the step-cost runs")->capture_default_str();
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
   std::printf("# bench_comm (wall-clock timings; figures depend on machine load)\n");
   connectivity(samples);
   throughput(samples);

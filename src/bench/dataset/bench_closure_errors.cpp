@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/dataset/noise_models.hpp"
 #include "cosmo/dataset/outlier_rule.hpp"
 #include "cosmo/jrl/io.hpp"
@@ -70,28 +71,19 @@ void report(const char* kind, const std::vector<Closure>& cs, double good_t, dou
 int main(int argc, char** argv) {
   std::vector<std::string> files;
   std::optional<NoiseModels> relabel;
+  std::string relabel_file;
   double good_t = 0.5, good_r = 0.05;
+  cosmo::CommandLine app("bench_closure_errors",
+                         "How a dataset's loop closures compare with its ground truth, and how its outlier labels "
+                         "treat them, per kind (LC, IRLC).");
+  app.add_option("FILE.jrl", files, "datasets with ground truth")->required();
+  app.add_option("--relabel", relabel_file,
+                 "label with this noise-model file (fidelity rule) instead of the file's own labels")
+      ->type_name("NOISE.yaml");
+  cosmo::addClosureThresholds(app, "good", good_t, good_r);
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
   try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto value = [&]() -> std::string {
-        if (i + 1 >= argc) throw std::invalid_argument(a + ": missing value");
-        return argv[++i];
-      };
-      if (a == "--relabel")
-        relabel = NoiseModels::load(value());
-      else if (a == "--good-translation")
-        good_t = std::stod(value());
-      else if (a == "--good-rotation")
-        good_r = std::stod(value());
-      else if (a == "-h" || a == "--help") {
-        std::cout << "usage: bench_closure_errors FILE.jrl... [--relabel NOISE.yaml] [--good-translation M] "
-                     "[--good-rotation RAD]\n";
-        return 0;
-      } else
-        files.push_back(a);
-    }
-    if (files.empty()) throw std::invalid_argument("need a JRL file");
+    if (!relabel_file.empty()) relabel = NoiseModels::load(relabel_file);
     for (const auto& file : files) {
       const jrl::Dataset d = jrl::readJrl(file);
       if (!d.groundtruth) throw std::runtime_error(file + ": no groundtruth");

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <tuple>
 #include <iomanip>
 #include <iostream>
@@ -14,6 +15,7 @@
 #include <Eigen/Cholesky>
 
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/dataset/dataset_recorder.hpp"
 #include "cosmo/dataset/noise_model_estimation.hpp"
 #include "cosmo/jrl/io.hpp"
@@ -125,21 +127,14 @@ int main(int argc, char** argv) {
   std::size_t robots = 3, keyframes = 600;
   std::uint64_t seed = 1;
   std::string out = std::filesystem::temp_directory_path().string();
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string a = argv[i];
-    if (a == "--robots")
-      robots = std::stoul(argv[i + 1]);
-    else if (a == "--keyframes")
-      keyframes = std::stoul(argv[i + 1]);
-    else if (a == "--seed")
-      seed = std::stoull(argv[i + 1]);
-    else if (a == "--out")
-      out = argv[i + 1];
-    else {
-      std::cerr << "unknown option " << a << "\n";
-      return 2;
-    }
-  }
+  cosmo::CommandLine app("bench_recorder",
+                         "Times DatasetRecorder on a COSMO-sized synthetic team, then writes a single-robot run "
+                         "with known noise and shows that the noise-model estimation recovers it.");
+  app.add_option("--robots", robots, "robots of the team (1-26)")->capture_default_str();
+  app.add_option("--keyframes", keyframes, "keyframes per robot")->capture_default_str();
+  app.add_option("--seed", seed, "the noise's seed")->capture_default_str();
+  app.add_option("--out", out, "where the datasets are written")->capture_default_str();
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
   robots = std::min<std::size_t>(std::max<std::size_t>(robots, 1), 26);
   const NoiseModels noise;  // TUHH covariances
   Noise rng{std::mt19937_64(seed), {}};

@@ -7,10 +7,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/common/shared_data.hpp"
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/synthetic.hpp"
@@ -68,21 +70,15 @@ int main(int argc, char** argv) {
   int repeats = 5;
   std::size_t poses = cosmo::jrl::SyntheticParams{}.poses_per_robot;
   std::string keep;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--repeats" && i + 1 < argc) {
-      repeats = std::max(1, std::atoi(argv[++i]));
-    } else if (a == "--poses" && i + 1 < argc) {
-      poses = static_cast<std::size_t>(std::atol(argv[++i]));
-    } else if (a == "--keep" && i + 1 < argc) {
-      keep = argv[++i];
-    } else {
-      std::cout << "usage: bench_jrl_io [--repeats N] [--poses N] [--keep DIR]\n"
-                   "  median (and max) over N runs of readJrl (file -> Dataset), parseJrl (text -> Dataset),\n"
-                   "  dumpJrl (Dataset -> text) and writeJrl (Dataset -> file, atomic, fsync'd)\n";
-      return a == "--help" || a == "-h" ? 0 : 2;
-    }
-  }
+  cosmo::CommandLine app(
+      "bench_jrl_io",
+      "Median (and max) over N runs of readJrl (file -> Dataset), parseJrl (text -> Dataset), dumpJrl (Dataset -> "
+      "text) and writeJrl (Dataset -> file, atomic, fsync'd), on the reference COSMO-Bench file and a synthetic one.");
+  app.add_option("--repeats", repeats, "runs per figure (at least 1)")->capture_default_str();
+  app.add_option("--poses", poses, "poses per robot of the synthetic dataset")->capture_default_str();
+  app.add_option("--keep", keep, "write the files into DIR and keep them")->type_name("DIR");
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
+  repeats = std::max(1, repeats);
   const fs::path dir =
       keep.empty() ? fs::temp_directory_path() / ("cosmo_bench_jrl_" + std::to_string(::getpid())) : fs::path(keep);
   fs::create_directories(dir);

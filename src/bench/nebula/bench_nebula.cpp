@@ -8,10 +8,12 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <random>
 #include <string>
 
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/validate.hpp"
 #include "cosmo/nebula/g2o_io.hpp"
@@ -27,23 +29,15 @@ int main(int argc, char** argv) {
   std::size_t robots = 4, poses = 2000, repeats = 3;
   std::uint64_t seed = 1;
   std::string keep;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string a = argv[i];
-    if (a == "--robots")
-      robots = std::strtoul(argv[i + 1], nullptr, 10);
-    else if (a == "--poses")
-      poses = std::strtoul(argv[i + 1], nullptr, 10);
-    else if (a == "--repeats")
-      repeats = std::strtoul(argv[i + 1], nullptr, 10);
-    else if (a == "--seed")
-      seed = std::strtoull(argv[i + 1], nullptr, 10);
-    else if (a == "--keep")
-      keep = argv[i + 1];
-    else {
-      std::cerr << "usage: bench_nebula [--robots N (1-4)] [--poses N] [--repeats N] [--seed S] [--keep DIR]\n";
-      return 2;
-    }
-  }
+  cosmo::CommandLine app("bench_nebula",
+                         "Conversion time of cosmo_nebula on a generated Nebula dataset folder of realistic size "
+                         "(LAMP-style incremental messages with edges of every type), by stage.");
+  app.add_option("--robots", robots, "robots (1-4)")->capture_default_str();
+  app.add_option("--poses", poses, "poses per robot")->capture_default_str();
+  app.add_option("--repeats", repeats, "conversions timed")->capture_default_str();
+  app.add_option("--seed", seed, "the generator's seed")->capture_default_str();
+  app.add_option("--keep", keep, "write the folder into DIR and keep it")->type_name("DIR");
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
   const std::vector<std::pair<std::string, char>> all{
       {"husky1", 'a'}, {"husky2", 'b'}, {"husky3", 'c'}, {"husky4", 'd'}};
   nebula::SyntheticTeamParams params;

@@ -14,12 +14,13 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstring>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/odometry/kd_tree.hpp"
 #include "cosmo/odometry/synthetic_scene.hpp"
 #include "cosmo/registration/kdtree.hpp"
@@ -189,14 +190,12 @@ void featureWorkload(int repeats) {
 
 int main(int argc, char** argv) {
   int repeats = 5;
-  for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) {
-      repeats = std::max(1, std::stoi(argv[++i]));
-    } else {
-      std::fprintf(stderr, "usage: bench_kd_trees [--repeats N]\n");
-      return 2;
-    }
-  }
+  cosmo::CommandLine app("bench_kd_trees",
+                         "Each k-d tree timed on the workload it serves and on the other's, on the same data; "
+                         "checks that the trees agree on the answers.");
+  app.add_option("--repeats", repeats, "runs per figure (at least 1)")->capture_default_str();
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
+  repeats = std::max(1, repeats);
   loamWorkload(repeats);
   featureWorkload(repeats);
   return 0;

@@ -1,21 +1,19 @@
 // bench_odometry: accuracy of the LOAM odometry on real scan snippets (../shared/data/scan_snippets), speed per
 // scan (real KITTI HDL-64 scans, synthetic 64x1024 and 128x1024 sweeps) and drift on synthetic trials.
 //
-//   bench_odometry [--config config/odometry.yaml] [--repeat N] [--sim-dir DIR] [--only abcd]
-//
-// --sim-dir: a folder of simulator sequences (each with a bag + pose_inW.csv) for the drift section; without
-// it the built-in synthetic street trials are used (our own ray-cast street, walking and driving speeds).
+//   bench_odometry [--config config/odometry.yaml] [--repeat N] [--only abcd]
 #include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/common/config.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/common/scan_io.hpp"
@@ -348,13 +346,18 @@ void sectionDriftSources(const LoamParams& params) {
 
 int main(int argc, char** argv) {
   cosmo::keepScanBuffersInProcess();
-  std::map<std::string, std::string> a;
-  for (int i = 1; i + 1 < argc; i += 2) a[std::string(argv[i]).substr(2)] = argv[i + 1];
+  std::string config, only = "abcd";
+  int repeat = 5;
+  cosmo::CommandLine app("bench_odometry",
+                         "LOAM odometry: (a) accuracy on real scan snippets, (b) speed per scan, (c, d) drift on "
+                         "synthetic trials.");
+  cosmo::addModuleConfig(app, config, "odometry");
+  app.add_option("--repeat", repeat, "runs per timed scan")->capture_default_str();
+  app.add_option("--only", only, "the sections to run")->capture_default_str();
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
   try {
     LoamParams params;
-    if (a.count("config")) params = LoamParams::fromConfig(ConfigNode::load(a["config"]));
-    const int repeat = a.count("repeat") ? std::stoi(a["repeat"]) : 5;
-    const std::string only = a.count("only") ? a["only"] : "abcd";
+    if (!config.empty()) params = LoamParams::fromConfig(cosmo::ConfigNode::load(config));
     std::vector<double> kitti_times;
     if (only.find('a') != std::string::npos) sectionReal(params, kitti_times, repeat);
     if (only.find('b') != std::string::npos) sectionSpeed(params, kitti_times);

@@ -20,6 +20,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -27,6 +28,7 @@
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/comm/radio_params.hpp"
 #include "cosmo/common/allocator_tuning.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/common/config.hpp"
 #include "cosmo/dataset/noise_models.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
@@ -79,33 +81,27 @@ struct Options {
   std::size_t report_every = 100, target_keyframes = 4500, target_robots = 5;
 };
 
-/// False on an unknown option.
-bool parseArgs(int argc, char** argv, Options& o) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto val = [&]() { return std::string(i + 1 < argc ? argv[++i] : ""); };
-    if (a == "--sim")
-      o.sim_config = val();
-    else if (a == "--lidar")
-      o.lidar = val();
-    else if (a == "--length")
-      o.length = std::stod(val());
-    else if (a == "--comm")
-      o.comm = val();
-    else if (a == "--registration-threads")
-      o.threads = static_cast<unsigned>(std::stoul(val()));
-    else if (a == "--report-every")
-      o.report_every = std::stoul(val());
-    else if (a == "--target-keyframes")
-      o.target_keyframes = std::stoul(val());
-    else if (a == "--target-robots")
-      o.target_robots = std::stoul(val());
-    else if (a == "--no-spill")
-      o.spill = false;
-    else
-      return false;
-  }
-  return true;
+/// The command line; an exit code when the program ends here (help, a usage error).
+std::optional<int> parseArgs(int argc, char** argv, Options& o) {
+  cosmo::CommandLine app("bench_keyframe_memory",
+                         "The memory a long run keeps per keyframe, and what holds it: a synthetic sequence through "
+                         "TeamRun with the reference poses as odometry, only the keyframe scans ray cast.");
+  app.add_option("--sim", o.sim_config, "the simulation config")->type_name("FILE")->capture_default_str();
+  app.add_option("--lidar", o.lidar, "os1_64 or os1_128 (default: the config's)");
+  app.add_option("--length", o.length, "every trial a seeded random route of M metres instead of the waypoints")
+      ->type_name("M");
+  app.add_option("--comm", o.comm, "wifi or proradio")->capture_default_str();
+  app.add_option("--registration-threads", o.threads, "threads of the loop-closure registrations")
+      ->capture_default_str();
+  app.add_option("--report-every", o.report_every, "a memory line every K keyframes")->capture_default_str();
+  app.add_option("--target-keyframes", o.target_keyframes, "the extrapolation's keyframes in all")
+      ->capture_default_str();
+  app.add_option("--target-robots", o.target_robots, "the extrapolation's robots")->capture_default_str();
+  bool no_spill = false;
+  app.add_flag("--no-spill", no_spill, "keep every kept scan and feature in memory, for comparison");
+  const std::optional<int> exit_code = app.parseOrExit(argc, argv);
+  o.spill = !no_spill;
+  return exit_code;
 }
 
 sim::SimulationParams simulationParams(const Options& o) {
@@ -254,13 +250,7 @@ void printSummary(const Options& o, const sim::SimulationParams& sp, std::size_t
 int main(int argc, char** argv) {
   keepScanBuffersInProcess();
   Options o;
-  if (!parseArgs(argc, argv, o)) {
-    std::cerr
-        << "usage: bench_keyframe_memory [--sim FILE] [--lidar os1_64|os1_128] [--length M] [--comm wifi|proradio]\n"
-           "         [--registration-threads N] [--report-every K] [--target-keyframes N] [--target-robots R]\n"
-           "         [--no-spill]\n";
-    return 2;
-  }
+  if (const std::optional<int> exit_code = parseArgs(argc, argv, o)) return *exit_code;
   try {
     const sim::SimulationParams sp = simulationParams(o);
     const TeamRunParams params = teamParams(o);

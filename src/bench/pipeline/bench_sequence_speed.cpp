@@ -11,6 +11,7 @@
 //
 //   bench_sequence_speed [--beams 64,128] [--runs off,first,warm] [--dir DIR] [--sim-cache DIR] [--comm wifi]
 //                        [--short]
+#include "cosmo/common/command_line.hpp"
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -21,15 +22,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "cosmo/common/text_list.hpp"
 
 namespace fs = std::filesystem;
-using cosmo::splitList;
 
 namespace {
 
@@ -146,27 +146,17 @@ int main(int argc, char** argv) {
   fs::path dir = fs::temp_directory_path() / "cosmo_bench_sequence_speed";
   std::string sim_cache, comm = "wifi";
   bool short_routes = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--beams" && i + 1 < argc) {
-      beam_counts.clear();
-      for (const auto& b : splitList(argv[++i])) beam_counts.push_back(std::stoi(b));
-    } else if (a == "--runs" && i + 1 < argc)
-      runs = splitList(argv[++i]);
-    else if (a == "--dir" && i + 1 < argc)
-      dir = argv[++i];
-    else if (a == "--sim-cache" && i + 1 < argc)
-      sim_cache = argv[++i];
-    else if (a == "--comm" && i + 1 < argc)
-      comm = argv[++i];
-    else if (a == "--short")
-      short_routes = true;
-    else {
-      std::cerr << "usage: bench_sequence_speed [--beams 64,128] [--runs off,first,warm] [--dir DIR] "
-                   "[--sim-cache DIR] [--comm wifi] [--short]\n";
-      return 2;
-    }
-  }
+  cosmo::CommandLine app("bench_sequence_speed",
+                         "A whole 3-robot sequence in MCD's layout through the offline driver, with the scan cache "
+                         "off, first filled and warm: wall and CPU time, real-time factor, CPU-seconds per "
+                         "sequence-second, cache size, and whether the JRLs are byte-identical.");
+  app.add_option("--beams", beam_counts, "LiDAR beams, comma separated")->delimiter(',')->capture_default_str();
+  app.add_option("--runs", runs, "off, first and / or warm, comma separated")->delimiter(',')->capture_default_str();
+  app.add_option("--dir", dir, "work folder")->capture_default_str();
+  app.add_option("--sim-cache", sim_cache, "cosmo_simulate's cache root (default: its own)")->type_name("DIR");
+  app.add_option("--comm", comm, "the comm model")->capture_default_str();
+  app.add_flag("--short", short_routes, "short routes (a quick look)");
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
   try {
     const fs::path bin = programDir();
     fs::create_directories(dir);

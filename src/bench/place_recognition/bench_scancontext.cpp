@@ -18,6 +18,7 @@
 #include <time.h>
 
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/common/scan_io.hpp"
 #include "cosmo/common/shared_data.hpp"
@@ -341,24 +342,15 @@ int main(int argc, char** argv) {
   std::vector<std::string> sims;
   std::string config;
   int repeat = 50;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--real")
-      real = true;
-    else if (a == "--speed")
-      speed = true;
-    else if (a == "--sim" && i + 1 < argc)
-      sims.push_back(argv[++i]);
-    else if (a == "--config" && i + 1 < argc)
-      config = argv[++i];
-    else if (a == "--repeat" && i + 1 < argc)
-      repeat = std::stoi(argv[++i]);
-    else {
-      std::cerr << "usage: bench_scancontext [--real] [--speed] [--sim sequence.yaml ...] [--config file.yaml] "
-                   "[--repeat N]\n";
-      return 2;
-    }
-  }
+  cosmo::CommandLine app("bench_scancontext",
+                         "ScanContext accuracy on real scans, speed, and precision / recall on synthetic sequences. "
+                         "Without a part selected, runs --real and --speed.");
+  app.add_flag("--real", real, "accuracy on the real scan snippets");
+  app.add_flag("--speed", speed, "descriptor and query times");
+  app.add_option("--sim", sims, "synthetic sequences")->type_name("SEQUENCE.yaml")->allow_extra_args(false);
+  cosmo::addModuleConfig(app, config, "place recognition");
+  app.add_option("--repeat", repeat, "runs per timed figure")->capture_default_str();
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
   if (!real && !speed && sims.empty()) real = speed = true;
   try {
     PlaceRecognitionParams params;

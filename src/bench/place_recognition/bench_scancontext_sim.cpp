@@ -20,9 +20,11 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/odometry/dewarp.hpp"
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/common/pose_io.hpp"
@@ -114,26 +116,14 @@ int main(int argc, char** argv) {
   std::string config;
   double kf_m = 2.0;
   std::size_t max_keyframes = 1000000;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--config" && i + 1 < argc)
-      config = argv[++i];
-    else if (a == "--kf" && i + 1 < argc)
-      kf_m = std::stod(argv[++i]);
-    else if (a == "--max-keyframes" && i + 1 < argc)
-      max_keyframes = std::stoul(argv[++i]);
-    else if (!a.empty() && a[0] != '-')
-      sequences.push_back(a);
-    else {
-      std::cerr << "usage: bench_scancontext_sim <sequence.yaml> [...] [--config file.yaml] [--kf 2.0] "
-                   "[--max-keyframes N]\n";
-      return 2;
-    }
-  }
-  if (sequences.empty()) {
-    std::cerr << "bench_scancontext_sim: give at least one sequence yaml (from cosmo_simulate)\n";
-    return 2;
-  }
+  cosmo::CommandLine app("bench_scancontext_sim",
+                         "Precision / recall of ScanContext place recognition on synthetic multi-trial sequences, "
+                         "intra- and inter-robot.");
+  app.add_option("SEQUENCE.yaml", sequences, "sequences written by cosmo_simulate")->required();
+  cosmo::addModuleConfig(app, config, "place recognition");
+  app.add_option("--kf", kf_m, "a keyframe every this many metres of reference motion")->capture_default_str();
+  app.add_option("--max-keyframes", max_keyframes, "at most this many keyframes per trial")->type_name("N");
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
   try {
     PlaceRecognitionParams params;
     if (!config.empty()) params = PlaceRecognitionParams::fromConfig(ConfigNode::load(config));

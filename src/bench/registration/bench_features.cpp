@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/common/config.hpp"
 #include "cosmo/common/scan_io.hpp"
 #include "cosmo/registration/global_registration.hpp"
@@ -17,20 +19,19 @@
 using namespace cosmo;
 
 int main(int argc, char** argv) {
-  if (argc < 3) {
-    std::fprintf(stderr, "usage: bench_features SOURCE TARGET [--repeats N] [--config registration.yaml]\n");
-    return 2;
-  }
   int repeats = 5;
+  std::string source, target, config;
+  cosmo::CommandLine app("bench_features",
+                         "CPU time of the per-scan feature stages and of the pairwise stages on two scan files, "
+                         "repeated; the median per stage and the sizes involved.");
+  app.add_option("SOURCE", source, "the source scan")->required();
+  app.add_option("TARGET", target, "the target scan")->required();
+  app.add_option("--repeats", repeats, "runs")->capture_default_str();
+  cosmo::addModuleConfig(app, config, "registration");
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
   RegistrationParams params;
-  for (int i = 3; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--repeats" && i + 1 < argc)
-      repeats = std::stoi(argv[++i]);
-    else if (a == "--config" && i + 1 < argc)
-      params = RegistrationParams::fromConfig(ConfigNode::load(argv[++i]));
-  }
-  const Scan src = readScanFile(argv[1]), tgt = readScanFile(argv[2]);
+  if (!config.empty()) params = RegistrationParams::fromConfig(cosmo::ConfigNode::load(config));
+  const Scan src = cosmo::readScanFile(source), tgt = cosmo::readScanFile(target);
   const GlobalRegistration reg(params);
   std::map<std::string, std::vector<double>> ms;
   FeatureCloud fs, ft;

@@ -19,10 +19,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/odometry/dewarp.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/registration/global_registration.hpp"
@@ -130,36 +132,25 @@ struct Options {
   std::uint64_t seed = 1;
 };
 
-/// False (with the usage) on an unknown option.
-bool parseArgs(int argc, char** argv, Options& o) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto val = [&]() { return std::string(i + 1 < argc ? argv[++i] : ""); };
-    if (a == "--config")
-      o.config = val();
-    else if (a == "--pairs")
-      o.n_pairs = std::stoi(val());
-    else if (a == "--negatives")
-      o.n_neg = std::stoi(val());
-    else if (a == "--kf")
-      o.kf_m = std::stod(val());
-    else if (a == "--max-offset")
-      o.max_offset = std::stod(val());
-    else if (a == "--min-separation")
-      o.min_sep = std::stod(val());
-    else if (a == "--seed")
-      o.seed = std::stoull(val());
-    else if (a == "--cache")
-      o.cache = val();
-    else if (!a.empty() && a[0] != '-')
-      o.seq = a;
-    else {
-      std::cerr << "usage: bench_registration_sim <sequence.yaml> [--config f] [--pairs N] [--negatives N] [--kf m] "
-                   "[--max-offset m] [--min-separation m] [--seed S] [--cache FILE]\n";
-      return false;
-    }
-  }
-  return true;
+/// The command line; an exit code when the program ends here (help, a usage error).
+std::optional<int> parseArgs(int argc, char** argv, Options& o) {
+  cosmo::CommandLine app("bench_registration_sim",
+                         "Global registration on synthetic loop pairs from different trials of a simulated sequence, "
+                         "and the gate's false accepts on non-overlapping pairs.");
+  app.add_option("SEQUENCE.yaml", o.seq, "a sequence written by cosmo_simulate")->required();
+  cosmo::addModuleConfig(app, o.config, "registration");
+  app.add_option("--pairs", o.n_pairs, "loop pairs")->capture_default_str();
+  app.add_option("--negatives", o.n_neg, "non-overlapping pairs")->capture_default_str();
+  app.add_option("--kf", o.kf_m, "a keyframe every this many metres of reference motion")->capture_default_str();
+  app.add_option("--max-offset", o.max_offset, "loop pairs: reference LiDAR positions within this, m")
+      ->capture_default_str();
+  app.add_option("--min-separation", o.min_sep, "non-overlapping pairs: more than this apart, m")
+      ->capture_default_str();
+  app.add_option("--seed", o.seed, "the pairs' seed")->capture_default_str();
+  app.add_option("--cache", o.cache,
+                 "keyframes are read from FILE when it exists, else read from the bags and written there")
+      ->type_name("FILE");
+  return app.parseOrExit(argc, argv);
 }
 
 /// The keyframes, from the cache when it holds them, else from the bags (then written to the cache).
@@ -258,11 +249,7 @@ void farPairs(const GlobalRegistration& reg, const std::vector<Keyframe>& kfs, c
 
 int main(int argc, char** argv) {
   Options o;
-  if (!parseArgs(argc, argv, o)) return 2;
-  if (o.seq.empty()) {
-    std::cerr << "bench_registration_sim: give a sequence yaml (from cosmo_simulate)\n";
-    return 2;
-  }
+  if (const std::optional<int> exit_code = parseArgs(argc, argv, o)) return *exit_code;
   try {
     const RegistrationParams params =
         o.config.empty() ? RegistrationParams{} : RegistrationParams::fromConfig(ConfigNode::load(o.config));

@@ -12,9 +12,11 @@
 
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/sim/scan_simulator.hpp"
 #include "cosmo/sim/sequence_planner.hpp"
 
@@ -34,21 +36,14 @@ int main(int argc, char** argv) {
   std::size_t scans = 100;
   bool sequence = false;
   int threads = 0;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--config" && i + 1 < argc)
-      config = argv[++i];
-    else if (a == "--scans" && i + 1 < argc)
-      scans = std::stoul(argv[++i]);
-    else if (a == "--threads" && i + 1 < argc)
-      threads = std::stoi(argv[++i]);
-    else if (a == "--sequence")
-      sequence = true;
-    else {
-      std::cerr << "usage: bench_sim [--config FILE] [--scans N] [--threads N] [--sequence]\n";
-      return 2;
-    }
-  }
+  cosmo::CommandLine app("bench_sim",
+                         "Ray-casting throughput of the simulated LiDAR and the time to make a whole sequence's "
+                         "scans.");
+  app.add_option("--config", config, "the simulation config")->type_name("FILE")->capture_default_str();
+  app.add_option("--scans", scans, "consecutive scans of the first trial")->capture_default_str();
+  app.add_option("--threads", threads, "TBB threads (0: all cores)")->capture_default_str();
+  app.add_flag("--sequence", sequence, "also cast every scan of every trial");
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
   const int nthreads = threads > 0 ? threads : tbb::info::default_concurrency();
   tbb::global_control gc(tbb::global_control::max_allowed_parallelism, nthreads);
   const auto params = sim::SimulationParams::load(config);

@@ -12,11 +12,12 @@
 #include <ctime>
 #include <filesystem>
 #include <iostream>
-#include <sstream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/ros/bag_io.hpp"
 #include "cosmo/ros/bag_scan_source.hpp"
 #include "cosmo/sim/scan_simulator.hpp"
@@ -79,22 +80,13 @@ int main(int argc, char** argv) {
   int scans = 30;
   std::vector<int> beam_counts{64, 128};
   fs::path dir = fs::temp_directory_path() / ("cosmo_bench_trial_bags_" + std::to_string(::getpid()));
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--scans" && i + 1 < argc)
-      scans = std::stoi(argv[++i]);
-    else if (a == "--dir" && i + 1 < argc)
-      dir = argv[++i];
-    else if (a == "--beams" && i + 1 < argc) {
-      beam_counts.clear();
-      std::stringstream ss(argv[++i]);
-      std::string b;
-      while (std::getline(ss, b, ',')) beam_counts.push_back(std::stoi(b));
-    } else {
-      std::cerr << "usage: bench_trial_bags [--scans N] [--beams 64,128] [--dir DIR]\n";
-      return 2;
-    }
-  }
+  cosmo::CommandLine app("bench_trial_bags",
+                         "CPU cost of reading one scan from each trial container (MCD bz2 bag first read and cached, "
+                         "the bag uncompressed, a CU-Multi ROS 2 bag) for simulated Ouster sweeps.");
+  app.add_option("--scans", scans, "scans per container")->capture_default_str();
+  app.add_option("--beams", beam_counts, "LiDAR beams, comma separated")->delimiter(',')->capture_default_str();
+  app.add_option("--dir", dir, "work folder (the scan cache goes there)")->type_name("DIR");
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
   fs::create_directories(dir);
   ::setenv("COSMO_SCAN_CACHE", (dir / "scan_cache").c_str(), 1);
   std::printf("%-9s %6s %8s %8s %8s %8s | %12s %12s %12s %12s | %8s  (ms: CPU per scan)\n", "sweep", "scans", "bz2 MB",

@@ -21,6 +21,7 @@
 #include <cstring>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <string>
 
 #include <fstream>
@@ -28,27 +29,19 @@
 #include "cosmo/comm/radio_simulator.hpp"
 #include "cosmo/comm/radio_trace.hpp"
 #include "cosmo/comm/transfer_log.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/common/pose_io.hpp"
 
 using namespace cosmo;
 
 namespace {
-constexpr const char* kUsage =
-    "usage: comm_simulate [--comm wifi|proradio|file.yaml] [--seed N] [--kf-distance m] [--scan-points n] "
-    "[--size-model paper|real] [--timeout-mode no_progress|total_duration] [--tail s] [--trace TRACE.csv] "
-    "[--write-trace TRACE.csv] --out transfers.csv a=traj[@offset_s] b=traj ...\n";
-
-int usage(const char* msg) {
-  std::fprintf(stderr, "comm_simulate: %s\n%s", msg, kUsage);
-  return 2;
-}
 struct Options {
   std::string comm = "wifi", out, size_model, timeout_mode, trace, write_trace;
   std::uint64_t seed = 0;
   double kf_distance = 2.0, tail = 0.0;
   std::size_t scan_points = 65536;
+  std::vector<std::string> robots;  ///< r=<traj>[@offset_s]
   std::map<char, Trajectory> trajectories;
-  bool help = false;
 };
 
 /// A robot's argument r=<traj>[@offset_s]: its trajectory, shifted by the offset.
@@ -66,47 +59,39 @@ Trajectory readRobotTrajectory(const std::string& arg) {
   return t.shifted(static_cast<long long>(offset * 1e9));
 }
 
-/// Throws std::invalid_argument on a missing value; returns an error message for anything else wrong ("" if none).
-std::string parseArgs(int argc, char** argv, Options& o) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
-      return argv[++i];
-    };
-    if (a == "-h" || a == "--help") {
-      o.help = true;
-      return "";
+/// The command line; an exit code when the program ends here (help, a usage error).
+std::optional<int> parseArgs(int argc, char** argv, Options& o) {
+  CommandLine app("comm_simulate",
+                  "Runs the radio model offline on reference trajectories and writes the per-transfer log (CSV and "
+                  "<out>.summary.json); prints the summary.");
+  app.add_option("--comm", o.comm, "wifi, proradio or a comm config (YAML)")->capture_default_str();
+  app.add_option("--seed", o.seed, "the radio's seed")->capture_default_str();
+  app.add_option("--kf-distance", o.kf_distance,
+                 "a keyframe is offered every this many metres of travel along the reference")
+      ->capture_default_str()
+      ->check(Positive);
+  app.add_option("--scan-points", o.scan_points, "points per scan: S = 12 * n bytes")->capture_default_str();
+  app.add_option("--size-model", o.size_model, "paper or real (the payload is S * 0.653, there being no scan)");
+  app.add_option("--timeout-mode", o.timeout_mode, "no_progress or total_duration");
+  app.add_option("--tail", o.tail, "seconds every robot stays on after the latest end")->capture_default_str();
+  app.add_option("--trace", o.trace, "a radio trace (CSV) replayed inside its windows, --comm's phi(d) outside them")
+      ->type_name("TRACE.csv");
+  app.add_option("--write-trace", o.write_trace, "writes the run's own connectivity samples as a trace")
+      ->type_name("TRACE.csv");
+  app.add_option("--out", o.out, "the transfer log (CSV)")->required();
+  app.add_option("ROBOT=TRAJ", o.robots,
+                 "a robot's trajectory, r=<traj>[@offset_s]: a TUM file or an MCD pose_inW.csv (by the .csv "
+                 "extension); @offset_s shifts it in time")
+      ->required();
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return exit_code;
+  for (const std::string& r : o.robots) {
+    if (r.size() < 3 || r[1] != '=') {
+      std::fprintf(stderr, "comm_simulate: unknown argument '%s'\n", r.c_str());
+      return 2;
     }
-    if (a == "--comm")
-      o.comm = next();
-    else if (a == "--seed")
-      o.seed = std::stoull(next());
-    else if (a == "--kf-distance")
-      o.kf_distance = std::stod(next());
-    else if (a == "--scan-points")
-      o.scan_points = std::stoul(next());
-    else if (a == "--size-model")
-      o.size_model = next();
-    else if (a == "--timeout-mode")
-      o.timeout_mode = next();
-    else if (a == "--tail")
-      o.tail = std::stod(next());
-    else if (a == "--out")
-      o.out = next();
-    else if (a == "--trace")
-      o.trace = next();
-    else if (a == "--write-trace")
-      o.write_trace = next();
-    else if (a.size() > 2 && a[1] == '=')
-      o.trajectories[a[0]] = readRobotTrajectory(a);
-    else
-      return "unknown argument '" + a + "'";
+    o.trajectories[r[0]] = readRobotTrajectory(r);
   }
-  if (o.out.empty()) return "--out is required";
-  if (o.trajectories.empty()) return "no robot trajectories given";
-  if (!(o.kf_distance > 0)) return "--kf-distance must be > 0";
-  return "";
+  return std::nullopt;
 }
 
 RadioParams radioParams(const Options& o) {
@@ -163,12 +148,7 @@ void simulate(const Options& o, RadioSimulator& sim) {
 int main(int argc, char** argv) {
   try {
     Options o;
-    const std::string error = parseArgs(argc, argv, o);
-    if (o.help) {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-    if (!error.empty()) return usage(error.c_str());
+    if (const std::optional<int> exit_code = parseArgs(argc, argv, o)) return *exit_code;
     std::vector<char> ids;
     for (const auto& [r, t] : o.trajectories) ids.push_back(r);
     RadioSimulator sim(radioParams(o), ids, o.seed);

@@ -6,27 +6,15 @@
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/dataset/noise_model_estimation.hpp"
 #include "cosmo/jrl/io.hpp"
 
 namespace {
-
-void usage(std::ostream& out) {
-  out << "usage: cosmo_noise_models INPUT.jrl OUTPUT.yaml [options]\n"
-         "  Estimates Q = (1/N) sum r r^T, r = Log(m^-1 * m*) (rotation first), for the odometry (every\n"
-         "  BetweenFactorPose3 <r>(i-1) -> <r>i) and the good loop closures (every other BetweenFactorPose3 whose\n"
-         "  error is under the thresholds) of INPUT.jrl against its groundtruth, and writes OUTPUT.yaml.\n"
-         "options:\n"
-         "  --robot R              use only robot R's measurements (default: every robot; a single-robot run has one)\n"
-         "  --environment NAME     label written to the YAML (default: the dataset name)\n"
-         "  --max-translation M    loop closures with a larger translation error are left out (default 0.5)\n"
-         "  --max-rotation RAD     loop closures with a larger rotation error are left out (default 0.05)\n"
-         "  --subtract-mean        centred sample covariance (divide by N-1) instead of the second moment\n"
-         "  --min-samples N        refuse to estimate from fewer measurements (default 10)\n";
-}
 
 void printEstimate(const char* what, const cosmo::CovarianceEstimate& e) {
   std::cout << what << ": " << e.used << " used, " << e.rejected
@@ -37,59 +25,34 @@ void printEstimate(const char* what, const cosmo::CovarianceEstimate& e) {
   std::cout << "\n";
 }
 
-double number(const std::string& flag, const char* text) {
-  char* end = nullptr;
-  const double v = std::strtod(text, &end);
-  if (!end || *end || !(v > 0)) throw std::invalid_argument(flag + ": expected a positive number, got '" + text + "'");
-  return v;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string input, output, environment;
   std::optional<char> robot;
   cosmo::NoiseModelEstimationParams params;
-  try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto value = [&]() -> const char* {
-        if (i + 1 >= argc) throw std::invalid_argument(a + ": missing value");
-        return argv[++i];
-      };
-      if (a == "-h" || a == "--help") {
-        usage(std::cout);
-        return 0;
-      } else if (a == "--robot") {
-        const std::string r = value();
-        if (r.size() != 1) throw std::invalid_argument("--robot: expected one character, got '" + r + "'");
-        robot = r[0];
-      } else if (a == "--environment") {
-        environment = value();
-      } else if (a == "--max-translation") {
-        params.max_translation_error = number(a, value());
-      } else if (a == "--max-rotation") {
-        params.max_rotation_error = number(a, value());
-      } else if (a == "--subtract-mean") {
-        params.subtract_mean = true;
-      } else if (a == "--min-samples") {
-        params.min_samples = static_cast<std::size_t>(number(a, value()));
-      } else if (!a.empty() && a[0] == '-') {
-        throw std::invalid_argument("unknown option " + a);
-      } else if (input.empty()) {
-        input = a;
-      } else if (output.empty()) {
-        output = a;
-      } else {
-        throw std::invalid_argument("unexpected argument " + a);
-      }
-    }
-    if (input.empty() || output.empty()) throw std::invalid_argument("need INPUT.jrl and OUTPUT.yaml");
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "cosmo_noise_models: " << e.what() << "\n";
-    usage(std::cerr);
-    return 2;
-  }
+  std::string robot_id;
+  cosmo::CommandLine app(
+      "cosmo_noise_models",
+      "Estimates Q = (1/N) sum r r^T, r = Log(m^-1 * m*) (rotation first), for the odometry (every "
+      "BetweenFactorPose3 <r>(i-1) -> <r>i) and the good loop closures (every other BetweenFactorPose3 whose error is "
+      "under the thresholds) of INPUT.jrl against its groundtruth, and writes OUTPUT.yaml.");
+  app.add_option("INPUT.jrl", input, "a run's dataset with ground truth")->required();
+  app.add_option("OUTPUT.yaml", output, "the noise models")->required();
+  app.add_option("--robot", robot_id,
+                 "use only robot R's measurements (default: every robot; a single-robot run "
+                 "has one)")
+      ->type_name("R")
+      ->check([](const std::string& r) { return r.size() == 1 ? "" : "expected one character, got '" + r + "'"; });
+  app.add_option("--environment", environment, "label written to the YAML (default: the dataset name)");
+  cosmo::addClosureThresholds(app, "max", params.max_translation_error, params.max_rotation_error);
+  app.add_flag("--subtract-mean", params.subtract_mean,
+               "centred sample covariance (divide by N-1) instead of the second moment");
+  app.add_option("--min-samples", params.min_samples, "refuse to estimate from fewer measurements")
+      ->capture_default_str()
+      ->check(cosmo::Positive);
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
+  if (!robot_id.empty()) robot = robot_id[0];
   try {
     const cosmo::jrl::Dataset ds = cosmo::jrl::readJrl(input);
     if (robot && std::find(ds.robots.begin(), ds.robots.end(), *robot) == ds.robots.end())

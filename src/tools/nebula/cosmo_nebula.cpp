@@ -2,14 +2,15 @@
 // COSMO-Bench paper converts them (§5): per-robot odometry chains, loop closures in the entry of the robot and
 // time at which they were made, the prior, groundtruth from ground_truth/result.g2o, dead-reckoned
 // initialization, noise models and chi^2 outlier labels.
-#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "cosmo/backend/dataset_check.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/dataset/atomic_file.hpp"
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/stats.hpp"
@@ -22,34 +23,6 @@
 namespace {
 
 namespace fs = std::filesystem;
-
-void usage(std::ostream& out) {
-  out << "usage: cosmo_nebula DATASET_DIR --out DIR [options]\n"
-         "  Converts a Nebula dataset folder (rosbag/*.bag with /<robot>/lamp/pose_graph_incremental,\n"
-         "  ground_truth/result.g2o) to DIR/<name>.jrl, <name>.stats.txt, <name>.stats.json, <name>.nebula.yaml,\n"
-         "  the dataset's figures (<name>.trajectories / .frontend, SVG and PNG) and prints the inliers' solve check.\n"
-         "options:\n"
-         "  --name NAME                 dataset name (default: the folder's name)\n"
-         "  --noise-models FILE         one odometry and one loop-closure covariance for all factors (YAML as\n"
-         "                              config/noise_models/*.yaml; e.g. the one estimated from tunnel)\n"
-         "  --estimate-noise-models     estimate them from this dataset against its reference (paper's procedure)\n"
-         "                              and write DIR/<name>.noise_models.yaml; default: each edge's recorded one\n"
-         "  --max-translation M         good loop closures for the estimate: error < M (default 0.5)\n"
-         "  --max-rotation RAD          ... and < RAD (default 0.05)\n"
-         "  --outlier-rule R            fidelity (sqrt(d2) > 12.592, COSMO-Bench's) | squared (d2 > 12.592)\n"
-         "  --covariance-order O        recorded covariances' order: translation-first (the message definition's\n"
-         "                              comment; default) | rotation-first\n"
-         "  --from-g2o                  read g2o_pcd/*.g2o instead of the bags (no stamps there: pose i of each\n"
-         "                              robot is stamped i seconds; an edge between consecutive poses of one\n"
-         "                              robot is odometry, any other a loop closure)\n";
-}
-
-double positive(const std::string& flag, const char* text) {
-  char* end = nullptr;
-  const double v = std::strtod(text, &end);
-  if (!end || *end || !(v > 0)) throw std::invalid_argument(flag + ": expected a positive number, got '" + text + "'");
-  return v;
-}
 
 void printSummary(const cosmo::ros_glue::NebulaConversion& c) {
   const auto& g = c.graph;
@@ -83,61 +56,57 @@ void printSummary(const cosmo::ros_glue::NebulaConversion& c) {
 struct Args {
   cosmo::ros_glue::NebulaOptions options;
   std::string out_dir, noise_file, name;
-  bool estimate = false, help = false;
+  bool estimate = false;
 };
 
-cosmo::nebula::CovarianceOrder covarianceOrder(const std::string& o) {
-  if (o == "translation-first") return cosmo::nebula::CovarianceOrder::TranslationFirst;
-  if (o == "rotation-first") return cosmo::nebula::CovarianceOrder::RotationFirst;
-  throw std::invalid_argument("--covariance-order: expected translation-first or rotation-first, got " + o);
-}
-
-/// Throws std::invalid_argument on a bad command line.
-Args parseArgs(int argc, char** argv) {
-  Args args;
+/// The command line; an exit code when the program ends here (help, a usage error).
+std::optional<int> parseArgs(int argc, char** argv, Args& args) {
   cosmo::ros_glue::NebulaOptions& options = args.options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> const char* {
-      if (i + 1 >= argc) throw std::invalid_argument(a + ": missing value");
-      return argv[++i];
-    };
-    if (a == "-h" || a == "--help") {
-      args.help = true;
-      return args;
-    } else if (a == "--out") {
-      args.out_dir = value();
-    } else if (a == "--name") {
-      args.name = value();
-    } else if (a == "--noise-models") {
-      args.noise_file = value();
-    } else if (a == "--estimate-noise-models") {
-      args.estimate = true;
-    } else if (a == "--max-translation") {
-      options.params.estimation.max_translation_error = positive(a, value());
-    } else if (a == "--max-rotation") {
-      options.params.estimation.max_rotation_error = positive(a, value());
-    } else if (a == "--outlier-rule") {
-      const auto rule = cosmo::parseOutlierRule(value());
-      if (!rule) throw std::invalid_argument("--outlier-rule: expected fidelity or squared");
-      options.params.rule = *rule;
-    } else if (a == "--covariance-order") {
-      options.covariance_order = covarianceOrder(value());
-    } else if (a == "--from-g2o") {
-      options.from_g2o = true;
-    } else if (!a.empty() && a[0] == '-') {
-      throw std::invalid_argument("unknown option " + a);
-    } else if (options.dataset_dir.empty()) {
-      options.dataset_dir = a;
-    } else {
-      throw std::invalid_argument("unexpected argument " + a);
-    }
-  }
-  if (options.dataset_dir.empty()) throw std::invalid_argument("need DATASET_DIR");
-  if (args.out_dir.empty()) throw std::invalid_argument("need --out DIR");
-  if (args.estimate && !args.noise_file.empty())
-    throw std::invalid_argument("--noise-models and --estimate-noise-models exclude each other");
-  return args;
+  cosmo::CommandLine app(
+      "cosmo_nebula",
+      "Converts a Nebula dataset folder (rosbag/*.bag with /<robot>/lamp/pose_graph_incremental, "
+      "ground_truth/result.g2o) to DIR/<name>.jrl, <name>.stats.txt, <name>.stats.json, <name>.nebula.yaml, the "
+      "dataset's figures (<name>.trajectories / .frontend, SVG and PNG) and prints the inliers' solve check.");
+  app.add_option("DATASET_DIR", options.dataset_dir, "the Nebula folder as distributed")->required();
+  app.add_option("--out", args.out_dir, "output folder")->required()->type_name("DIR");
+  app.add_option("--name", args.name, "dataset name (default: the folder's name)");
+  CLI::Option* noise = cosmo::addNoiseModels(
+      app, args.noise_file,
+      "one odometry and one loop-closure covariance for all factors, as config/noise_models/*.yaml; e.g. the one "
+      "estimated from tunnel");
+  app.add_flag("--estimate-noise-models", args.estimate,
+               "estimate them from this dataset against its reference (paper's procedure) and write "
+               "DIR/<name>.noise_models.yaml; default: each edge's recorded one")
+      ->excludes(noise);
+  cosmo::addClosureThresholds(app, "max", options.params.estimation.max_translation_error,
+                              options.params.estimation.max_rotation_error);
+  app.add_option_function<std::string>(
+         "--outlier-rule",
+         [&options](const std::string& name) {
+           const auto rule = cosmo::parseOutlierRule(name);
+           if (!rule) throw CLI::ValidationError("--outlier-rule", "expected fidelity or squared");
+           options.params.rule = *rule;
+         },
+         "fidelity (sqrt(d2) > 12.592, COSMO-Bench's) | squared (d2 > 12.592)")
+      ->type_name("R");
+  app.add_option_function<std::string>(
+         "--covariance-order",
+         [&options](const std::string& order) {
+           if (order == "translation-first")
+             options.covariance_order = cosmo::nebula::CovarianceOrder::TranslationFirst;
+           else if (order == "rotation-first")
+             options.covariance_order = cosmo::nebula::CovarianceOrder::RotationFirst;
+           else
+             throw CLI::ValidationError("--covariance-order",
+                                        "expected translation-first or rotation-first, got " + order);
+         },
+         "recorded covariances' order: translation-first (the message definition's comment; default) | "
+         "rotation-first")
+      ->type_name("O");
+  app.add_flag("--from-g2o", options.from_g2o,
+               "read g2o_pcd/*.g2o instead of the bags (no stamps there: pose i of each robot is stamped i seconds; "
+               "an edge between consecutive poses of one robot is odometry, any other a loop closure)");
+  return app.parseOrExit(argc, argv);
 }
 
 /// The dataset's name (default: the folder's) and noise-model source into the conversion's parameters.
@@ -200,17 +169,7 @@ void writeOutputs(const Args& args, const cosmo::ros_glue::NebulaConversion& c) 
 
 int main(int argc, char** argv) {
   Args args;
-  try {
-    args = parseArgs(argc, argv);
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "cosmo_nebula: " << e.what() << "\n";
-    usage(std::cerr);
-    return 2;
-  }
-  if (args.help) {
-    usage(std::cout);
-    return 0;
-  }
+  if (const std::optional<int> exit_code = parseArgs(argc, argv, args)) return *exit_code;
   try {
     resolveParams(args);
     const cosmo::ros_glue::NebulaConversion c = cosmo::ros_glue::convertNebulaDataset(args.options);

@@ -11,16 +11,17 @@
 
 #include <ctime>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/common/config.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/common/scan_io.hpp"
@@ -39,17 +40,6 @@ double threadCpuMs() {
   return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
 }
 
-void usage() {
-  std::cerr
-      << "usage: cosmo_lidar_odometry --scans DIR [--poses KITTI_POSES [--calib CALIB.txt]]\n"
-         "                            | --bag FILE --topic TOPIC [--reference-tum F | --reference-csv pose_inW.csv]\n"
-         "       [--out-kitti F] [--out-tum F] [--config config/odometry.yaml] [--period S]\n"
-         "       [--first N] [--count M] [--segments 10,20,40,100] [--extrinsic \"x y z qx qy qz qw\"] [--quiet]\n"
-         "--extrinsic: T_body_lidar, when the stamped reference is a body trajectory (LiDAR = body * extrinsic).\n"
-         "Folder scans are matched to KITTI pose lines by the number in their file name (000094.bin ->\n"
-         "line 94) and stamped index * period (default 0.1 s).\n";
-}
-
 /// Frame index from a file name like 000094.bin or a folder 000003/points.bin; -1 if none.
 long frameIndexOf(const std::string& path) {
   fs::path p(path);
@@ -61,27 +51,49 @@ long frameIndexOf(const std::string& path) {
     return used == stem.size() ? v : -1;
   } catch (...) { return -1; }
 }
-using Args = std::map<std::string, std::string>;
+struct Options {
+  std::string scans, poses, calib, bag, topic, reference_tum, reference_csv, out_kitti, out_tum, config;
+  std::vector<double> extrinsic;                          ///< x y z qx qy qz qw
+  std::vector<double> segments{10.0, 20.0, 40.0, 100.0};  ///< segment lengths of the relative errors, m
+  double period = 0.1;
+  long first = 0, count = -1;
+  bool quiet = false;
+};
 
-/// The command line as --key value pairs; an exit code when the program ends here (help, a usage error).
-std::optional<int> parseArgs(int argc, char** argv, Args& a, bool& quiet) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    if (k == "--quiet") {
-      quiet = true;
-    } else if (k == "-h" || k == "--help") {
-      usage();
-      return 0;
-    } else if (k.rfind("--", 0) == 0 && i + 1 < argc) {
-      a[k.substr(2)] = argv[++i];
-    } else {
-      std::cerr << "unknown or incomplete argument: " << k << "\n";
-      usage();
-      return 2;
-    }
-  }
-  if (!a.count("scans") && !(a.count("bag") && a.count("topic"))) {
-    usage();
+/// The command line; an exit code when the program ends here (help, a usage error).
+std::optional<int> parseArgs(int argc, char** argv, Options& o) {
+  cosmo::CommandLine app("cosmo_lidar_odometry",
+                         "LOAM odometry over a folder of scans (PCD, KITTI .bin) or a bag topic; writes the "
+                         "trajectory (KITTI / TUM) and, given reference poses, prints ATE (SE(3)-aligned), "
+                         "KITTI-style segment errors and the time per scan.");
+  CLI::Option* scans = app.add_option("--scans", o.scans,
+                                      "a folder of scans, matched to KITTI pose lines by the number in their file "
+                                      "name (000094.bin -> line 94) and stamped index * --period")
+                           ->type_name("DIR");
+  app.add_option("--poses", o.poses, "KITTI poses of the scans")->type_name("KITTI_POSES");
+  app.add_option("--calib", o.calib, "KITTI calibration (the poses are moved to the LiDAR)")->type_name("CALIB.txt");
+  CLI::Option* bag = app.add_option("--bag", o.bag, "a bag instead of a folder")->excludes(scans);
+  app.add_option("--topic", o.topic, "the bag's point-cloud topic")->needs(bag);
+  app.add_option("--reference-tum", o.reference_tum, "a stamped reference trajectory (TUM)")->type_name("F");
+  app.add_option("--reference-csv", o.reference_csv, "a stamped reference trajectory (MCD pose_inW.csv)")
+      ->type_name("F");
+  app.add_option("--extrinsic", o.extrinsic,
+                 "T_body_lidar, when the stamped reference is a body trajectory (LiDAR = body * extrinsic)")
+      ->type_name("\"x y z qx qy qz qw\"")
+      ->delimiter(' ');
+  app.add_option("--out-kitti", o.out_kitti, "write the estimated poses (KITTI)")->type_name("F");
+  app.add_option("--out-tum", o.out_tum, "write the estimated trajectory (TUM)")->type_name("F");
+  cosmo::addModuleConfig(app, o.config, "odometry");
+  app.add_option("--period", o.period, "seconds between folder scans")->capture_default_str();
+  app.add_option("--first", o.first, "the first scan")->capture_default_str();
+  app.add_option("--count", o.count, "at most this many scans (-1: all)")->capture_default_str();
+  app.add_option("--segments", o.segments, "segment lengths of the relative errors, m")
+      ->delimiter(',')
+      ->capture_default_str();
+  app.add_flag("--quiet", o.quiet, "no line per scan");
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return exit_code;
+  if (o.scans.empty() && (o.bag.empty() || o.topic.empty())) {
+    std::cerr << "cosmo_lidar_odometry: give --scans DIR, or --bag FILE and --topic TOPIC\n";
     return 2;
   }
   return std::nullopt;
@@ -108,31 +120,16 @@ struct Reference {
   }
 };
 
-Reference readReference(Args& a) {
+Reference readReference(const Options& o) {
   Reference ref;
-  if (a.count("poses")) {
-    ref.kitti = readKittiPoses(a["poses"]);
-    if (a.count("calib")) ref.kitti = kittiPosesToLidar(ref.kitti, readKittiCalibTr(a["calib"]));
+  if (!o.poses.empty()) {
+    ref.kitti = cosmo::readKittiPoses(o.poses);
+    if (!o.calib.empty()) ref.kitti = cosmo::kittiPosesToLidar(ref.kitti, cosmo::readKittiCalibTr(o.calib));
   }
-  if (a.count("extrinsic")) {
-    std::stringstream ss(a["extrinsic"]);
-    std::vector<double> v;
-    double x;
-    while (ss >> x) v.push_back(x);
-    ref.extrinsic = parsePoseNumbers(v, "--extrinsic");
-  }
-  if (a.count("reference-tum")) ref.stamped = readTumTrajectory(a["reference-tum"]);
-  if (a.count("reference-csv")) ref.stamped = readMcdPoseCsv(a["reference-csv"]);
+  if (!o.extrinsic.empty()) ref.extrinsic = cosmo::parsePoseNumbers(o.extrinsic, "--extrinsic");
+  if (!o.reference_tum.empty()) ref.stamped = cosmo::readTumTrajectory(o.reference_tum);
+  if (!o.reference_csv.empty()) ref.stamped = cosmo::readMcdPoseCsv(o.reference_csv);
   return ref;
-}
-
-std::vector<double> segmentLengths(Args& a) {
-  if (!a.count("segments")) return {10.0, 20.0, 40.0, 100.0};
-  std::vector<double> segments;
-  std::stringstream ss(a["segments"]);
-  std::string item;
-  while (std::getline(ss, item, ',')) segments.push_back(std::stod(item));
-  return segments;
 }
 
 /// LOAM over the scans one by one: the estimated poses, the reference poses of the scans that have one, the
@@ -273,24 +270,21 @@ void printEvaluation(const std::vector<Pose3>& est, std::vector<Pose3> ref, cons
 
 int main(int argc, char** argv) {
   cosmo::keepScanBuffersInProcess();
-  Args a;
-  bool quiet = false;
-  if (const std::optional<int> exit_code = parseArgs(argc, argv, a, quiet)) return *exit_code;
+  Options o;
+  if (const std::optional<int> exit_code = parseArgs(argc, argv, o)) return *exit_code;
   try {
     LoamParams params;
-    if (a.count("config")) params = LoamParams::fromConfig(ConfigNode::load(a["config"]));
-    const double period = a.count("period") ? std::stod(a["period"]) : 0.1;
-    const Range range{a.count("first") ? std::stol(a["first"]) : 0, a.count("count") ? std::stol(a["count"]) : -1};
-    const std::vector<double> segments = segmentLengths(a);
-    OdometryRun run(params, readReference(a), quiet);
-    if (a.count("scans"))
-      runFolder(a["scans"], range, period, run);
+    if (!o.config.empty()) params = LoamParams::fromConfig(cosmo::ConfigNode::load(o.config));
+    const Range range{o.first, o.count};
+    OdometryRun run(params, readReference(o), o.quiet);
+    if (!o.scans.empty())
+      runFolder(o.scans, range, o.period, run);
     else
-      runBag(a["bag"], a["topic"], range, run);
-    if (a.count("out-kitti")) writeKittiPoses(a["out-kitti"], run.est);
-    if (a.count("out-tum")) writeTumTrajectory(a["out-tum"], run.est_traj);
+      runBag(o.bag, o.topic, range, run);
+    if (!o.out_kitti.empty()) cosmo::writeKittiPoses(o.out_kitti, run.est);
+    if (!o.out_tum.empty()) cosmo::writeTumTrajectory(o.out_tum, run.est_traj);
     printTiming(run);
-    printEvaluation(run.est, run.ref, segments);
+    printEvaluation(run.est, run.ref, o.segments);
   } catch (const std::exception& e) {
     std::cerr << "cosmo_lidar_odometry: " << e.what() << "\n";
     return 1;

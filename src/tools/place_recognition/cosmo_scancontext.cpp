@@ -11,24 +11,19 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/common/scan_io.hpp"
 #include "cosmo/place_recognition/place_recognizer.hpp"
 #include "cosmo/place_recognition/revisit_evaluation.hpp"
 
 namespace {
-
-void usage() {
-  std::cerr << "usage: cosmo_scancontext <scan_folder> <poses.txt> [--calib calib.txt] [--config file.yaml]\n"
-               "         [--exclude N] [--radius M] [--thresholds lo:hi:step] [--stride N] [--list]\n"
-               "  incremental search (each scan vs the earlier ones, the N most recent excluded), then precision\n"
-               "  and recall of the top candidate (true when the reference positions are within M m, default 5)\n";
-}
 
 std::size_t poseIndexOf(const std::string& file, std::size_t position) {
   const std::string stem = std::filesystem::path(file).stem().string();
@@ -43,42 +38,40 @@ struct Options {
   std::string calib, config;
   int exclude = -1, stride = -1;
   double radius = 5.0, lo = 0.05, hi = 0.6, step = 0.05;
-  bool list = false, help = false;
+  bool list = false;
 };
 
-Options parseArgs(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--calib")
-      o.calib = value();
-    else if (a == "--config")
-      o.config = value();
-    else if (a == "--exclude")
-      o.exclude = std::stoi(value());
-    else if (a == "--radius")
-      o.radius = std::stod(value());
-    else if (a == "--stride")
-      o.stride = std::stoi(value());
-    else if (a == "--list")
-      o.list = true;
-    else if (a == "--thresholds") {
-      const std::string v = value();
-      if (std::sscanf(v.c_str(), "%lf:%lf:%lf", &o.lo, &o.hi, &o.step) != 3 || o.step <= 0.0 || o.hi < o.lo)
-        throw std::runtime_error("--thresholds expects lo:hi:step, got '" + v + "'");
-    } else if (a == "-h" || a == "--help") {
-      o.help = true;
-      return o;
-    } else if (!a.empty() && a[0] == '-')
-      throw std::runtime_error("unknown option " + a);
-    else
-      o.positional.push_back(a);
-  }
-  return o;
+/// The command line; an exit code when the program ends here (help, a usage error).
+std::optional<int> parseArgs(int argc, char** argv, Options& o) {
+  cosmo::CommandLine app("cosmo_scancontext",
+                         "Incremental ScanContext search (each scan vs the earlier ones, the N most recent "
+                         "excluded), then precision and recall of the top candidate (true when the "
+                         "reference positions are within --radius m).");
+  o.positional.resize(2);
+  app.add_option("SCAN_FOLDER", o.positional[0], ".pcd / KITTI .bin scans, sorted by name")->required();
+  app.add_option("POSES", o.positional[1],
+                 "KITTI poses (12 numbers a line): a scan NNNNNN.* takes pose line NNNNNN, else its position in the "
+                 "folder")
+      ->required();
+  app.add_option("--calib", o.calib, "the poses are KITTI camera poses, turned into LiDAR poses with the calib's Tr")
+      ->type_name("calib.txt");
+  cosmo::addModuleConfig(app, o.config, "place recognition");
+  app.add_option("--exclude", o.exclude, "the N most recent scans excluded (default: the config's exclude_recent)")
+      ->type_name("N");
+  app.add_option("--radius", o.radius, "revisit radius, m")->capture_default_str();
+  app.add_option_function<std::string>(
+         "--thresholds",
+         [&o](const std::string& v) {
+           if (std::sscanf(v.c_str(), "%lf:%lf:%lf", &o.lo, &o.hi, &o.step) != 3 || o.step <= 0.0 || o.hi < o.lo)
+             throw CLI::ValidationError("--thresholds", "expects lo:hi:step, got '" + v + "'");
+         },
+         "distance thresholds of the precision-recall table")
+      ->type_name("lo:hi:step")
+      ->default_str("0.05:0.6:0.05");
+  app.add_option("--stride", o.stride, "point stride of the descriptor (default: the config's point_stride)")
+      ->type_name("N");
+  app.add_flag("--list", o.list, "print every query's top candidate");
+  return app.parseOrExit(argc, argv);
 }
 
 cosmo::PlaceRecognitionParams placeParams(const Options& o) {
@@ -187,15 +180,8 @@ void printReport(const Options& o, const cosmo::PlaceRecognitionParams& params, 
 
 int main(int argc, char** argv) {
   try {
-    const Options o = parseArgs(argc, argv);
-    if (o.help) {
-      usage();
-      return 0;
-    }
-    if (o.positional.size() != 2) {
-      usage();
-      return 2;
-    }
+    Options o;
+    if (const std::optional<int> exit_code = parseArgs(argc, argv, o)) return *exit_code;
     const cosmo::PlaceRecognitionParams params = placeParams(o);
     const Described described = describeScans(o, params);
     std::vector<double> query_ms;

@@ -7,10 +7,12 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/common/config.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/common/scan_io.hpp"
@@ -21,13 +23,6 @@
 using namespace cosmo;
 
 namespace {
-
-void usage() {
-  std::cerr << "usage: cosmo_register SOURCE TARGET [--yaw DEG] [--expected FILE|\"x y z qx qy qz qw\"] "
-               "[--config FILE] [--max-trans M] [--max-rot DEG]\n"
-               "       cosmo_register --pairs LIST [--yaw DEG] [--config FILE] [--max-trans M] [--max-rot DEG]\n"
-               "LIST lines: source target [x y z qx qy qz qw | 12/16 matrix numbers | 4x4 file]\n";
-}
 
 std::optional<Pose3> parseExpected(const std::string& arg) {
   std::istringstream ss(arg);
@@ -77,35 +72,31 @@ int main(int argc, char** argv) {
   std::vector<std::string> positional;
   std::string config_path, expected_arg, pairs_path;
   double yaw_deg = 0.0, max_trans = 0.3, max_rot = 1.0;
+  cosmo::CommandLine app("cosmo_register",
+                         "Global registration of a scan pair (no initial guess), KISS-Matcher style: prints the "
+                         "transform T_target_source, inlier counts per stage, the gate's verdict, time per stage "
+                         "and, with an expected transform, the errors.");
+  positional.resize(2);
+  app.add_option("SOURCE", positional[0], "the source scan (without --pairs)");
+  app.add_option("TARGET", positional[1], "the target scan");
+  app.add_option("--pairs", pairs_path,
+                 "a list of pairs instead, lines: source target [x y z qx qy qz qw | 12/16 matrix numbers | 4x4 file]")
+      ->type_name("LIST");
+  app.add_option("--yaw", yaw_deg, "rotate the source about z first, degrees")->capture_default_str();
+  app.add_option("--expected", expected_arg, "the true transform: a 4x4 file or \"x y z qx qy qz qw\"")
+      ->type_name("FILE|\"x y z qx qy qz qw\"");
+  cosmo::addModuleConfig(app, config_path, "registration");
+  app.add_option("--max-trans", max_trans, "success: accepted and translation error within M")->capture_default_str();
+  app.add_option("--max-rot", max_rot, "success: accepted and rotation error within DEG")->capture_default_str();
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
+  if (pairs_path.empty() && (positional[0].empty() || positional[1].empty())) {
+    std::cerr << "cosmo_register: give SOURCE TARGET or --pairs LIST\nRun with --help for more information.\n";
+    return 2;
+  }
   try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto value = [&]() -> std::string {
-        if (i + 1 >= argc) throw std::runtime_error("missing value after " + a);
-        return argv[++i];
-      };
-      if (a == "--yaw")
-        yaw_deg = std::stod(value());
-      else if (a == "--expected")
-        expected_arg = value();
-      else if (a == "--config")
-        config_path = value();
-      else if (a == "--pairs")
-        pairs_path = value();
-      else if (a == "--max-trans")
-        max_trans = std::stod(value());
-      else if (a == "--max-rot")
-        max_rot = std::stod(value());
-      else if (a == "-h" || a == "--help") {
-        usage();
-        return 0;
-      } else if (!a.empty() && a[0] == '-')
-        throw std::runtime_error("unknown option " + a);
-      else
-        positional.push_back(a);
-    }
-    const RegistrationParams params =
-        config_path.empty() ? RegistrationParams{} : RegistrationParams::fromConfig(ConfigNode::load(config_path));
+    const RegistrationParams params = config_path.empty()
+                                          ? RegistrationParams{}
+                                          : RegistrationParams::fromConfig(cosmo::ConfigNode::load(config_path));
     const GlobalRegistration reg(params);
 
     if (!pairs_path.empty()) {
@@ -127,10 +118,6 @@ int main(int argc, char** argv) {
       return 0;
     }
 
-    if (positional.size() != 2) {
-      usage();
-      return 2;
-    }
     std::optional<Pose3> expected;
     if (!expected_arg.empty()) expected = parseExpected(expected_arg);
     const Outcome o = runPair(reg, positional[0], positional[1], yaw_deg, expected);

@@ -17,11 +17,13 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/ros/bag_io.hpp"
 #include "cosmo/ros/trial_layout_writer.hpp"
@@ -32,26 +34,6 @@ namespace fs = std::filesystem;
 using namespace cosmo;
 
 namespace {
-
-void usage() {
-  std::cerr << "usage: cosmo_simulate [--config FILE | --small] [--layout L] [--out DIR] [--cache-dir DIR] "
-               "[--no-cache] [--force]\n"
-               "  --config FILE    generation parameters (default: config/sim/default.yaml of the source tree)\n"
-               "  --small          use config/sim/ci.yaml (a CI-sized sequence)\n"
-               "  --layout L       cosmo (default): <trial>.bag + <trial>_pose_inW.csv;\n"
-               "                   mcd: <trial>/<trial>_os1_<beams>.bag (bz2, organised Ouster clouds stamped at the\n"
-               "                   sweep end), <trial>/pose_inW.csv (body, 10 Hz, from 1 s after the first scan),\n"
-               "                   calibration.yaml;\n"
-               "                   cu-multi: robotN_<trial>_lidar/ (ROS 2 sqlite3 bag, clouds stamped at the sweep\n"
-               "                   start; the LiDAR runs at 20 Hz), <trial>_robotN_ref.csv (UTM-offset body poses)\n"
-               "  --out DIR        put the sequence here (symlinks into the cache, or real files with --no-cache)\n"
-               "  --cache-dir DIR  cache root (default: $COSMO_SIM_CACHE, else ~/.cache/cosmo/sim)\n"
-               "  --no-cache       generate straight into --out, do not read or fill the cache\n"
-               "  --force          regenerate even when the cache holds this sequence\n"
-               "  --plan-only      write only the reference trajectories, the sequence config and network.csv "
-               "(junctions and\n"
-               "                   paths, for choosing start_node / waypoints) into --out (preview)\n";
-}
 
 fs::path defaultCacheDir() {
   if (const char* c = std::getenv("COSMO_SIM_CACHE")) return c;
@@ -182,40 +164,30 @@ void generate(const sim::SimulationParams& params, const fs::path& dir, bool pla
 int main(int argc, char** argv) {
   std::string config, out, cache_dir, layout_name = "cosmo";
   bool small = false, no_cache = false, force = false, plan_only = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::cerr << a << " needs a value\n";
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (a == "--config")
-      config = value();
-    else if (a == "--out")
-      out = value();
-    else if (a == "--layout")
-      layout_name = value();
-    else if (a == "--cache-dir")
-      cache_dir = value();
-    else if (a == "--small")
-      small = true;
-    else if (a == "--no-cache")
-      no_cache = true;
-    else if (a == "--force")
-      force = true;
-    else if (a == "--plan-only")
-      plan_only = true;
-    else if (a == "-h" || a == "--help") {
-      usage();
-      return 0;
-    } else {
-      std::cerr << "unknown argument " << a << "\n";
-      usage();
-      return 2;
-    }
-  }
+  cosmo::CommandLine app(
+      "cosmo_simulate",
+      "Writes a synthetic multi-trial sequence (bags, ground truth and a sequence config), cached by a "
+      "hash of all parameters, the layout and the code version. The last line printed is the path of the "
+      "sequence config.");
+  app.add_option("--config", config, "generation parameters (default: config/sim/default.yaml of the source tree)")
+      ->type_name("FILE");
+  app.add_flag("--small", small, "use config/sim/ci.yaml (a CI-sized sequence)");
+  app.add_option("--layout", layout_name,
+                 "cosmo: <trial>.bag + <trial>_pose_inW.csv; mcd: <trial>/<trial>_os1_<beams>.bag (bz2, organised "
+                 "Ouster clouds stamped at the sweep end), <trial>/pose_inW.csv (body, 10 Hz, from 1 s after the "
+                 "first scan), calibration.yaml; cu-multi: robotN_<trial>_lidar/ (ROS 2 sqlite3 bag, clouds stamped "
+                 "at the sweep start; the LiDAR runs at 20 Hz), <trial>_robotN_ref.csv (UTM-offset body poses)")
+      ->capture_default_str();
+  app.add_option("--out", out, "put the sequence here (symlinks into the cache, or real files with --no-cache)")
+      ->type_name("DIR");
+  app.add_option("--cache-dir", cache_dir, "cache root (default: $COSMO_SIM_CACHE, else ~/.cache/cosmo/sim)")
+      ->type_name("DIR");
+  app.add_flag("--no-cache", no_cache, "generate straight into --out, do not read or fill the cache");
+  app.add_flag("--force", force, "regenerate even when the cache holds this sequence");
+  app.add_flag("--plan-only", plan_only,
+               "write only the reference trajectories, the sequence config and network.csv (junctions and paths, "
+               "for choosing start_node / waypoints) into --out (preview)");
+  if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
   if (config.empty())
     config = std::string(COSMO_SOURCE_DIR) + (small ? "/config/sim/ci.yaml" : "/config/sim/default.yaml");
   if ((no_cache || plan_only) && out.empty()) {
