@@ -22,17 +22,15 @@ void meanAndScatter(const std::vector<Eigen::Vector3d>& pts, Eigen::Vector3d& me
   scatter *= inv_n;
 }
 
-/// Flatness (smallest / middle eigenvalue) above which the off-surface test looks for a single cause, and the
-/// factor by which dropping that neighbour must lower the smallest eigenvalue.
-constexpr double kOffSurfaceFlatness = 0.01;
-constexpr double kOffSurfaceDrop = 0.1;
-
 /// Whether one neighbour alone keeps `nb` (smallest-first eigenvalues `ev`) from being flat (see
 /// LoamParams::plane_off_surface_min_dist).
 bool oneNeighbourOffSurface(const std::vector<Eigen::Vector3d>& nb, const Eigen::Vector3d& ev,
                             const LoamParams& params) {
   const double d = params.plane_off_surface_min_dist;
-  if (nb.size() < 5 || !(ev[0] > kOffSurfaceFlatness * ev[1]) || !(ev[0] > d * d)) return false;
+  const double drop_factor = params.plane_off_surface_drop;
+  if (nb.size() < static_cast<std::size_t>(params.plane_off_surface_min_neighbors) ||
+      !(ev[0] > params.plane_off_surface_flatness * ev[1]) || !(ev[0] > d * d))
+    return false;
   std::vector<Eigen::Vector3d> others;
   others.reserve(nb.size() - 1);
   Eigen::Vector3d mean;
@@ -47,10 +45,9 @@ bool oneNeighbourOffSurface(const std::vector<Eigen::Vector3d>& nb, const Eigen:
     // (1e-6 of the trace) is far above the rounding of the bound and of symmetricEigenvalues3, so a skipped
     // drop is one whose computed eigenvalue would have failed the test too.
     const double trace = scatter.trace();
-    if (trace > 0.0 && 4.0 * scatter.determinant() / (trace * trace) >= kOffSurfaceDrop * ev[0] + 1e-6 * trace)
-      continue;
+    if (trace > 0.0 && 4.0 * scatter.determinant() / (trace * trace) >= drop_factor * ev[0] + 1e-6 * trace) continue;
     const Eigen::Vector3d e = symmetricEigenvalues3(scatter);
-    if (e[1] > params.min_plane_spread_ratio * e[2] && e[0] < kOffSurfaceDrop * ev[0]) return true;
+    if (e[1] > params.min_plane_spread_ratio * e[2] && e[0] < drop_factor * ev[0]) return true;
   }
   return false;
 }

@@ -74,27 +74,25 @@ FeatureRegistrationResult registerFeatures(const LoamFeatures& features, const L
   res.pose = guess;
   const bool do_deskew =
       deskew && params.deskew && deskew->period > 0.0 && (!features.edge_time.empty() || !features.planar_time.empty());
-  constexpr int kInnerSteps = 4;  // Gauss-Newton steps per association
   std::vector<FeatureConstraint> cs;
   std::vector<Eigen::Vector3d> edges, planes;
 
-  // Coarse-to-fine: a subsample of the features (about kCoarseFeatures), then all features. Each stage: associate, then
-  // a few Gauss-Newton steps with the association fixed; repeat until an association round moves the pose less than the
-  // thresholds.
-  constexpr std::size_t kCoarseFeatures = 1000;
+  // Coarse-to-fine: a subsample of the features (about params.coarse_features), then all features. Each stage:
+  // associate, then a few Gauss-Newton steps with the association fixed; repeat until an association round moves
+  // the pose less than the thresholds.
   const std::size_t n_all = features.size();
-  const std::size_t coarse_stride = std::max<std::size_t>(1, n_all / kCoarseFeatures);
+  const std::size_t coarse_stride = std::max<std::size_t>(1, n_all / static_cast<std::size_t>(params.coarse_features));
   struct Stage {
     std::size_t stride;
     double pos_thresh, rot_thresh;
   };
   std::vector<Stage> stages;
   // The subsample converges to the thresholds (cheap), then all features polish it: usually one association
-  // round, repeated only while a round moves the pose by more than 10x the thresholds (re-associating the
-  // ~5000 features once more to confirm a sub-millimetre change cost a third of the time per scan).
+  // round, repeated only while a round moves the pose by more than fine_convergence_factor times the thresholds.
   if (coarse_stride > 1) {
+    const double fine = params.fine_convergence_factor;
     stages.push_back({coarse_stride, params.position_convergence_thresh, params.rotation_convergence_thresh});
-    stages.push_back({1, 10.0 * params.position_convergence_thresh, 10.0 * params.rotation_convergence_thresh});
+    stages.push_back({1, fine * params.position_convergence_thresh, fine * params.rotation_convergence_thresh});
   } else {
     stages.push_back({1, params.position_convergence_thresh, params.rotation_convergence_thresh});
   }
@@ -118,21 +116,19 @@ FeatureRegistrationResult registerFeatures(const LoamFeatures& features, const L
       edges = f.edge_points;
       planes = f.planar_points;
     }
-    // The pose two association rounds ago: a subsample whose association flips one feature in and out (a
-    // constraint count alternating 370 / 371) alternates between two poses for good. On demo trial b 30 of 402
-    // coarse stages did so until the round cap (20), 30 % of the coarse rounds; the stage stops once two rounds
-    // in a row return to within the thresholds of the pose two rounds back (one return alone also happens while
-    // a large motion converges: stopping there failed LoamLargeMotion's 1 Hz drive, 0.37 m off).
+    // The pose two association rounds ago: a subsample whose association flips one feature in and out
+    // alternates between two poses for good. The stage stops once two rounds in a row return to within the
+    // thresholds of the pose two rounds back (one return alone also happens while a large motion converges).
     Pose3 two_back = res.pose;
     bool returned = false;  // the previous round came back to the pose two rounds before it
     for (int it = 0; it < params.max_icf_iterations; ++it) {
       // The last stage of two (all features) only reads the memory: its features mostly associate once, and
-      // the (k+1)-th neighbour that remembering needs cost more than the reuse saved (measured).
+      // the (k+1)-th neighbour that remembering needs costs more than the reuse saves.
       associateFeaturesRemembering(edges, planes, map, res.pose, params, cs, memory, st.stride,
                                    !last_stage || stages.size() == 1);
       ++rounds;
       const Pose3 before = res.pose;
-      for (int k = 0; k < kInnerSteps; ++k) {
+      for (int k = 0; k < params.icf_inner_steps; ++k) {
         int degenerate = 0;
         const Vector6 dx =
             robustGaussNewtonStep(cs, res.pose, params.huber_delta, params.min_eigenvalue_per_constraint, degenerate);

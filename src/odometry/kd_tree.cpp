@@ -11,9 +11,8 @@
 namespace cosmo {
 
 namespace {
-/// Points per leaf (8 / 12 / 16 / 24 measured: 12 fastest for the LOAM map, k = 5). With the block scan 20 is
-/// ~2 % faster in search + build, but the leaf size decides the offer order, and so which of two points at the
-/// same distance is kept (the earlier offer): 12 keeps the neighbours, and LOAM's results, bit for bit.
+/// Points per leaf (docs/benchmarks.md, k-d trees). The leaf size decides the offer order, and so which of two
+/// points at the same distance is kept (the earlier offer): a change of it changes LOAM's results.
 constexpr std::uint32_t kLeafSize = 12;
 
 /// Blocks of four that hold the points [begin, end) of a leaf.

@@ -11,19 +11,10 @@
 
 namespace cosmo {
 namespace {
-constexpr std::size_t kMinPoints = 100;
 constexpr double kPi = 3.14159265358979323846;
-// A yaw-search registration replaces the first one when its inlier fraction is higher by this much (after an
-// unpredicted turn the first one is already suspect, so less is asked).
-constexpr double kYawSearchMargin = 0.1;
-constexpr double kYawSearchMarginAfterTurn = 0.02;
-// The continuous-time rotation (deskew_rotation_tie) follows a sway the prediction missed: corrections below 2
-// degrees per sweep on the walking trial, on sweeps that turn by about 1 degree. A larger correction, or a sweep
-// predicted to turn by more, is a fast turn, where the rotation is not linear within the sweep: there it made
-// LoamLargeMotion's 40-degree turns worse (end pose 0.68 m off at 10 Hz, a 10.6-degree step at 2 Hz), so the
-// re-deskew with the estimate handles those.
-constexpr double kMaxContinuousRotationCorrectionDeg = 2.0;
-constexpr double kMaxContinuousRotationSweepDeg = 5.0;
+
+/// The fewest valid points a scan is registered with.
+std::size_t minPoints(const LoamParams& p) { return static_cast<std::size_t>(p.min_scan_points); }
 
 std::vector<Eigen::Vector3d> transformed(const Pose3& T, const std::vector<Eigen::Vector3d>& pts) {
   std::vector<Eigen::Vector3d> out;
@@ -86,7 +77,7 @@ double LoamOdometry::advanceClock(StampNs stamp, bool first) {
 void LoamOdometry::takeFeatures(const Scan& scan, OdometryResult& r) {
   const ScanLines lines = organizeScanLines(scan, params_);
   r.num_points = lines.numPoints();
-  last_features_ = r.num_points >= kMinPoints ? extractFeatures(lines, params_) : LoamFeatures{};
+  last_features_ = r.num_points >= minPoints(params_) ? extractFeatures(lines, params_) : LoamFeatures{};
   thinPlanarFeatures(last_features_, params_.planar_feature_voxel_size);
   r.num_edge_features = last_features_.edge_points.size();
   r.num_planar_features = last_features_.planar_points.size();
@@ -94,7 +85,7 @@ void LoamOdometry::takeFeatures(const Scan& scan, OdometryResult& r) {
 
 OdometryResult LoamOdometry::startMap(const Scan& scan, OdometryResult r) {
   r.initial_guess = "first";
-  if (r.num_points < kMinPoints) {
+  if (r.num_points < minPoints(params_)) {
     r.ok = false;
     r.warning = "first scan has only " + std::to_string(r.num_points) + " valid points (of " +
                 std::to_string(scan.size()) + "); odometry starts at identity with an empty map";
@@ -109,7 +100,7 @@ OdometryResult LoamOdometry::startMap(const Scan& scan, OdometryResult r) {
 
 std::optional<OdometryResult> LoamOdometry::fallbackIfUnusable(const Scan& scan, const OdometryResult& r,
                                                                double period) {
-  if (r.num_points < kMinPoints)
+  if (r.num_points < minPoints(params_))
     return fallback(
         r, period,
         "scan has only " + std::to_string(r.num_points) + " valid points (of " + std::to_string(scan.size()) + ")");
@@ -137,7 +128,7 @@ LoamOdometry::ScanMotion LoamOdometry::predictScanMotion(double period) const {
   ScanMotion m;
   m.period = period;
   m.cv_delta = predictMotion(last_delta_, last_period_, period);
-  m.stride = std::max<std::size_t>(1, last_features_.size() / 400);
+  m.stride = std::max<std::size_t>(1, last_features_.size() / static_cast<std::size_t>(params_.guess_score_features));
   m.has_times =
       params_.deskew && period > 0.0 && (!last_features_.edge_time.empty() || !last_features_.planar_time.empty());
   // Deskew motion of this scan: the constant-velocity prediction (the previous scan's estimated motion), not
@@ -162,7 +153,7 @@ Pose3 LoamOdometry::initialGuess(const ScanMotion& m, OdometryResult& r) const {
   double best = scorePose(cv_features, map_, guess, params_, m.stride);
   r.initial_guess = "constant_velocity";
   const bool cv_is_zero = logSE3(m.cv_delta).norm() < 1e-6;
-  if (!cv_is_zero && best < 0.9) {
+  if (!cv_is_zero && best < params_.zero_motion_guess_below) {
     const double s0 = scorePose(last_features_, map_, pose_, params_, m.stride);
     if (s0 > best) {
       best = s0;
@@ -197,7 +188,7 @@ FeatureRegistrationResult LoamOdometry::registerFrom(const ScanMotion& m, const 
   std::optional<DeskewReference> deskew;
   if (m.has_times) deskew = DeskewReference{m.deskew_delta, m.period};
   FeatureRegistrationResult reg = registerFeatures(last_features_, map_, start, params_, deskew);
-  for (int pass = 0; m.has_times && pass < 2; ++pass) {
+  for (int pass = 0; m.has_times && pass < params_.deskew_reestimate_passes; ++pass) {
     const Pose3 estimate = deskewMotion(pose_.inverse() * reg.pose);
     const Vector6 change = logSE3(deskew->delta.inverse() * estimate);
     if (change.head<3>().norm() < params_.deskew_reestimate_rotation_deg * kPi / 180.0 &&
@@ -207,8 +198,8 @@ FeatureRegistrationResult LoamOdometry::registerFrom(const ScanMotion& m, const 
       // Only the rotation was not predicted (a walker's sway). The translation stays the prediction's:
       // deskewing with the own translation feeds back into it (a period-2 oscillation).
       if (params_.deskew_rotation_tie > 0.0 && !params_.deskew_planar_only &&
-          change.head<3>().norm() < kMaxContinuousRotationCorrectionDeg * kPi / 180.0 &&
-          Eigen::AngleAxisd(deskew->delta.linear()).angle() < kMaxContinuousRotationSweepDeg * kPi / 180.0) {
+          change.head<3>().norm() < params_.deskew_rotation_max_correction_deg * kPi / 180.0 &&
+          Eigen::AngleAxisd(deskew->delta.linear()).angle() < params_.deskew_rotation_max_sweep_deg * kPi / 180.0) {
         // The rotation over the sweep estimated with the pose, its start tied to the previous scan's pose:
         // the features' deskew then agrees with the estimate, nothing left to re-check.
         reg = refineContinuousRotation(last_features_, std::move(reg), params_, pose_, deskew->delta, m.period,
@@ -262,11 +253,12 @@ void LoamOdometry::searchYawIfPoorFit(ScanMotion& m, const Pose3& guess, Feature
       }
     }
   }
-  if (!(best_yaw_score > base + 0.05)) return;
+  if (!(best_yaw_score > base + params_.yaw_search_min_gain)) return;
   const Pose3 predicted_deskew = m.deskew_delta;
   m.deskew_delta = deskewMotion(pose_.inverse() * best_yaw);
   const FeatureRegistrationResult alt = registerFrom(m, best_yaw);
-  if (alt.inlier_fraction > reg.inlier_fraction + (unpredicted_turn ? kYawSearchMarginAfterTurn : kYawSearchMargin)) {
+  const double margin = unpredicted_turn ? params_.yaw_search_margin_after_turn : params_.yaw_search_margin;
+  if (alt.inlier_fraction > reg.inlier_fraction + margin) {
     reg = alt;
     r.initial_guess = "yaw_search";
   } else {

@@ -7,8 +7,8 @@ namespace cosmo {
 void LocalFeatureMap::add(std::vector<Eigen::Vector3d> edges, std::vector<Eigen::Vector3d> planes) {
   // The union is newest scan first. Without thinning, a tree is built with its points in the previous tree's
   // order (the older scans', shifted behind the new scan; the dropped oldest scan is last in the old union)
-  // followed by the new scan: the same tree as from the plain order, built ~10 % faster (fewer mispredicted
-  // partition branches; measured 2.6 -> 2.3 ms for a 3-scan 64-beam map).
+  // followed by the new scan: the same tree as from the plain order, built faster (fewer mispredicted partition
+  // branches; docs/benchmarks.md, LOAM odometry).
   std::size_t old_edges = 0, old_planes = 0, dropped_edges = 0, dropped_planes = 0;
   for (const Entry& s : scans_) old_edges += s.edges.size(), old_planes += s.planes.size();
   const std::size_t new_edges = edges.size(), new_planes = planes.size();

@@ -44,9 +44,8 @@ void deskewFeatures(const LoamFeatures& features, const Pose3& delta, double per
 
 /// One robust Gauss-Newton step for the constraints at pose T; returns the update [rot, trans] as a perturbation
 /// about the sensor position (apply with applyCentredUpdate) and the number of degenerate directions through
-/// `degenerate`. (A left perturbation about the odometry origin made the degeneracy test depend on the
-/// distance travelled: far from the origin, rotation and translation mix and a direction fell below the
-/// threshold -- the continuous "1 of 6 directions unconstrained" of the 481 m demo trial.)
+/// `degenerate`. (About the sensor position, not the odometry origin: far from the origin rotation and
+/// translation would mix, and the degeneracy test would depend on the distance travelled.)
 Vector6 robustGaussNewtonStep(const std::vector<FeatureConstraint>& constraints, const Pose3& T, double huber_delta,
                               double min_eigenvalue_per_constraint, int& degenerate);
 

@@ -16,6 +16,8 @@ struct LoamParams {
   double min_range = 1.0;
   /// Points farther than this (m) are dropped.
   double max_range = 120.0;
+  /// A scan with fewer valid points is not registered (the motion model is used; a first scan starts an empty map).
+  int min_scan_points = 100;
 
   // --- feature extraction (spec 4.1) --------------------------------------------------------------------------
   int neighbor_points = 3;               ///< points on each side used for the curvature
@@ -58,6 +60,12 @@ struct LoamParams {
   double max_plane_neighbor_dist = 4.0;       ///< (m) farther plane neighbours are ignored
   double max_avg_point_plane_dist = 0.2;      ///< (m) plane fits with a larger mean residual are rejected
   int min_plane_fit_points = 4;               ///< fewer plane neighbours: no plane residual
+  int icf_inner_steps = 4;                    ///< Gauss-Newton steps per association (fewer once converged)
+  /// Coarse to fine: a subsample of about this many features converges to the thresholds above, then all
+  /// features polish it, associating again only while a round moves the pose by more than
+  /// fine_convergence_factor times the thresholds.
+  int coarse_features = 1000;
+  double fine_convergence_factor = 10.0;
 
   // --- robustness (ours; not in the paper) ---------------------------------------------------------------------
   /// Plane fits need neighbours spread in 2D: middle / largest eigenvalue of their scatter at least this
@@ -76,16 +84,32 @@ struct LoamParams {
   /// max_plane_planarity it keeps sets that are uneven as a whole (a swaying sensor's scans registered slightly
   /// apart). Figures: docs/benchmarks.md (bench_odometry --only cd).
   double plane_off_surface_min_dist = 0.02;
+  /// The off-surface test's other numbers: the fewest neighbours it looks at, the flatness (smallest / middle
+  /// eigenvalue) above which it looks for a single cause, and the factor by which dropping that neighbour must
+  /// lower the smallest eigenvalue.
+  int plane_off_surface_min_neighbors = 5;
+  double plane_off_surface_flatness = 0.01;
+  double plane_off_surface_drop = 0.1;
   double huber_delta = 0.1;  ///< (m) Huber kernel width on the point-line / point-plane distances
   /// An initial guess whose inlier fraction (features with a correspondence closer than `inlier_dist`) is
   /// below this triggers a coarse yaw search around the best guess.
   double min_guess_inlier_fraction = 0.5;
+  /// Guesses are scored on a subsample of about this many features.
+  int guess_score_features = 400;
+  /// A constant-velocity guess scoring below this is compared with zero motion (the better one is kept).
+  double zero_motion_guess_below = 0.9;
   double inlier_dist = 0.3;           ///< (m) residual counted as an inlier when scoring guesses
   double yaw_search_step_deg = 10.0;  ///< yaw step of the coarse search
   double yaw_search_max_deg = 50.0;   ///< yaw range (+-) of the coarse search
   /// The yaw search also runs when the registration turned at least this far from its guess (an unpredicted
   /// turn, where a local registration can settle part-way with a fair inlier fraction); 0: only on poor fits.
   double yaw_search_correction_deg = 5.0;
+  /// The yaw search registers its best candidate only when that candidate scores this much above the first
+  /// registration's pose, and keeps the result only when its inlier fraction is higher by yaw_search_margin
+  /// (yaw_search_margin_after_turn after an unpredicted turn, where the first registration is already suspect).
+  double yaw_search_min_gain = 0.05;
+  double yaw_search_margin = 0.1;
+  double yaw_search_margin_after_turn = 0.02;
   /// Degeneracy: directions of the Gauss-Newton system with an eigenvalue below this times the number of
   /// constraints keep the initial guess (solution remapping) and the result is flagged.
   double min_eigenvalue_per_constraint = 1e-3;
@@ -104,13 +128,18 @@ struct LoamParams {
   /// registration's correspondences (the map did not change, the features moved by centimetres): no k-NN
   /// search, no line / plane fits. 0: a full registration (re-association from the first estimate).
   int deskew_refine_steps = 4;
+  /// At most this many re-deskews per scan.
+  int deskew_reestimate_passes = 2;
   /// > 0: the refinement above estimates the rotation over the sweep with the pose (refineContinuousRotation: the
   /// sweep's start rotation is a third unknown, tied to the previous scan's rotation with this weight relative to
-  /// the scan's rotational information) instead of re-deskewing once with the estimate; 0: the re-deskew. 0.1 is
-  /// the middle of the range that holds on the swaying walk and the vehicle trials; a stiffer tie oscillates
-  /// (docs/design.md). Not used with deskew_planar_only, nor in fast turns (a correction above 2 degrees, or a
-  /// sweep predicted to turn by more than 5: loam_odometry.cpp).
+  /// the scan's rotational information) instead of re-deskewing once with the estimate; 0: the re-deskew. A
+  /// stiffer tie oscillates (docs/design.md). Not used with deskew_planar_only, nor in fast turns: a rotation
+  /// correction above deskew_rotation_max_correction_deg, or a sweep predicted to turn by more than
+  /// deskew_rotation_max_sweep_deg, where the rotation is not linear within the sweep and the re-deskew with the
+  /// estimate handles it.
   double deskew_rotation_tie = 0.1;
+  double deskew_rotation_max_correction_deg = 2.0;
+  double deskew_rotation_max_sweep_deg = 5.0;
   /// Deskew with the x / y / yaw part of the motion only. Off by default: the walking sway (roll / pitch) needs
   /// the full 6-DoF deskew.
   bool deskew_planar_only = false;
@@ -124,6 +153,7 @@ struct LoamParams {
     v("fallback_scan_lines", fallback_scan_lines);
     v("min_range", min_range);
     v("max_range", max_range);
+    v("min_scan_points", min_scan_points);
     v("neighbor_points", neighbor_points);
     v("number_sectors", number_sectors);
     v("max_edge_feats_per_sector", max_edge_feats_per_sector);
@@ -144,15 +174,26 @@ struct LoamParams {
     v("max_plane_neighbor_dist", max_plane_neighbor_dist);
     v("max_avg_point_plane_dist", max_avg_point_plane_dist);
     v("min_plane_fit_points", min_plane_fit_points);
+    v("icf_inner_steps", icf_inner_steps);
+    v("coarse_features", coarse_features);
+    v("fine_convergence_factor", fine_convergence_factor);
     v("min_plane_spread_ratio", min_plane_spread_ratio);
     v("max_plane_planarity", max_plane_planarity);
     v("plane_off_surface_min_dist", plane_off_surface_min_dist);
+    v("plane_off_surface_min_neighbors", plane_off_surface_min_neighbors);
+    v("plane_off_surface_flatness", plane_off_surface_flatness);
+    v("plane_off_surface_drop", plane_off_surface_drop);
     v("huber_delta", huber_delta);
     v("min_guess_inlier_fraction", min_guess_inlier_fraction);
+    v("guess_score_features", guess_score_features);
+    v("zero_motion_guess_below", zero_motion_guess_below);
     v("inlier_dist", inlier_dist);
     v("yaw_search_step_deg", yaw_search_step_deg);
     v("yaw_search_max_deg", yaw_search_max_deg);
     v("yaw_search_correction_deg", yaw_search_correction_deg);
+    v("yaw_search_min_gain", yaw_search_min_gain);
+    v("yaw_search_margin", yaw_search_margin);
+    v("yaw_search_margin_after_turn", yaw_search_margin_after_turn);
     v("min_correspondences", min_correspondences);
     v("min_eigenvalue_per_constraint", min_eigenvalue_per_constraint);
     v("map_edge_voxel_size", map_edge_voxel_size);
@@ -165,7 +206,10 @@ struct LoamParams {
     v("deskew_reestimate_translation", deskew_reestimate_translation);
     v("deskew_reestimate_rotation_deg", deskew_reestimate_rotation_deg);
     v("deskew_refine_steps", deskew_refine_steps);
+    v("deskew_reestimate_passes", deskew_reestimate_passes);
     v("deskew_rotation_tie", deskew_rotation_tie);
+    v("deskew_rotation_max_correction_deg", deskew_rotation_max_correction_deg);
+    v("deskew_rotation_max_sweep_deg", deskew_rotation_max_sweep_deg);
   }
 };
 
