@@ -342,8 +342,9 @@ class FrontendNode {
       recorder_.send(ros_glue::recorderLoopClosureMsg(a, o_.world_frame));
       ++loop_closures_published_;
     }
-    ROS_INFO("frontend %c: loop closure %c%zu-%c%zu %s (%zu inliers, descriptor %.3f)", o_.robot, a.robot1, a.index1,
-             a.robot2, a.index2, a.accepted ? "accepted" : a.reason.c_str(), a.inliers, a.descriptor_distance);
+    ++loop_closures_attempted_;
+    ROS_DEBUG("frontend %c: loop closure %c%zu-%c%zu %s (%zu inliers, descriptor %.3f)", o_.robot, a.robot1, a.index1,
+              a.robot2, a.index2, a.accepted ? "accepted" : a.reason.c_str(), a.inliers, a.descriptor_distance);
     map_.addClosure(a);
   }
 
@@ -360,6 +361,9 @@ class FrontendNode {
     a.queued = static_cast<std::uint32_t>(scans_ ? scans_->queued() : 0);
     a.skipped = scansSkipped();
     ack_pub_.publish(a);
+    ROS_INFO_THROTTLE(5.0,
+                      "frontend %c: %u scans, %u keyframes, %u loop closures accepted of %zu tried, %u scans received",
+                      o_.robot, a.scans, a.keyframes, a.loop_closures, loop_closures_attempted_, a.received);
   }
 
   void publishMarkers(const ros::Time& stamp) {
@@ -378,6 +382,7 @@ class FrontendNode {
   bool registration_resolved_ = false;  // real time: the player's sequence's registration keys looked up
   std::size_t received_dropped_ = 0;
   std::size_t loop_closures_published_ = 0;  ///< counted in the ack (the player's end-of-run handshake)
+  std::size_t loop_closures_attempted_ = 0;  ///< and every one tried, for the progress line
   ros::Publisher offer_pub_, ack_pub_, marker_pub_;
   ros::Subscriber ref_sub_, recv_sub_, odom_sub_, trajectory_sub_;
   ros::WallTimer start_timer_, ack_timer_;
