@@ -243,6 +243,15 @@ void declareWriteCommands(CLI::App& app, Args& a, InjectArgs& inject_args, Comma
   addInject(*c.inject, inject_args);
 }
 
+bool isCommand(CLI::App& app, const std::string& name) {
+  try {
+    app.get_subcommand(name);
+    return true;
+  } catch (const CLI::OptionNotFound&) {
+    return false;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -260,7 +269,7 @@ int main(int argc, char** argv) {
     std::cout << app.help();
     return 0;
   }
-  if (argc > 1 && argv[1][0] != '-' && !app.get_subcommand_no_throw(argv[1]))
+  if (argc > 1 && argv[1][0] != '-' && !isCommand(app, argv[1]))
     return usageError(std::string("unknown command ") + argv[1]);
   if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
   if (c.stats->parsed()) return stats(a);
