@@ -273,7 +273,7 @@ class CommBroker {
 }  // namespace
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "comm_broker");
+  ros_glue::initNode(argc, argv, "comm_broker");
   return ros_glue::runNode("comm_broker", [] {
     ros::NodeHandle nh, pnh("~");
     CommBroker broker(nh, ros_glue::readCommBrokerOptions(pnh));

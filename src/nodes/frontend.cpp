@@ -23,7 +23,7 @@
 //             (the sweep instant of the points' header stamp; scans are processed stamped at the sweep end)
 // Lockstep (~lockstep true, sequence.launch mode:=lockstep): the reference trajectory is the player's sequence's
 //   own (reference_trajectory, cosmo/ReferenceTrajectory, latched: the CSV as the offline driver reads it, poses
-//   bit-exact; the rounded reference_pose messages are ignored; scans wait until it arrived), reference odometry takes
+//   bit-exact; reference_pose is not subscribed to; scans wait until it arrived), reference odometry takes
 //   it held at the ends as TeamRun does, and loop closures on delivered scans are stamped with the broker's delivery
 //   step (Keyframe.received_at); with the bit-exact pose fields of the recorder messages this makes the JRL
 //   byte-identical to cosmo_generate's.
@@ -120,9 +120,17 @@ class FrontendNode {
 
   void subscribe(ros::NodeHandle& nh) {
     points_sub_ = nh.subscribe("points", 5, &FrontendNode::onPoints, this);
-    ref_sub_ = nh.subscribe("reference_pose", 1000, &FrontendNode::onReference, this);
+    if (!o_.lockstep)  // lockstep: the sequence's own reference (onTrajectory); nothing else crosses the network
+      ref_sub_ = nh.subscribe("reference_pose", 1000, &FrontendNode::onReference, this);
     recv_sub_ = nh.subscribe("received_scans", 100, &FrontendNode::onReceived, this);
-    if (o_.lockstep) trajectory_sub_ = nh.subscribe("reference_trajectory", 1, &FrontendNode::onTrajectory, this);
+    if (o_.lockstep) {
+      trajectory_sub_ = nh.subscribe("reference_trajectory", 1, &FrontendNode::onTrajectory, this);
+      waiting_timer_ = nh.createWallTimer(ros::WallDuration(10.0), [this](const ros::WallTimerEvent&) {
+        if (sequence_loaded_) return waiting_timer_.stop();
+        ROS_WARN("frontend %c: no sequence from the player yet (%s): %s", o_.robot, trajectory_sub_.getTopic().c_str(),
+                 ros_glue::whereThisNodeIs().c_str());
+      });
+    }
     if (o_.odometry == "external") odom_sub_ = nh.subscribe("odom", 1000, &FrontendNode::onOdom, this);
   }
 
@@ -318,6 +326,7 @@ class FrontendNode {
   std::size_t loop_closures_published_ = 0;  ///< counted in the ack (the player's end-of-run handshake)
   ros::Publisher offer_pub_, kf_pub_, lc_pub_, ack_pub_, marker_pub_;
   ros::Subscriber points_sub_, ref_sub_, recv_sub_, odom_sub_, trajectory_sub_;
+  ros::WallTimer waiting_timer_;  ///< lockstep: says where it waits while the sequence has not arrived
   tf2_ros::TransformBroadcaster tf_;
 };
 
@@ -325,7 +334,7 @@ class FrontendNode {
 
 int main(int argc, char** argv) {
   cosmo::keepScanBuffersInProcess();
-  ros::init(argc, argv, "frontend");
+  ros_glue::initNode(argc, argv, "frontend");
   return ros_glue::runNode("frontend", [] {
     ros::NodeHandle nh, pnh("~");
     FrontendNode node(nh, readOptions(pnh));

@@ -19,10 +19,14 @@
 //   the recorder's intake (/recorder/progress) holds everything the front-ends acknowledged. The lockstep nodes
 //   take the sequence from the latched topics (nothing from disk). The protocol's side here: ros_glue::LockstepLink.
 //   Real time (~mode realtime): scans at ~rate x wall speed, nothing waited for (results may depend on CPU speed).
+// Robot-side playback (~playback robot): the player reads no bag and no reference. Each robot's trial_player
+//   (robot.launch playback:=robot, on the robot's machine) announces its trial's span and reference and its
+//   read-ahead stamps; the player merges them into the same order and asks each robot for its scans
+//   (/<r>/play_scan) instead of publishing /<r>/points (ros_glue::RobotPlayback). Everything else is unchanged.
 // Params: ~sequence (config path; empty: the built-in synthetic sequence, cosmo_simulate --config ~simulate_config
 //         --out ~simulate_out, cached), ~data_root (empty: the config's precedence), ~mode, ~rate, ~seed (-1: the
 //         config's), ~max_seconds (0: all), ~ack_timeout (s wall; a silent front-end is skipped with a warning),
-//         ~connect_timeout (s wall for the nodes to connect), ~wait_for_broker, ~end_linger (s wall after the last
+//         ~connect_timeout (s wall for the nodes to connect), ~wait_for_broker, ~playback (base | robot), ~end_linger (s wall after the last
 //         scan; default 3 realtime, 0 lockstep), ~world_frame, ~noise_models / ~config_dir (checked before anything
 //         is played: a run that cannot be labelled does not start).
 #include <geometry_msgs/PoseStamped.h>
@@ -34,6 +38,7 @@
 
 #include <atomic>
 #include <map>
+#include <memory>
 #include <optional>
 #include <nlohmann/json.hpp>
 
@@ -46,6 +51,7 @@
 #include "cosmo/ros/played_sequence.hpp"
 #include "cosmo/ros/point_cloud.hpp"
 #include "cosmo/ros/pose_msg.hpp"
+#include "cosmo/ros/robot_playback.hpp"
 #include "cosmo/ros/team_sequence_msg.hpp"
 
 using namespace cosmo;
@@ -54,10 +60,11 @@ namespace {
 
 struct Options {
   ros_glue::SequenceChoice sequence;
-  std::string mode = "lockstep", world_frame = "world";
+  std::string mode = "lockstep", world_frame = "world", playback = "base";
   double rate = 1.0, ack_timeout = 30.0, connect_timeout = 120.0, end_linger = -1.0;
   bool wait_for_broker = true;
   bool lockstep() const { return mode == "lockstep"; }
+  bool robotPlayback() const { return playback == "robot"; }
 };
 
 ros_glue::SequenceChoice readSequenceChoice(const ros::NodeHandle& pnh) {
@@ -83,8 +90,12 @@ Options readOptions(const ros::NodeHandle& pnh) {
   pnh.param("wait_for_broker", o.wait_for_broker, o.wait_for_broker);
   pnh.param("end_linger", o.end_linger, o.end_linger);
   pnh.param("world_frame", o.world_frame, o.world_frame);
+  pnh.param("playback", o.playback, o.playback);
   if (o.mode != "lockstep" && o.mode != "realtime")
     throw std::runtime_error("~mode must be lockstep or realtime, got '" + o.mode + "'");
+  if (o.playback != "base" && o.playback != "robot")
+    throw std::runtime_error("~playback must be base (this node reads the trials) or robot (each robot's "
+                             "trial_player does), got '" + o.playback + "'");
   if (!(o.rate > 0)) o.rate = 1.0;
   if (o.end_linger < 0) o.end_linger = o.lockstep() ? 0.0 : 3.0;
   return o;
@@ -92,8 +103,9 @@ Options readOptions(const ros::NodeHandle& pnh) {
 
 class Player {
  public:
-  Player(ros::NodeHandle& nh, Options options, ros_glue::PlayedSequence sequence)
-      : o_(std::move(options)), seq_(std::move(sequence)) {
+  Player(ros::NodeHandle& nh, Options options, ros_glue::PlayedSequence sequence,
+         std::unique_ptr<ros_glue::RobotPlayback> robot_playback)
+      : o_(std::move(options)), seq_(std::move(sequence)), robot_playback_(std::move(robot_playback)) {
     advertise(nh);
     stats_sub_ = nh.subscribe<std_msgs::String>("/comm/stats", 100, [this](const std_msgs::String::ConstPtr& m) {
       try {
@@ -107,6 +119,7 @@ class Player {
   /// Waits for the front-ends (and, in lockstep, the broker) to connect; decides whether a radio runs.
   void connect() {
     const ros::WallTime deadline = ros_glue::wallDeadline(o_.connect_timeout);
+    if (robot_playback_) robot_playback_->connect();
     for (auto& [r, pub] : points_pub_) ros_glue::waitUntil([&] { return pub.getNumSubscribers() > 0; }, deadline);
     for (auto& [r, pub] : pose_pub_)
       if (!seq_.references[r].empty()) ros_glue::waitUntil([&] { return pub.getNumSubscribers() > 0; }, deadline);
@@ -115,7 +128,9 @@ class Player {
 
   /// Publishes every scan up to the end, in the team's order (lockstep) or at wall speed (real time).
   void play() {
-    pipeline::MergedScanStream stream = ros_glue::openSequenceStream(seq_.config, seq_.timing);
+    pipeline::MergedScanStream stream =
+        robot_playback_ ? pipeline::MergedScanStream(robot_playback_->sources(), seq_.timing)
+                        : ros_glue::openSequenceStream(seq_.config, seq_.timing);
     publishClock(seq_.timing.start());
     ros::WallDuration(0.5).sleep();
     wall_start_ = last_progress_ = ros::WallTime::now();
@@ -154,7 +169,7 @@ class Player {
     sequence_pub_ = nh.advertise<cosmo::TeamSequence>(ros_glue::kTeamSequenceTopic, 1, true);
     for (char r : seq_.robots()) {
       const std::string ns = std::string("/") + r;
-      points_pub_[r] = nh.advertise<sensor_msgs::PointCloud2>(ns + "/points", 5);
+      if (!robot_playback_) points_pub_[r] = nh.advertise<sensor_msgs::PointCloud2>(ns + "/points", 5);
       pose_pub_[r] = nh.advertise<geometry_msgs::PoseStamped>(ns + "/reference_pose", 200);
       trajectory_pub_[r] = nh.advertise<cosmo::ReferenceTrajectory>(ros_glue::referenceTrajectoryTopic(r), 1, true);
     }
@@ -182,9 +197,12 @@ class Player {
   void publishScan(char robot, const Scan& scan) {
     publishClock(scan.stamp);
     publishReferenceUpTo(robot, scan.stamp);
-    points_pub_[robot].publish(ros_glue::toPointCloud2(
-        scan, std::string(1, robot) + "/base_link",
-        o_.lockstep() ? ros_glue::PointTimeEncoding::RelativeSeconds : ros_glue::PointTimeEncoding::OusterNs));
+    if (robot_playback_)  // the robot publishes it on its own machine
+      robot_playback_->play(robot, seq_.timing.of(robot).toRecorded(scan.stamp), scan.stamp);
+    else
+      points_pub_[robot].publish(ros_glue::toPointCloud2(
+          scan, std::string(1, robot) + "/base_link",
+          o_.lockstep() ? ros_glue::PointTimeEncoding::RelativeSeconds : ros_glue::PointTimeEncoding::OusterNs));
     if (lockstep_) lockstep_->scanHandedOver(robot, scan.stamp);
     ++published_;
   }
@@ -219,6 +237,7 @@ class Player {
 
   Options o_;
   ros_glue::PlayedSequence seq_;
+  std::unique_ptr<ros_glue::RobotPlayback> robot_playback_;  ///< robot-side playback: the robots read the trials
   std::optional<ros_glue::LockstepLink> lockstep_;  ///< lockstep mode: the team's event order through the nodes
   std::atomic<std::uint64_t> broker_delivered_{0};  ///< /comm/stats, for the progress line
   std::size_t published_ = 0;
@@ -234,16 +253,26 @@ class Player {
 
 int main(int argc, char** argv) {
   cosmo::keepScanBuffersInProcess();
-  ros::init(argc, argv, "player");
+  ros_glue::initNode(argc, argv, "player");
   return ros_glue::runNode("player", [] {
     ros::NodeHandle nh, pnh("~");
     const Options options = readOptions(pnh);
-    ros_glue::PlayedSequence sequence = ros_glue::resolvePlayedSequence(options.sequence);
-    ROS_INFO("player: sequence %s, %zu robots, %.1f s, mode %s", sequence.config.name.c_str(),
-             sequence.config.trials.size(), sequence.seconds(), options.mode.c_str());
-    Player player(nh, options, std::move(sequence));
-    ros::AsyncSpinner spinner(1);
+    ros::AsyncSpinner spinner(1);  // robot-side playback: the robots' announcements arrive while resolving
     spinner.start();
+    std::unique_ptr<ros_glue::RobotPlayback> robot_playback;
+    const auto from_robots = [&](const pipeline::SequenceConfig& config) {
+      std::vector<char> robots;
+      for (const auto& t : config.trials) robots.push_back(t.robot);
+      robot_playback = std::make_unique<ros_glue::RobotPlayback>(nh, robots, options.connect_timeout);
+      return robot_playback->trials(config);
+    };
+    ros_glue::PlayedSequence sequence = options.robotPlayback()
+                                            ? ros_glue::resolvePlayedSequence(options.sequence, from_robots)
+                                            : ros_glue::resolvePlayedSequence(options.sequence);
+    ROS_INFO("player: sequence %s, %zu robots, %.1f s, mode %s, trials played %s", sequence.config.name.c_str(),
+             sequence.config.trials.size(), sequence.seconds(), options.mode.c_str(),
+             options.robotPlayback() ? "on the robots' machines" : "here");
+    Player player(nh, options, std::move(sequence), std::move(robot_playback));
     player.connect();
     player.play();
     player.finish();

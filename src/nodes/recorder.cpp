@@ -26,6 +26,7 @@
 #include <optional>
 #include <sstream>
 
+#include "cosmo/ros/node_main.hpp"
 #include "cosmo/ros/pose_msg.hpp"
 #include "cosmo/ros/robot_list.hpp"
 #include "cosmo/RecorderKeyframe.h"
@@ -221,7 +222,7 @@ class RecorderNode {
 }  // namespace
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "recorder", ros::init_options::NoSigintHandler);
+  cosmo::ros_glue::initNode(argc, argv, "recorder", ros::init_options::NoSigintHandler);
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
   ros::NodeHandle nh, pnh("~");
