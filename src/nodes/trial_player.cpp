@@ -81,28 +81,36 @@ class TrialPlayer {
 
   /// Reads until the read-ahead is full (or the trial ends), announcing the stamps after every scan.
   void readAhead() {
-    Scan scan;
-    while (ahead_.wantsMore() && error_.empty()) {
-      try {
-        if (!source_->next(scan)) {
-          ahead_.endOfTrial();
-          break;
-        }
-      } catch (const std::exception& e) {
-        error_ = e.what();
-        ROS_FATAL("trial_player %c: %s", robot_, e.what());
-      }
-      if (error_.empty() && ahead_.add(std::move(scan))) announce();
-    }
+    while (ahead_.wantsMore() && readOne()) announce();
     announce();
   }
 
   std::size_t played() const { return played_; }
 
  private:
-  void onPlay(const cosmo::PlayScan::ConstPtr& m) {
+  /// One scan into the read-ahead; false at the trial's end or when it cannot go on (error_, announced).
+  bool readOne() {
+    if (!error_.empty() || ahead_.ended()) return false;
+    Scan scan;
     try {
-      Scan scan = ahead_.take(static_cast<StampNs>(m->recorded));
+      if (!source_->next(scan)) {
+        ahead_.endOfTrial();
+        return false;
+      }
+    } catch (const std::exception& e) {
+      error_ = e.what();
+      ROS_FATAL("trial_player %c: %s", robot_, e.what());
+      return false;
+    }
+    ahead_.add(std::move(scan));
+    return true;
+  }
+
+  void onPlay(const cosmo::PlayScan::ConstPtr& m) {
+    const StampNs recorded = static_cast<StampNs>(m->recorded);
+    while (!ahead_.passOver(recorded) && readOne()) {}  // only after a restart is the base ahead of what is held
+    try {
+      Scan scan = ahead_.take(recorded);
       scan.stamp = m->stamp.toNSec();
       points_pub_.publish(ros_glue::toPointCloud2(scan, frame_, encoding_));
       ++played_;

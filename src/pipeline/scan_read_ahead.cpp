@@ -33,14 +33,20 @@ std::vector<StampNs> ScanReadAhead::stamps() const {
   return s;
 }
 
+bool ScanReadAhead::passOver(StampNs stamp) {
+  while (!held_.empty() && held_.front().stamp < stamp) {
+    held_.pop_front();
+    ++skipped_;
+  }
+  return !held_.empty();
+}
+
 Scan ScanReadAhead::take(StampNs stamp) {
-  std::size_t i = 0;
-  while (i < held_.size() && held_[i].stamp < stamp) ++i;
-  if (i == held_.size() || held_[i].stamp != stamp)
-    throw std::runtime_error("asked for the scan stamped " + std::to_string(stamp) + " ns, which is not read ahead " +
-                             describe(stamps()));
-  skipped_ += i;
-  held_.erase(held_.begin(), held_.begin() + static_cast<std::ptrdiff_t>(i));
+  passOver(stamp);
+  if (held_.empty() || held_.front().stamp != stamp)
+    throw std::runtime_error("asked for the scan stamped " + std::to_string(stamp) + " ns, which " +
+                             (held_.empty() && ended_ ? std::string("is past the trial's end")
+                                                      : "is not among those read ahead " + describe(stamps())));
   Scan scan = std::move(held_.front());
   held_.pop_front();
   return scan;

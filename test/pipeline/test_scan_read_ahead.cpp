@@ -206,3 +206,22 @@ TEST(TrialBasis, TimingAndReferencesAreTheOnesMadeFromTheFiles) {
   basis.erase('a');
   EXPECT_THROW(synchronizeTrials(config, basis), std::runtime_error);
 }
+
+TEST(ScanReadAhead, ARestartedPlayerReadsForwardToWhereTheBaseIs) {
+  ScanReadAhead ahead(2);
+  Scan s;
+  for (StampNs t : {10, 20}) {
+    s.stamp = t;
+    ahead.add(s);
+  }
+  EXPECT_FALSE(ahead.passOver(40));  // the base asks for a scan further on: read on, beyond the capacity
+  for (StampNs t : {30, 40, 50}) {
+    s.stamp = t;
+    ahead.add(s);
+    if (ahead.passOver(40)) break;
+  }
+  EXPECT_EQ(ahead.take(40).stamp, 40);
+  EXPECT_EQ(ahead.skipped(), 3u);
+  ahead.endOfTrial();
+  EXPECT_THROW(ahead.take(60), std::runtime_error);
+}

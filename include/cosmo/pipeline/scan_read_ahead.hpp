@@ -35,12 +35,16 @@ class ScanReadAhead {
   std::vector<StampNs> stamps() const;
   bool ended() const { return ended_; }
 
-  /// The scan stamped `stamp`; the scans held before it are dropped (the base's merge passed them). Throws
-  /// std::runtime_error naming the stamp and the stamps held when it holds none stamped so.
+  /// Drops the scans held stamped before `stamp` (the base's merge passed them over). True when a scan stamped
+  /// `stamp` or later is held; false: read on (add() takes scans beyond the capacity then: a trial player that
+  /// restarted reads forward to where the base is).
+  bool passOver(StampNs stamp);
+  /// The scan stamped `stamp`, after passOver(stamp). Throws std::runtime_error naming the stamp and the stamps
+  /// held when it holds none stamped so.
   Scan take(StampNs stamp);
 
   std::size_t dropped() const { return dropped_; }  ///< stamps that did not increase
-  std::size_t skipped() const { return skipped_; }  ///< held scans passed over by take()
+  std::size_t skipped() const { return skipped_; }  ///< held scans passed over (passOver, take)
 
  private:
   std::size_t capacity_;
