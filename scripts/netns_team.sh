@@ -107,8 +107,16 @@ cp -L "$sequence" "$work/view/sequence.yaml"
 data_root=$(dirname "$sequence")
 
 # ---- namespaces: a bridge in the base's, a veth per robot ----------------------------------------------------
-tag=$$
+tag=nt$$
 ns_base=cosmo_${tag}_base
+# namespaces of an earlier run of this script that was killed before it could clean up (its pid is gone): their
+# processes are stopped and the namespaces deleted
+for ns in $(ip netns list | grep -o '^cosmo_nt[0-9]*_[a-z]*'); do
+  owner=${ns#cosmo_nt}; owner=${owner%%_*}
+  kill -0 "$owner" 2>/dev/null && continue
+  for p in $(ip netns pids "$ns" 2>/dev/null); do kill -KILL "$p" 2>/dev/null; done
+  ip netns del "$ns" 2>/dev/null && echo "netns_team: deleted $ns, left by a run that was killed"
+done
 subnet=10.213.0
 master_ip=$subnet.1
 port=11311
