@@ -36,6 +36,7 @@
 #include "cosmo/Keyframe.h"
 #include "cosmo/comm/radio_status.hpp"
 #include "cosmo/comm/transfer_log.hpp"
+#include "cosmo/pipeline/clock_skew.hpp"
 #include "cosmo/pipeline/radio_broker.hpp"
 #include "cosmo/ros/comm_broker_options.hpp"
 #include "cosmo/ros/lockstep_msgs.hpp"
@@ -128,6 +129,9 @@ class CommBroker {
       return;
     }
     std::lock_guard<std::mutex> lock(mutex_);
+    if (!o_.lockstep && !ros::Time::isSimTime())  // live robots: their clocks against this one
+      if (const auto skew = clock_skew_.observe(r, m.header.stamp.toNSec(), ros::Time::now().toNSec()))
+        ROS_WARN("comm_broker: %s", skew->c_str());
     offered_[{r, m.index}] = ros_glue::offeredKeyframeMeta(m);
     radio_.offer(r, m.index, std::move(payload));
     runPendingSteps();
@@ -260,6 +264,7 @@ class CommBroker {
   Options o_;
   std::mutex mutex_;
   RadioBroker radio_;
+  pipeline::ClockSkewWatch clock_skew_;  ///< live robots' clocks, from their offers' stamps
   std::map<std::pair<char, std::size_t>, cosmo::Keyframe> offered_;  ///< what deliveries carry besides the scan
   double last_log_write_ = 0.0;
   std::string sequence_name_;

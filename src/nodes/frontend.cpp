@@ -107,6 +107,10 @@ class FrontendNode {
     subscribe(nh);
     ROS_INFO("frontend %c: odometry %s, config %s%s", o_.robot, o_.odometry.c_str(), o_.config_dir.c_str(),
              o_.lockstep ? ", lockstep (reference from the player's sequence)" : "");
+    if (o_.lockstep && !ros::Time::isSimTime())
+      ROS_WARN("frontend %c: /use_sim_time was not set when this node started: it runs on this machine's clock, not "
+               "the player's /clock (start the base's launch first; the dataset does not depend on it)",
+               o_.robot);
   }
 
  private:
