@@ -246,9 +246,13 @@ for playback in ${playbacks//,/ }; do
   start=$(date +%s.%N)
   in_ns "$ns_base" "$master_ip" "$base_keep" "$out/base.log" timeout "$timeout_s" roslaunch cosmo sequence.launch \
     frontends:=false playback:="$playback" sequence:="$work/view/sequence.yaml" data_root:="$data_root" \
-    name:="$seq_name" comm:="$comm" odometry:="$odometry" max_seconds:="$max_seconds" output_dir:="$out"
+    name:="$seq_name" comm:="$comm" odometry:="$odometry" max_seconds:="$max_seconds" output_dir:="$out" \
+    status_file:="$out/status"
   base_pid=$last_pid
   wait "$base_pid"; base_rc=$?
+  # roslaunch exits 0 whatever its nodes did: the player writes how the run ended
+  status=$(head -n1 "$out/status" 2>/dev/null || echo "no status (the player did not end)")
+  [ "$status" = done ] || [ $base_rc != 0 ] || base_rc=1
   wall=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
   after=$(counters)
   for p in "${robot_pids[@]}"; do kill -INT -- "-$p" 2>/dev/null; done
@@ -259,7 +263,7 @@ for playback in ${playbacks//,/ }; do
     if [ -f "$jrl" ] && cmp -s "$jrl" "$offline_jrl"; then identical=true; else identical=false; failed=1; fi
   fi
   [ $base_rc = 0 ] || failed=1
-  echo "== playback $playback: base launch exit $base_rc, $wall s wall, JRL identical to cosmo_generate's: $identical"
+  echo "== playback $playback: the player's run: $status, $wall s wall, JRL identical to cosmo_generate's: $identical"
   links=""
   while read -r r rx0 tx0; do
     read -r _ rx1 tx1 <<< "$(echo "$after" | grep "^$r ")"
@@ -270,7 +274,7 @@ for playback in ${playbacks//,/ }; do
   done <<< "$before"
   summary+="\"$playback\": {\"exit\": $base_rc, \"wall_s\": $wall, \"identical\": $identical, \"links\": {${links%,}}},"
   [ "$identical" = false ] && echo "   JRL differs: $jrl vs $offline_jrl (logs in $out)"
-  [ $base_rc = 0 ] || echo "   the base launch failed: $out/base.log"
+  [ $base_rc = 0 ] || echo "   the run failed ($status): $out/base.log"
 done
 echo "${summary%,}}" > "$work/summary.json"
 echo "summary: $work/summary.json"

@@ -9,6 +9,8 @@
 //             /comm/links          (visualization_msgs/MarkerArray, frame `world`) active links, coloured by
 //                                  their mean throughput so far (red 0 .. green B)
 //             /comm/stats          (std_msgs/String, JSON, once per step batch) counters + active links
+//             /comm/offered        (std_msgs/String, JSON, latched) per robot 1 + the highest keyframe index it
+//                                  offered: a restarted front-end numbers its keyframes after it
 // Params      ~robots [a, b, c] (or "a,b,c"; absent: the player's sequence, /player/robots), ~comm wifi|proradio,
 //             ~config (a config/comm/*.yaml, wins over ~comm), ~seed (int), ~size_model paper|real,
 //             ~timeout_mode no_progress|total_duration, ~log_file (CSV of every transfer + <name>.summary.json;
@@ -97,6 +99,7 @@ class CommBroker {
     }
     links_pub_ = nh.advertise<visualization_msgs::MarkerArray>("comm/links", 2);
     stats_pub_ = nh.advertise<std_msgs::String>("comm/stats", 10);
+    offered_pub_ = nh.advertise<std_msgs::String>("comm/offered", 1, true);
   }
 
   void connectLockstep(ros::NodeHandle& nh) {
@@ -134,7 +137,17 @@ class CommBroker {
         ROS_WARN("comm_broker: %s", skew->c_str());
     offered_[{r, m.index}] = ros_glue::offeredKeyframeMeta(m);
     radio_.offer(r, m.index, std::move(payload));
+    publishOffered();
     runPendingSteps();
+  }
+
+  /// With the mutex held: per robot, where a restarted front-end continues its keyframe indices.
+  void publishOffered() {
+    nlohmann::json next = nlohmann::json::object();
+    for (const auto& [r, n] : radio_.nextIndex()) next[std::string(1, r)] = n;
+    std_msgs::String m;
+    m.data = next.dump();
+    offered_pub_.publish(m);
   }
 
   void onPose(char r, const geometry_msgs::PoseStamped& m) {
@@ -193,15 +206,18 @@ class CommBroker {
 
   // Every front-end's offers and deliveries connected (a message sent before its connection exists is lost).
   void waitForFrontends() {
-    const auto connected = [&] {
-      for (const auto& sub : keyframe_subs_)
-        if (sub.getNumPublishers() == 0) return false;
-      for (const auto& [r, pub] : received_pubs_)
-        if (pub.getNumSubscribers() == 0) return false;
-      return true;
+    const auto missing = [&] {
+      std::string robots;
+      std::size_t i = 0;
+      for (char r : radio().robots())
+        if (keyframe_subs_[i++].getNumPublishers() == 0 || received_pubs_.at(r).getNumSubscribers() == 0) robots += r;
+      return robots;
     };
-    if (!ros_glue::waitUntil(connected, ros_glue::wallDeadline(30.0)))
-      ROS_WARN("comm_broker: lockstep: not every front-end is connected; going on");
+    // No limit here: the player stops the run when a front-end never connects (its peer policy).
+    while (ros::ok() && !ros_glue::waitUntil([&] { return missing().empty(); }, ros_glue::wallDeadline(10.0)))
+      ROS_INFO("comm_broker: lockstep: waiting for the front-ends of robots %s (/<r>/keyframe_scans from it, "
+               "/<r>/received_scans to it); the player stops the run if one never connects",
+               missing().c_str());
   }
 
   void onStepRequest(const cosmo::RadioStepRequest& m) {
@@ -272,7 +288,7 @@ class CommBroker {
   std::vector<ros::Subscriber> keyframe_subs_, pose_subs_, trajectory_subs_;
   std::map<char, ros::Publisher> received_pubs_;
   ros::Subscriber sequence_sub_, step_request_sub_;
-  ros::Publisher links_pub_, stats_pub_, step_done_pub_;
+  ros::Publisher links_pub_, stats_pub_, step_done_pub_, offered_pub_;
 };
 
 }  // namespace

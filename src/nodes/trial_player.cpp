@@ -10,12 +10,14 @@
 //                              time, as the player publishes it
 // Subscribes /<r>/play_scan    (cosmo/PlayScan) the base's requests, in the team's order
 //            /player/done      (std_msgs/Empty, latched) the run is over: the node exits
+//            /player/abort     (std_msgs/String, latched) the run stops: the node exits 1
 // Params     ~robot (default: the namespace); ~sequence, ~data_root, ~simulate_config, ~simulate_out: the sequence
 //            config, as the base's player is given it (empty ~sequence: the built-in one, generated here too);
 //            only this robot's trial is read. ~read_ahead (scans held, >= 2; default 4), ~lockstep (the points'
 //            time encoding, as the player's: true in lockstep).
 #include <ros/ros.h>
 #include <std_msgs/Empty.h>
+#include <std_msgs/String.h>
 
 #include <memory>
 
@@ -158,6 +160,13 @@ int main(int argc, char** argv) {
     ros::Publisher trial_pub = nh.advertise<cosmo::PlayedTrial>(ros_glue::playedTrialTopic(o.robot), 1, true);
     trial_pub.publish(ros_glue::playedTrialMsg(config.name, trial, basis, ok, check));
     std::unique_ptr<TrialPlayer> player;
+    bool aborted = false;
+    ros::Subscriber abort_sub = nh.subscribe<std_msgs::String>(
+        "/player/abort", 1, boost::function<void(const std_msgs::String::ConstPtr&)>([&](const std_msgs::String::ConstPtr& m) {
+          ROS_ERROR("trial_player %c: the run stops: %s", o.robot, m->data.c_str());
+          aborted = true;
+          ros::shutdown();
+        }));
     ros::Subscriber done_sub = nh.subscribe<std_msgs::Empty>(
         "/player/done", 1, boost::function<void(const std_msgs::Empty::ConstPtr&)>([&](const std_msgs::Empty::ConstPtr&) {
           ROS_INFO("trial_player %c: the player is done; %zu scans played here", o.robot, player ? player->played() : 0);
@@ -171,5 +180,6 @@ int main(int argc, char** argv) {
     }
     ros::spin();  // one thread: requests are played in the order they come
     if (!ok) throw std::runtime_error("the pre-flight check of trial " + trial.name + " failed (above)");
+    if (aborted) throw std::runtime_error("the player stopped the run (/player/abort)");
   });
 }

@@ -19,6 +19,8 @@ RadioBroker::RadioBroker(const RadioParams& params, std::vector<char> robots, st
 void RadioBroker::offer(char robot, std::uint32_t index, PayloadStore::Payload payload) {
   const PayloadStore::Sizes sizes = payloads_.store(robot, index, std::move(payload));
   radio_->offerKeyframe(robot, index, sizes.payload, sizes.raw);
+  std::uint32_t& next = next_index_[robot];
+  next = std::max(next, index + 1);
   if (lockstep_ && !started()) early_offers_.push_back({robot, index, sizes});
   steps_.offerArrived(robot);
 }

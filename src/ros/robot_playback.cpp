@@ -3,6 +3,8 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "cosmo/pipeline/peer_address_hint.hpp"
+#include "cosmo/ros/peer_probe.hpp"
 #include "cosmo/ros/pose_msg.hpp"
 #include "cosmo/ros/team_sequence_msg.hpp"
 
@@ -68,6 +70,11 @@ class RobotPlayback::Source : public pipeline::ScanSource {
       }
       if (announced.exhausted()) return false;
       if (!ros::ok()) throw std::runtime_error(std::string("ROS shut down while waiting for robot ") + robot_ + "'s scans");
+      if (p_.check_) {
+        lock.unlock();  // the check may take the peer monitor's lock
+        p_.check_();
+        lock.lock();
+      }
       if (Clock::now() - noted >= std::chrono::seconds(10)) {
         noted = Clock::now();
         ROS_INFO("player: waiting for robot %c's trial player to read its next scan (%s; %zu scans played)", robot_,
@@ -82,8 +89,9 @@ class RobotPlayback::Source : public pipeline::ScanSource {
   char robot_;
 };
 
-RobotPlayback::RobotPlayback(ros::NodeHandle& nh, const std::vector<char>& robots, double connect_timeout)
-    : robots_(robots), connect_timeout_(connect_timeout) {
+RobotPlayback::RobotPlayback(ros::NodeHandle& nh, const std::vector<char>& robots, double connect_timeout,
+                             std::function<std::string(char)> node)
+    : robots_(robots), connect_timeout_(connect_timeout), node_(std::move(node)) {
   for (char r : robots_) {
     announced_[r];
     subs_.push_back(nh.subscribe<cosmo::PlayedTrial>(
@@ -116,26 +124,51 @@ std::vector<char> RobotPlayback::notHeard() const {
   return missing;
 }
 
+std::string RobotPlayback::describe(char robot, bool& alive) const {
+  const std::string node = node_(robot);
+  const pipeline::PeerProbe p = probePeer(node);
+  alive = p.answered;
+  if (p.answered)
+    return std::string("robot ") + robot + ": its trial player " + node + " answers (pid " + std::to_string(p.pid) +
+           ") and is preparing its trial (checking it; the built-in sequence is generated first)";
+  if (p.registered)
+    return std::string("robot ") + robot + ": its trial player " + node + " registered at " + p.uri +
+           " but does not answer (" + p.error + "): " + (p.hint.empty() ? "did it die?" : p.hint);
+  return std::string("robot ") + robot + ": its trial player " + node + " (robot.launch playback:=robot) " +
+         pipeline::neverRegisteredHint(ros::master::getURI());
+}
+
 std::map<char, pipeline::TrialBasis> RobotPlayback::trials(const pipeline::SequenceConfig& config) {
-  std::unique_lock<std::mutex> lock(mutex_);
-  const Clock::time_point start = Clock::now(), deadline = start + std::chrono::duration_cast<Clock::duration>(
-                                                                        std::chrono::duration<double>(connect_timeout_));
+  const Clock::time_point start = Clock::now();
   Clock::time_point noted = start;
-  for (std::vector<char> missing = notHeard(); !missing.empty(); missing = notHeard()) {
-    if (!ros::ok()) throw std::runtime_error("ROS shut down while waiting for the robots' trials");
-    if (Clock::now() >= deadline)
-      throw std::runtime_error("robots " + list(missing) + ": no trial announced (/<r>/played_trial) within " +
-                               std::to_string(static_cast<int>(connect_timeout_)) +
-                               " s: is robot.launch playback:=robot running on each robot's machine, with this "
-                               "master in its ROS_MASTER_URI?");
-    if (Clock::now() - noted >= std::chrono::seconds(5)) {
-      noted = Clock::now();
-      ROS_INFO("player: robot-side playback: waiting for the trials of robots %s (/<r>/played_trial from "
-               "robot.launch playback:=robot on each robot's machine)",
-               list(missing).c_str());
+  bool late_seen = false;
+  for (;;) {
+    std::vector<char> missing;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      changed_.wait_for(lock, std::chrono::milliseconds(200), [&] { return notHeard().empty(); });
+      missing = notHeard();
     }
-    changed_.wait_for(lock, std::chrono::milliseconds(200));
+    if (missing.empty()) break;
+    if (!ros::ok()) throw std::runtime_error("ROS shut down while waiting for the robots' trials");
+    const bool late = std::chrono::duration<double>(Clock::now() - start).count() >= connect_timeout_;
+    if (Clock::now() - noted < std::chrono::seconds(5) && (!late || late_seen)) continue;
+    late_seen = late;
+    noted = Clock::now();
+    std::string what, dead;
+    for (char r : missing) {
+      bool alive = false;
+      const std::string d = describe(r, alive);
+      what += "\n  " + d;
+      if (!alive) dead += (dead.empty() ? "" : "; ") + d;
+    }
+    if (late && !dead.empty())
+      throw RunStopped("no trial announced within " + std::to_string(static_cast<int>(connect_timeout_)) +
+                       " s: " + dead);
+    ROS_INFO("player: robot-side playback: waiting for the trials of robots %s (/<r>/played_trial):%s",
+             list(missing).c_str(), what.c_str());
   }
+  std::unique_lock<std::mutex> lock(mutex_);
   std::map<char, pipeline::TrialBasis> basis;
   std::string checks;
   bool ok = true;
@@ -154,29 +187,10 @@ std::map<char, pipeline::TrialBasis> RobotPlayback::trials(const pipeline::Seque
   return basis;
 }
 
-void RobotPlayback::connect() {
-  const Clock::time_point start = Clock::now();
-  Clock::time_point noted = start;
-  for (;;) {
-    std::vector<char> missing;
-    for (auto& [r, pub] : play_pubs_)
-      if (pub.getNumSubscribers() == 0) missing.push_back(r);
-    if (missing.empty()) return;
-    if (!ros::ok()) throw std::runtime_error("ROS shut down while waiting for the trial players");
-    const double waited = std::chrono::duration<double>(Clock::now() - start).count();
-    if (waited >= connect_timeout_)
-      throw std::runtime_error("robots " + list(missing) + ": the trial player does not listen on /<r>/play_scan " +
-                               "after " + std::to_string(static_cast<int>(connect_timeout_)) + " s");
-    if (Clock::now() - noted >= std::chrono::seconds(5)) {
-      noted = Clock::now();
-      ROS_INFO("player: robot-side playback: waiting for the trial players of robots %s to listen (/<r>/play_scan)",
-               list(missing).c_str());
-    }
-    ros::WallDuration(0.05).sleep();
-  }
-}
+bool RobotPlayback::listening(char robot) const { return play_pubs_.at(robot).getNumSubscribers() > 0; }
 
-std::map<char, std::unique_ptr<pipeline::ScanSource>> RobotPlayback::sources() {
+std::map<char, std::unique_ptr<pipeline::ScanSource>> RobotPlayback::sources(std::function<void()> check) {
+  check_ = std::move(check);
   std::map<char, std::unique_ptr<pipeline::ScanSource>> s;
   for (char r : robots_) s[r] = std::make_unique<Source>(*this, r);
   return s;

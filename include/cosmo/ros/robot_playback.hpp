@@ -6,6 +6,7 @@
 // asks each robot for its scans one by one (/<r>/play_scan, cosmo/PlayScan). pipeline/scan_read_ahead.hpp is the
 // protocol without ROS; this is the base's side of it (the robot's side is the trial_player node).
 #include <condition_variable>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -36,19 +37,24 @@ pipeline::TrialBasis trialBasisFromMsg(const cosmo::PlayedTrial& msg);
 
 class RobotPlayback {
  public:
-  /// `connect_timeout`: wall seconds the robots' trial players have to announce their trials and listen.
-  RobotPlayback(ros::NodeHandle& nh, const std::vector<char>& robots, double connect_timeout);
+  /// `connect_timeout`: wall seconds a robot's trial player may take to register and answer; `node`: its node name
+  /// for a robot (e.g. "/a/trial_player").
+  RobotPlayback(ros::NodeHandle& nh, const std::vector<char>& robots, double connect_timeout,
+                std::function<std::string(char)> node);
 
-  /// Waits for every robot's trial (naming the robots not heard from every 5 s), prints the robots' pre-flight
-  /// checks and returns the trials' bases. Throws std::runtime_error when a robot's check failed, when a robot
-  /// plays another sequence or trial than `config` names, or when a robot is not heard within the timeout.
+  /// Waits for every robot's trial, prints the robots' pre-flight checks and returns the trials' bases. Every 5 s
+  /// it names the robots not heard from and what their trial players are (probed as the peer watch does); one that
+  /// answers is waited for without a limit (it may be generating the built-in sequence), one that does not after
+  /// `connect_timeout` stops the run: ros_glue::RunStopped naming it and the likely cause. Throws
+  /// std::runtime_error when a robot's check failed or a robot plays another sequence or trial than `config` names.
   std::map<char, pipeline::TrialBasis> trials(const pipeline::SequenceConfig& config);
-  /// Waits until every trial player listens for requests (throws after the timeout, naming them).
-  void connect();
+  /// `robot`'s trial player listens for requests (the player's link check of that peer).
+  bool listening(char robot) const;
   /// One source per robot, for the merge: the robot's announced stamps in recorded time, without points. Its
   /// next() waits for the robot's next announcement without a limit (a robot reading a slow disk is not a failure),
-  /// naming the robot every 10 s; it throws when ROS shuts down or an announcement breaks the protocol.
-  std::map<char, std::unique_ptr<pipeline::ScanSource>> sources();
+  /// naming the robot every 10 s, and calls `check` while it waits (the peer policy: it throws to stop the run); it
+  /// throws when ROS shuts down or an announcement breaks the protocol.
+  std::map<char, std::unique_ptr<pipeline::ScanSource>> sources(std::function<void()> check);
   /// Asks `robot` to publish the scan stamped `recorded` (recorded time) stamped `stamp` (sequence time).
   void play(char robot, StampNs recorded, StampNs stamp);
 
@@ -57,9 +63,13 @@ class RobotPlayback {
   void onTrial(char robot, const cosmo::PlayedTrial& m);
   void onAhead(char robot, const cosmo::ScansAhead& m);
   std::vector<char> notHeard() const;  ///< with the mutex held
+  /// What robot's trial player is now (probed), and whether it answers.
+  std::string describe(char robot, bool& alive) const;
 
   std::vector<char> robots_;
   double connect_timeout_;
+  std::function<std::string(char)> node_;
+  std::function<void()> check_;
   mutable std::mutex mutex_;
   std::condition_variable changed_;
   std::map<char, cosmo::PlayedTrial> trials_;
