@@ -200,11 +200,16 @@ void PeerMonitor::probeOnce() {
     const pipeline::PeerProbe probe = probePeer(node);
     const auto check = link_checks_.find(node);
     const bool linked = check == link_checks_.end() || check->second();
-    std::string hint;  // alive, not linked: why, looked for every 5 s
+    std::string hint;  // alive, not linked for 5 s (connections take a moment): why, looked for every 5 s
     const auto topic = link_topics_.find(node);
-    if (!linked && probe.answered && topic != link_topics_.end() && wallSeconds() - link_hint_at_[node] >= 5.0) {
-      link_hint_at_[node] = wallSeconds();
-      hint = unlinkedReason(probe.uri, topic->second);
+    if (linked) {
+      link_hint_at_.erase(node);
+    } else if (probe.answered && topic != link_topics_.end()) {
+      const auto [at, first] = link_hint_at_.try_emplace(node, wallSeconds());
+      if (!first && wallSeconds() - at->second >= 5.0) {
+        at->second = wallSeconds();
+        hint = unlinkedReason(probe.uri, topic->second);
+      }
     }
     std::lock_guard<std::mutex> lock(mutex_);
     watch_.setLinked(node, linked, hint);

@@ -134,7 +134,7 @@ std::string RobotPlayback::describe(char robot, bool& alive) const {
   if (p.registered)
     return std::string("robot ") + robot + ": its trial player " + node + " registered at " + p.uri +
            " but does not answer (" + p.error + "): " + (p.hint.empty() ? "did it die?" : p.hint);
-  return std::string("robot ") + robot + ": its trial player " + node + " (robot.launch playback:=robot) " +
+  return std::string("robot ") + robot + ": its trial player " + node + " (robot.launch playback:=robot): " +
          pipeline::neverRegisteredHint(ros::master::getURI());
 }
 

@@ -76,7 +76,7 @@ class PeerMonitor {
   pipeline::PeerWatch watch_;
   std::map<std::string, std::function<bool()>> link_checks_;
   std::map<std::string, std::string> link_topics_;
-  std::map<std::string, double> link_hint_at_;  ///< when the reason of a missing link was last looked for
+  std::map<std::string, double> link_hint_at_;  ///< since when a link is missing / its reason was last looked for
   std::function<void(const std::string&)> on_stop_;
   bool stop_reported_ = false;
   std::mutex wake_mutex_;
