@@ -8,7 +8,11 @@
 #
 #   scripts/netns_team.sh [--playback base,robot] [--simulate-config SIM.yaml | --sequence SEQ.yaml]
 #                         [--odometry loam|reference] [--max-seconds S] [--comm wifi|proradio] [--work DIR]
-#                         [--devel DIR] [--timeout S] [--no-compare]
+#                         [--devel DIR] [--timeout S] [--no-compare] [--unreachable]
+#
+# --unreachable: one more run, the last robot's nodes registering an address nobody has (ROS_IP of another
+# machine): the player must stop it within its connect_timeout (8 s here), naming that robot's front-end and the
+# address ("unreachable" in the summary: the player's status).
 #
 # Needs root, `ip netns` and `unshare` (util-linux); exits 77 with the reason when one is missing (a skip). Prints,
 # per playback, the wall time, the bytes per second on each link and whether the JRL equals cosmo_generate's, and
@@ -26,6 +30,7 @@ work=""
 devel=""
 timeout_s=900
 compare=1
+unreachable=0
 here=$(cd "$(dirname "$0")/.." && pwd)
 
 while [ $# -gt 0 ]; do
@@ -40,6 +45,7 @@ while [ $# -gt 0 ]; do
     --devel) devel=$2; shift ;;
     --timeout) timeout_s=$2; shift ;;
     --no-compare) compare=0 ;;
+    --unreachable) unreachable=1 ;;
     -h|--help) sed -n 2,17p "$0"; exit 0 ;;
     *) echo "netns_team: unknown argument $1" >&2; exit 2 ;;
   esac
@@ -205,15 +211,23 @@ $(ip netns exec "$ns_base" cat /sys/class/net/link_$r/statistics/tx_bytes)"
   done
 }
 
+# the offline run to compare with, beside the first launch run (it is needed only when that one ends)
 offline_jrl=""
+offline_pid=""
 if [ $compare = 1 ]; then
   args=(--comm "$comm" --out "$work/offline" --quiet)
   [ "$odometry" = reference ] && args+=(--reference-odometry)
   [ "$max_seconds" != 0 ] && args+=(--max-seconds "$max_seconds")
-  "$lib/cosmo_generate" "$sequence" --data-root "$data_root" "${args[@]}" > "$work/offline.log" 2>&1 ||
-    { echo "netns_team: cosmo_generate failed: $work/offline.log" >&2; exit 1; }
+  setsid "$lib/cosmo_generate" "$sequence" --data-root "$data_root" "${args[@]}" > "$work/offline.log" 2>&1 &
+  offline_pid=$!
+  pids+=("$offline_pid")
   offline_jrl=$work/offline/${seq_name}_$comm.jrl
 fi
+offline_done() {  # waits for the offline run once; exits when it failed
+  [ -n "$offline_pid" ] || return 0
+  wait "$offline_pid" || { echo "netns_team: cosmo_generate failed: $work/offline.log" >&2; exit 1; }
+  offline_pid=""
+}
 
 summary="{"
 failed=0
@@ -259,6 +273,7 @@ for playback in ${playbacks//,/ }; do
   for p in "${robot_pids[@]}"; do wait "$p" 2>/dev/null; done
   jrl=$out/${seq_name}_$comm.jrl
   identical=null
+  offline_done
   if [ -n "$offline_jrl" ]; then
     if [ -f "$jrl" ] && cmp -s "$jrl" "$offline_jrl"; then identical=true; else identical=false; failed=1; fi
   fi
@@ -276,6 +291,40 @@ for playback in ${playbacks//,/ }; do
   [ "$identical" = false ] && echo "   JRL differs: $jrl vs $offline_jrl (logs in $out)"
   [ $base_rc = 0 ] || echo "   the run failed ($status): $out/base.log"
 done
+
+# one robot not reachable back: its nodes register an address of no machine (a wrong ROS_IP)
+if [ $unreachable = 1 ]; then
+  out=$work/unreachable
+  rm -rf "$out"; mkdir -p "$out"
+  ip netns exec "$ns_base" env ROS_IP=$master_ip rosparam delete /player >/dev/null 2>&1
+  base_keep=""
+  for r in "${robots[@]}"; do eval "base_keep+=\" \${files_$r[*]}\""; done
+  last=${robots[-1]}
+  wrong_ip=$subnet.99
+  robot_pids=()
+  for r in "${robots[@]}"; do
+    addr=${robot_ip[$r]}
+    [ "$r" = "$last" ] && addr=$wrong_ip
+    in_ns "${robot_ns[$r]}" "$addr" "" "$out/robot_$r.log" roslaunch cosmo robot.launch robot:="$r" lockstep:=true \
+      odometry:="$odometry"
+    robot_pids+=("$last_pid")
+  done
+  start=$(date +%s.%N)
+  in_ns "$ns_base" "$master_ip" "$base_keep" "$out/base.log" timeout 120 roslaunch cosmo sequence.launch \
+    frontends:=false sequence:="$work/view/sequence.yaml" data_root:="$data_root" name:="$seq_name" comm:="$comm" \
+    odometry:="$odometry" max_seconds:="$max_seconds" output_dir:="$out" status_file:="$out/status" connect_timeout:=8
+  wait "$last_pid"
+  wall=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
+  for p in "${robot_pids[@]}"; do kill -INT -- "-$p" 2>/dev/null; done
+  for p in "${robot_pids[@]}"; do wait "$p" 2>/dev/null; done
+  status=$(head -n1 "$out/status" 2>/dev/null || echo "no status (the player did not end)")
+  echo "== robot $last registering $wrong_ip: $wall s wall, the player's run: $status"
+  named=false
+  [[ "$status" == stopped:*"/$last/frontend"*"$wrong_ip"* ]] && named=true
+  [ $named = true ] || { failed=1; echo "   not stopped naming /$last/frontend and $wrong_ip: $out/base.log"; }
+  status_json=$(/usr/bin/python3 -c 'import json, sys; print(json.dumps(sys.argv[1]))' "$status")
+  summary+="\"unreachable\": {\"robot\": \"$last\", \"address\": \"$wrong_ip\", \"wall_s\": $wall, \"named\": $named, \"status\": $status_json},"
+fi
 echo "${summary%,}}" > "$work/summary.json"
 echo "summary: $work/summary.json"
 exit $failed

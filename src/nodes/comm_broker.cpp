@@ -12,7 +12,8 @@
 //             /comm/offered        (std_msgs/String, JSON, latched) per robot 1 + the highest keyframe index it
 //                                  offered: a restarted front-end numbers its keyframes after it
 // Params      ~robots [a, b, c] (or "a,b,c"; absent: the player's sequence, /player/robots), ~comm wifi|proradio,
-//             ~config (a config/comm/*.yaml, wins over ~comm), ~seed (int), ~size_model paper|real,
+//             ~config (a config/comm/*.yaml, wins over ~comm), ~trace (a radio trace CSV replayed inside its
+//             windows, phi(d) outside: comm/radio_trace.hpp), ~seed (int), ~size_model paper|real,
 //             ~timeout_mode no_progress|total_duration, ~log_file (CSV of every transfer + <name>.summary.json;
 //             written every 30 s of ROS time and on shutdown; empty = none), ~xz_preset (0..9, default 6),
 //             ~frame_id (default world), ~compress_payload (default true; false with size_model paper skips xz,
@@ -81,7 +82,7 @@ class CommBroker {
     std::lock_guard<std::mutex> lock(mutex_);
     if (o_.log_file.empty()) return;
     try {
-      writeTransferLog(o_.log_file, radio().transferLog(), radio().stats(), radio().params());
+      writeTransferLog(o_.log_file, radio());
     } catch (const std::exception& e) { ROS_ERROR("comm_broker: %s", e.what()); }
   }
 
@@ -273,7 +274,7 @@ class CommBroker {
     if (o_.log_file.empty() || radio_time - last_log_write_ < 30.0) return;
     last_log_write_ = radio_time;
     try {
-      writeTransferLog(o_.log_file, radio().transferLog(), radio().stats(), radio().params());
+      writeTransferLog(o_.log_file, radio());
     } catch (const std::exception& ex) { ROS_ERROR_THROTTLE(30.0, "comm_broker: %s", ex.what()); }
   }
 

@@ -55,8 +55,10 @@
 #include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/pipeline/reference_stream.hpp"
+#include "cosmo/pipeline/team_drain.hpp"
 #include "cosmo/ros/bag_scan_source.hpp"
 #include "cosmo/ros/lockstep_link.hpp"
+#include "cosmo/ros/lockstep_msgs.hpp"
 #include "cosmo/ros/node_main.hpp"
 #include "cosmo/ros/peer_probe.hpp"
 #include "cosmo/ros/played_sequence.hpp"
@@ -173,7 +175,7 @@ class Player {
         ack_subs_.push_back(nh.subscribe<cosmo::FrontendAck>(
             std::string("/") + r + "/ack", 10, [this, r](const cosmo::FrontendAck::ConstPtr& m) {
               std::lock_guard<std::mutex> lock(recorder_mutex_);
-              acks_[r] = {*m, ros::WallTime::now()};
+              drain_.reported(r, ros_glue::frontendProgressFromMsg(*m), m->queued, ros::WallTime::now().toSec());
             }));
     if (o_.lockstep()) {
       ros_glue::LockstepLink::Peers peers{&peers_, {}, o_.wait_for_broker ? o_.broker_node : "", o_.recorder_node};
@@ -254,7 +256,7 @@ class Player {
     while (ros::ok()) {
       const ros::WallTime now = ros::WallTime::now();
       std::string behind;
-      if ((now - linger).toSec() >= o_.end_linger && (lockstep_ || (behind = realtimeBehind(linger)).empty())) break;
+      if ((now - linger).toSec() >= o_.end_linger && (lockstep_ || (behind = realtimeBehind()).empty())) break;
       if (const auto stop = peers_.stopReason()) throw ros_glue::RunStopped(*stop);
       if (now >= next_notice) {
         ROS_INFO("player: waiting for robots %s to process their waiting scans and the recorder to hold what they sent",
@@ -271,18 +273,16 @@ class Player {
     ros::WallDuration(0.5).sleep();
   }
 
-  /// Real time: the robots whose front-end is alive and has scans waiting (as of an ack sent after `since`), or
-  /// whose measurements the recorder does not hold yet.
-  std::string realtimeBehind(const ros::WallTime& since) {
+  /// Real time: the robots whose front-end is alive and not drained (pipeline::TeamDrain): scans waiting, busy,
+  /// counters still moving, or measurements the recorder does not hold yet.
+  std::string realtimeBehind() {
     std::lock_guard<std::mutex> lock(recorder_mutex_);
     std::string behind;
+    const double now = ros::WallTime::now().toSec();
     for (char r : seq_.robots()) {
       if (!peers_.alive(o_.frontendNode(r))) continue;
-      const auto ack = acks_.find(r);
-      const bool drained = ack != acks_.end() && ack->second.second > since && ack->second.first.queued == 0;
-      const bool recorded = !recorder_ || ros_glue::recorderAcked(*recorder_, r) >=
-                                              (ack == acks_.end() ? 0 : ack->second.first.seq);
-      if (!drained || !recorded) behind += r;
+      const std::uint64_t acked = recorder_ ? ros_glue::recorderAcked(*recorder_, r) : drain_.lastSeq(r);
+      if (!drain_.drained(r, acked, now)) behind += r;
     }
     return behind;
   }
@@ -400,9 +400,9 @@ class Player {
   std::size_t published_ = 0;
   pipeline::ReferenceStream reference_stream_;  ///< the reference poses sent beside the scans
   ros::WallTime wall_start_, last_progress_;
-  std::mutex recorder_mutex_;                        ///< guards recorder_ and acks_
+  std::mutex recorder_mutex_;                        ///< guards recorder_ and drain_
   std::optional<cosmo::RecorderProgress> recorder_;  ///< the recorder's latest /recorder/progress
-  std::map<char, std::pair<cosmo::FrontendAck, ros::WallTime>> acks_;  ///< real time: each front-end's latest ack
+  pipeline::TeamDrain drain_;  ///< real time: whether each front-end is done with what it was given
   ros::Publisher clock_pub_, progress_pub_, done_pub_, abort_pub_, sequence_pub_;
   std::map<char, ros::Publisher> points_pub_, pose_pub_, trajectory_pub_;
   ros::Subscriber stats_sub_, recorder_sub_;

@@ -15,7 +15,8 @@
 // /player/abort (std_msgs/String: the run stops; the dataset so far is written marked incomplete).
 // Publishes /recorder/progress (cosmo/RecorderProgress, latched): per robot what it holds and acknowledged.
 // <name>.recorder.yaml says whether the dataset is complete (the player finished the sequence), else why not, the
-// run id, the recorder's sessions (restarts), the front-ends' restarts and skipped scans. The node exits 1 after
+// run id, the recorder's sessions (restarts), the front-ends' restarts and skipped scans (the largest count their
+// keyframes or their acks, /<r>/ack, reported). The node exits 1 after
 // writing an incomplete dataset.
 // Parameters: ~robots ("a,b,c" or a list; absent: the player's sequence), ~name (dataset name), ~output_dir, the
 // noise models: ~noise_models (YAML path), else those of ~sequence (a sequence config: its environment /
@@ -39,7 +40,7 @@
 #include <random>
 #include <sstream>
 
-#include "cosmo/ros/node_main.hpp"
+#include "cosmo/FrontendAck.h"
 #include "cosmo/TeamSequence.h"
 #include "cosmo/dataset/dataset_recorder.hpp"
 #include "cosmo/dataset/measurement_journal.hpp"
@@ -48,6 +49,7 @@
 #include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/pipeline/sequence_noise_models.hpp"
 #include "cosmo/report/figures.hpp"
+#include "cosmo/ros/node_main.hpp"
 #include "cosmo/ros/peer_probe.hpp"
 #include "cosmo/ros/recorder_msgs.hpp"
 #include "cosmo/ros/resolved_sequence.hpp"
@@ -203,6 +205,9 @@ class RecorderNode {
       subs_.push_back(nh.subscribe<cosmo::RecorderLoopClosure>(
           ns + "/loop_closures", 10000,
           [this, r](const cosmo::RecorderLoopClosure::ConstPtr& m) { receive(r, *m, "/loop_closures"); }));
+      subs_.push_back(nh.subscribe<cosmo::FrontendAck>(ns + "/ack", 10, [this, r](const cosmo::FrontendAck::ConstPtr& m) {
+        skipped_[r] = std::max(skipped_[r], m->skipped);  // also after its last keyframe
+      }));
     }
     subs_.push_back(nh.subscribe<std_msgs::Empty>("/player/done", 1, [this](const std_msgs::Empty::ConstPtr&) {
       if (done_) return;
@@ -263,6 +268,8 @@ class RecorderNode {
     if (journal_->unsynced()) journal_->sync();
     if (!progress_changed_) return;
     cosmo::RecorderProgress p = cosmo::ros_glue::recorderProgressMsg(*intake_, *recorder_);
+    for (std::size_t i = 0; i < p.robots.size(); ++i)
+      p.scans_skipped[i] = std::max(p.scans_skipped[i], skipped_[p.robots[i]]);
     p.run_id = run_.id;
     p.session = session_;
     p.incomplete = incomplete_;
@@ -311,10 +318,11 @@ class RecorderNode {
     std::string restarts = "{", skipped = "{";
     for (char r : run_.robots) {
       restarts += (restarts.size() > 1 ? ", " : "") + std::string(1, r) + ": " + std::to_string(intake_->restarts(r));
-      skipped += (skipped.size() > 1 ? ", " : "") + std::string(1, r) + ": " + std::to_string(intake_->scansSkipped(r));
+      skipped += (skipped.size() > 1 ? ", " : "") + std::string(1, r) + ": " +
+                 std::to_string(std::max(intake_->scansSkipped(r), skipped_[r]));
     }
     lines.emplace_back("frontend_restarts", restarts + "}  # restarts that took a keyframe (bridges: above)");
-    lines.emplace_back("scans_skipped", skipped + "}  # skipped to keep up (real time), as of the last keyframe");
+    lines.emplace_back("scans_skipped", skipped + "}  # skipped to keep up (real time: scan_queue)");
     recorder_->setMetadata(std::move(lines));
   }
 
@@ -354,6 +362,7 @@ class RecorderNode {
   std::optional<cosmo::dataset::MeasurementJournal> journal_;
   bool progress_changed_ = false, changed_ = false, done_ = false;
   std::string incomplete_, written_;
+  std::map<char, std::uint32_t> skipped_;  ///< the front-ends' latest count of skipped scans (/<r>/ack)
   std::atomic<bool> player_died_{false};
   std::string player_death_;
   std::optional<std::vector<std::pair<std::string, std::string>>> sequence_lines_;

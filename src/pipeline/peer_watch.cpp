@@ -111,8 +111,10 @@ void PeerWatch::neverConnected(const std::string& node, Peer& p, double now, std
   const double limit = p.role == PeerRole::Recorder ? params_.recorder_timeout : params_.connect_timeout;
   const double waited = now - *start_;
   if (waited < limit) {
-    if (due(p, now)) out.push_back({false, "waiting for " + name + ": " + detail(p) + " (" + seconds(waited) +
-                                               " of " + seconds(limit) + ")"});
+    // named from notice_period on (a peer is usually connected within a few seconds)
+    if (waited >= params_.notice_period && due(p, now))
+      out.push_back({false, "waiting for " + name + ": " + detail(p) + " (" + seconds(waited) + " of " +
+                                seconds(limit) + ")"});
     return;
   }
   const std::string why = name + " did not connect within " + seconds(limit) + ": " + detail(p);

@@ -61,6 +61,7 @@ std::uint64_t RadioBroker::start() {
   origin_ = radioGridOrigin(sequence_->first, radio_->params().step);
   const std::uint64_t seed = deriveSeed(sequence_->second, "radio");
   radio_ = std::make_unique<RadioSimulator>(radio_->params(), radio_->robots(), seed);
+  radio_->setTimeOrigin(origin_);
   for (const EarlyOffer& o : early_offers_) radio_->offerKeyframe(o.robot, o.index, o.sizes.payload, o.sizes.raw);
   early_offers_.clear();
   steps_.start();
@@ -102,6 +103,7 @@ RadioBroker::StepBatch RadioBroker::stepRealTime(double now, const DeliveryFn& o
   if (!grid_started_ || now - radio_->nextStepTime() > 3600.0) {
     batch.grid_restarted = grid_started_;
     radio_->setStartTime(std::ceil(now / dt - 1e-9) * dt);
+    if (!grid_started_) radio_->setTraceOrigin(radio_->nextStepTime());  // a trace's time 0: the first step
     grid_started_ = true;
   } else if (radio_->nextStepTime() - now > 1.0) {
     batch.time_went_back = true;

@@ -2,7 +2,8 @@
 // robot's front-end (and, with robot-side playback, its trial_player) in its own, with its own address, and the
 // data hidden from it. A short lockstep run of the CI sequence (reference odometry, 30 s) with the player reading
 // the trials on the base and with each robot reading its own: both JRLs must equal cosmo_generate's byte for
-// byte. Prints the bytes per second each link carried. Skipped (with the reason) without root or `ip netns`.
+// byte. Prints the bytes per second each link carried. Then a robot whose nodes register an address the base
+// cannot reach (a wrong ROS_IP): the run must stop naming it. Skipped (with the reason) without root or `ip netns`.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -28,7 +29,7 @@ const NetnsRun& netnsRun() {
     std::filesystem::remove_all(work);
     const std::string cmd = std::string("'") + COSMO_SOURCE_DIR + "/scripts/netns_team.sh' --devel '" +
                             COSMO_DEVEL_PREFIX + "' --work '" + work +
-                            "' --playback base,robot --odometry reference --max-seconds 30 --timeout 400 2>&1";
+                            "' --playback base,robot --odometry reference --max-seconds 30 --timeout 400 --unreachable 2>&1";
     FILE* pipe = popen(cmd.c_str(), "r");
     char buffer[4096];
     while (pipe && fgets(buffer, sizeof buffer, pipe)) {
@@ -71,4 +72,16 @@ TEST(NetnsTeam, RobotPlaybackKeepsTheRawScansOnTheRobots) {
     EXPECT_LT(robot, 0.1 * base) << "link " << r << ": base -> robot carried " << robot << " B with the robot reading"
                                  << " its own trial, " << base << " B with the base reading it";
   }
+}
+
+TEST(NetnsTeam, ARobotNotReachableBackStopsTheRunNamingIt) {
+  const NetnsRun& run = netnsRun();
+  if (!run.skip_reason.empty()) GTEST_SKIP() << run.skip_reason;
+  ASSERT_TRUE(run.summary.contains("unreachable")) << run.output;
+  const nlohmann::json& u = run.summary["unreachable"];
+  const std::string status = u.value("status", "");
+  EXPECT_EQ(status.rfind("stopped: ", 0), 0u) << status;
+  EXPECT_NE(status.find("/" + u.value("robot", "?") + "/frontend"), std::string::npos) << status;
+  EXPECT_NE(status.find(u.value("address", "?")), std::string::npos) << status;
+  EXPECT_NE(status.find("ROS_IP"), std::string::npos) << "the likely cause is not named: " << status;
 }

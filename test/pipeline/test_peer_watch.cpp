@@ -82,11 +82,12 @@ TEST(PeerWatch, NothingIsJudgedBeforeStartAndConnectTimeoutsCountFromIt) {
   EXPECT_TRUE(w.review(1000.0).empty());
   w.start(1000.0);
   EXPECT_FALSE(w.connected());
-  const auto first = w.review(1000.5);
+  EXPECT_TRUE(w.review(1004.0).empty()) << "named only after the notice period";
+  const auto first = w.review(1005.0);
   EXPECT_TRUE(mentions(first, "waiting for the front-end of robot a (/a/frontend): not registered"));
-  EXPECT_TRUE(w.review(1002.0).empty()) << "named again only after the notice period";
-  EXPECT_FALSE(w.review(1005.6).empty());
-  allAlive(w, 1010.0);
+  EXPECT_TRUE(w.review(1007.0).empty()) << "named again only after the notice period";
+  EXPECT_FALSE(w.review(1010.1).empty());
+  allAlive(w, 1011.0);
   EXPECT_TRUE(w.connected());
   EXPECT_TRUE(w.review(1040.0).empty());
   EXPECT_FALSE(w.stopReason());
