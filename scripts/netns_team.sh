@@ -10,9 +10,9 @@
 #                         [--odometry loam|reference] [--max-seconds S] [--comm wifi|proradio] [--work DIR]
 #                         [--devel DIR] [--timeout S] [--no-compare] [--unreachable]
 #
-# --unreachable: one more run, the last robot's nodes registering an address nobody has (ROS_IP of another
-# machine): the player must stop it within its connect_timeout (8 s here), naming that robot's front-end and the
-# address ("unreachable" in the summary: the player's status).
+# --unreachable: one more run, the last robot's nodes registering an address the base cannot reach (ROS_IP set to
+# an address of the robot that is not on the base's network): the player must stop it within its connect_timeout
+# (8 s here), naming that robot's front-end, the address and ROS_IP ("unreachable" in the summary).
 #
 # Needs root, `ip netns` and `unshare` (util-linux); exits 77 with the reason when one is missing (a skip). Prints,
 # per playback, the wall time, the bytes per second on each link and whether the JRL equals cosmo_generate's, and
@@ -292,7 +292,7 @@ for playback in ${playbacks//,/ }; do
   [ $base_rc = 0 ] || echo "   the run failed ($status): $out/base.log"
 done
 
-# one robot not reachable back: its nodes register an address of no machine (a wrong ROS_IP)
+# one robot not reachable back: its nodes register an address the base has no route to (a wrong ROS_IP)
 if [ $unreachable = 1 ]; then
   out=$work/unreachable
   rm -rf "$out"; mkdir -p "$out"
@@ -300,7 +300,8 @@ if [ $unreachable = 1 ]; then
   base_keep=""
   for r in "${robots[@]}"; do eval "base_keep+=\" \${files_$r[*]}\""; done
   last=${robots[-1]}
-  wrong_ip=$subnet.99
+  wrong_ip=10.214.0.99  # the robot has it (its own roslaunch checks that it reaches itself), the base no route to it
+  ip -n "${robot_ns[$last]}" addr add "$wrong_ip/32" dev lo
   robot_pids=()
   for r in "${robots[@]}"; do
     addr=${robot_ip[$r]}

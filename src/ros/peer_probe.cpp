@@ -39,6 +39,8 @@ std::string tcpReachable(const std::string& host, std::uint32_t port, double tim
       rc = poll(&p, 1, static_cast<int>(timeout * 1000));
       if (rc == 0) {
         error = "no answer within " + std::to_string(timeout).substr(0, 3) + " s";
+        rc = -1;  // not connected
+        errno = 0;
       } else {
         int so_error = 0;
         socklen_t len = sizeof so_error;
@@ -115,7 +117,8 @@ pipeline::PeerAddress peerAddress(const pipeline::PeerProbe& probe) {
   ros::network::splitURI(probe.uri, a.host, port);
   a.refused = probe.refused;
   a.resolved = probe.error.rfind("cannot resolve", 0) != 0;
-  a.timed_out = probe.error.rfind("no answer", 0) == 0;
+  a.timed_out = probe.error.rfind("no answer", 0) == 0 || probe.error == std::strerror(ENETUNREACH) ||
+                probe.error == std::strerror(EHOSTUNREACH);  // no way there from here
   a.loopback = a.host == "localhost" || a.host == "::1" || a.host.rfind("127.", 0) == 0;
   addrinfo hints{}, *found = nullptr;
   hints.ai_socktype = SOCK_STREAM;
