@@ -119,8 +119,8 @@ endfunction()
 # test/<module>/test_*.cpp link their module (all of the core where the folder is no module) and what they
 # include beyond it (COSMO_TEST_LIBS_<target>). The gtests in COSMO_ROS_GTESTS use the ROS glue:
 # ../CMakeLists.txt builds them.
-set(COSMO_ROS_GTESTS nebula/test_conversion nebula/test_message_definition ros/test_markers ros/test_point_cloud
-    ros/test_team_sequence_msg sim/test_sim_bag tools/test_tools_on_fixtures trials/test_layouts_end_to_end
+set(COSMO_ROS_GTESTS multihost/test_netns_team nebula/test_conversion nebula/test_message_definition
+    ros/test_loopback_alias ros/test_markers ros/test_point_cloud ros/test_team_sequence_msg sim/test_sim_bag tools/test_tools_on_fixtures trials/test_layouts_end_to_end
     trials/test_trial_layouts workspace/test_commands_on_path)
 set(COSMO_TEST_LIBS_backend_test_pose_graph_solver Ceres::ceres)
 set(COSMO_TEST_LIBS_dataset_test_outlier_injection cosmo_backend)
