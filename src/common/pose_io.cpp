@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cosmo/common/file_stamp.hpp"
+
 namespace cosmo {
 
 namespace {

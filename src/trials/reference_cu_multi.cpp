@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "cosmo/common/file_stamp.hpp"
 #include "cosmo/trials/reference_file.hpp"
 
 namespace cosmo::trials {

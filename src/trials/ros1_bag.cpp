@@ -36,8 +36,8 @@ Ros1Compression compressionOf(const std::string& name, const Place& place) {
 void expectOp(const Record& r, std::uint8_t op, const Place& place, const char* record) {
   const std::uint8_t got = r.fields.op();
   if (got != op)
-    fail(place, record, "op " + std::to_string(got) + " where a " + record + " record (op " + std::to_string(op) +
-                            ") belongs");
+    fail(place, record,
+         "op " + std::to_string(got) + " where a " + record + " record (op " + std::to_string(op) + ") belongs");
 }
 
 }  // namespace
@@ -45,7 +45,7 @@ void expectOp(const Record& r, std::uint8_t op, const Place& place, const char* 
 Ros1Bag::Ros1Bag(const std::string& path) : path_(path) {
   fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd_ < 0) throw std::runtime_error(path + ": cannot open: " + std::strerror(errno));
-  struct stat st{};
+  struct stat st {};
   if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd_);
     throw std::runtime_error(path + ": not a regular file");
@@ -64,7 +64,8 @@ Ros1Bag::~Ros1Bag() { ::close(fd_); }
 void Ros1Bag::readIndex() {
   char magic[kMagicSize] = {};
   const Place start{&path_, 0};
-  if (file_size_ < kMagicSize) throw Ros1BagError(path_ + ": " + std::to_string(file_size_) + " bytes: not a ROS 1 bag");
+  if (file_size_ < kMagicSize)
+    throw Ros1BagError(path_ + ": " + std::to_string(file_size_) + " bytes: not a ROS 1 bag");
   readExactly(fd_, 0, magic, kMagicSize, start, "bag header");
   if (std::memcmp(magic, kMagic, kMagicSize) != 0)
     throw Ros1BagError(path_ + ": does not start with '#ROSBAG V2.0': not a ROS 1 bag of format 2.0");
@@ -126,16 +127,16 @@ std::uint64_t Ros1Bag::readChunkInfo(std::uint64_t offset) {
   for (std::uint32_t i = 0; i < count; ++i) {
     const std::uint32_t conn = le32(&data[8 * i]), n = le32(&data[8 * i + 4]);
     if (!position_.count(conn))
-      fail(place, "chunk info", "entry " + std::to_string(i) + " names connection " + std::to_string(conn) +
-                                    ", which the bag's " + std::to_string(connections_.size()) +
-                                    " connection records do not define");
+      fail(place, "chunk info",
+           "entry " + std::to_string(i) + " names connection " + std::to_string(conn) + ", which the bag's " +
+               std::to_string(connections_.size()) + " connection records do not define");
     if (!counts.emplace(conn, n).second)
       fail(place, "chunk info", "connection " + std::to_string(conn) + " listed twice");
   }
   if (chunk_pos < kMagicSize || chunk_pos >= file_size_)
-    fail(place, "chunk info",
-         "chunk_pos " + std::to_string(chunk_pos) + " lies outside the file (" + std::to_string(file_size_) +
-             " bytes)");
+    fail(
+        place, "chunk info",
+        "chunk_pos " + std::to_string(chunk_pos) + " lies outside the file (" + std::to_string(file_size_) + " bytes)");
   Ros1Chunk chunk;
   chunk.pos = chunk_pos;
   chunks_.push_back(chunk);
@@ -160,8 +161,9 @@ void Ros1Bag::readChunkIndex(const std::map<std::uint32_t, std::uint32_t>& count
          "uncompressed chunk of " + std::to_string(chunk.data_size) + " bytes whose field 'size' says " +
              std::to_string(chunk.size));
   if (chunk.size > kRos1MaxChunkBytes)
-    fail(place, "chunk", "field 'size' says " + std::to_string(chunk.size) + " bytes, more than this reader accepts (" +
-                             std::to_string(kRos1MaxChunkBytes) + ")");
+    fail(place, "chunk",
+         "field 'size' says " + std::to_string(chunk.size) + " bytes, more than this reader accepts (" +
+             std::to_string(kRos1MaxChunkBytes) + ")");
   std::uint64_t offset = r.end();
   std::map<std::uint32_t, bool> seen;
   for (std::size_t k = 0; k < counts.size(); ++k) {

@@ -77,9 +77,9 @@ void Ros1MessageStream::seek(StampNs received) {
     if (f.valid()) f.wait();
   ahead_.clear();
   current_visit_ = SIZE_MAX;
-  next_ = static_cast<std::size_t>(
-      std::find_if(messages_.begin(), messages_.end(), [&](const Ros1MessageRef& m) { return m.received >= received; }) -
-      messages_.begin());
+  next_ = static_cast<std::size_t>(std::find_if(messages_.begin(), messages_.end(),
+                                                [&](const Ros1MessageRef& m) { return m.received >= received; }) -
+                                   messages_.begin());
   next_visit_ = next_ < visit_of_.size() ? visit_of_[next_] : visits_.size();
 }
 

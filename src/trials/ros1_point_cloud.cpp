@@ -10,7 +10,8 @@ namespace {
 /// Reads little-endian values in order, checking every read against the end of the buffer.
 class Ros1Reader {
  public:
-  Ros1Reader(const std::uint8_t* p, std::size_t size, const std::string& source) : p_(p), size_(size), source_(source) {}
+  Ros1Reader(const std::uint8_t* p, std::size_t size, const std::string& source)
+      : p_(p), size_(size), source_(source) {}
 
   template <typename T>
   T value(const char* what) {

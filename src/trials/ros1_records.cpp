@@ -102,7 +102,8 @@ std::string Fields::textOr(const char* name, const std::string& fallback) const 
 Record recordIn(const std::uint8_t* bytes, std::size_t size, const Place& place, const char* record) {
   const std::uint64_t at = place.offset;
   if (at > size || size - at < 4)
-    fail(place, record, "the record's header length lies past the end of the data (" + std::to_string(size) + " bytes)");
+    fail(place, record,
+         "the record's header length lies past the end of the data (" + std::to_string(size) + " bytes)");
   const std::uint32_t header_len = le32(bytes + at);
   if (header_len > size - at - 4)
     fail(place, record,
