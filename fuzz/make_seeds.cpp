@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "../test/trials/tiny_trial.hpp"
+#include "cosmo/dataset/measurement_journal.hpp"
 #include "cosmo/nebula/g2o_io.hpp"
 #include "cosmo/nebula/ros1_serialization.hpp"
 #include "cosmo/nebula/synthetic_team.hpp"
@@ -71,8 +72,8 @@ std::string sequenceConfig(const std::string& layout, const ros_glue::WrittenTri
       << "\n    stamp: " << (w.stamp_at_end ? "end" : "start") << "\n    reference: " << w.reference
       << "\n    extrinsic: [";
   const Eigen::Quaterniond q(w.extrinsic.linear());
-  out << w.extrinsic.translation().x() << ", " << w.extrinsic.translation().y() << ", "
-      << w.extrinsic.translation().z() << ", " << q.x() << ", " << q.y() << ", " << q.z() << ", " << q.w() << "]\n";
+  out << w.extrinsic.translation().x() << ", " << w.extrinsic.translation().y() << ", " << w.extrinsic.translation().z()
+      << ", " << q.x() << ", " << q.y() << ", " << q.z() << ", " << q.w() << "]\n";
   return out.str();
 }
 
@@ -84,7 +85,8 @@ void trialSeeds(const fs::path& work, const fs::path& out) {
   const Pose3 T_body_lidar = t.params.extrinsicPose();
   sim::ScanSimulator simulator(*plan.world, lidar);
   std::vector<Scan> scans;
-  for (int k = 0; k < kMcdSweeps; ++k) scans.push_back(simulator.simulate(t.body, T_body_lidar, t.scan_stamps[k], t.noise_seed));
+  for (int k = 0; k < kMcdSweeps; ++k)
+    scans.push_back(simulator.simulate(t.body, T_body_lidar, t.scan_stamps[k], t.noise_seed));
 
   ros_glue::LayoutTrialInfo info;
   info.name = t.params.name;
@@ -100,8 +102,8 @@ void trialSeeds(const fs::path& work, const fs::path& out) {
     for (int k = 0; k < sweeps; ++k) writer->write(scans[k]);
     written[name] = writer->finish(t.body, T_body_lidar);
   }
-  for (auto [name, compression] : {std::pair{"none", ros_glue::BagCompression::None},
-                                   std::pair{"lz4", ros_glue::BagCompression::Lz4}}) {
+  for (auto [name, compression] :
+       {std::pair{"none", ros_glue::BagCompression::None}, std::pair{"lz4", ros_glue::BagCompression::Lz4}}) {
     ros_glue::ScanBagWriter bag((work / (std::string("cosmo_") + name + ".bag")).string(), compression);
     for (int k = 0; k < kSweeps; ++k) bag.write("/os_cloud_node/points", scans[k], "os_sensor");
   }
@@ -131,8 +133,8 @@ void trialSeeds(const fs::path& work, const fs::path& out) {
   for (std::size_t i = 0; i < 5; ++i) {
     const StampedPose& p = t.body.poses().at(i * 10);
     const Eigen::Quaterniond q(p.pose.linear());
-    tum << toSeconds(p.stamp) << " " << p.pose.translation().transpose() << " " << q.x() << " " << q.y() << " "
-        << q.z() << " " << q.w() << "\n";
+    tum << toSeconds(p.stamp) << " " << p.pose.translation().transpose() << " " << q.x() << " " << q.y() << " " << q.z()
+        << " " << q.w() << "\n";
     const Eigen::Matrix<double, 3, 4> m34 = p.pose.matrix().topRows<3>();
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 4; ++c) kitti << m34(r, c) << (r == 2 && c == 3 ? "\n" : " ");
@@ -149,8 +151,7 @@ void trialSeeds(const fs::path& work, const fs::path& out) {
         std::make_unique<trials::Ros1ScanSource>((work / "cosmo_none.bag").string(), "/os_cloud_node/points"),
         cache.string());
     Scan s;
-    while (caching.next(s)) {
-    }
+    while (caching.next(s)) {}
   }
   put(out, "scan_cache", "tiny.scans", slurp(cache));
   trials::writeCachedSpan((work / "tiny.span").string(), scans.front().stamp, scans[kSweeps - 1].stamp);
@@ -179,6 +180,34 @@ void nebulaSeeds(const fs::path& work, const fs::path& out) {
   put(out, "g2o", "result.g2o", firstLines(work / "nebula" / "ground_truth" / "result.g2o", 6));
 }
 
+/// A recorder journal of two robots: keyframes (one with a reference, one bridged), a loop closure, the marks.
+void journalSeeds(const fs::path& out) {
+  dataset::JournalHeader h{"run-1", "demo", {'a', 'b'}, true};
+  std::string bytes = dataset::encodeJournalHeader(h);
+  std::uint64_t seq = 0;
+  for (char robot : {'a', 'b'})
+    for (std::uint32_t i = 0; i < 3; ++i) {
+      dataset::KeyframeMeasurement k;
+      k.robot = robot;
+      k.index = i;
+      k.stamp = 1000000000ull * (i + 1);
+      k.odometry =
+          makePose({1.0 * i, 0.5, 0.0}, Eigen::Quaterniond(Eigen::AngleAxisd(0.1 * i, Eigen::Vector3d::UnitZ())));
+      if (i == 0) k.reference = Pose3::Identity();
+      if (robot == 'b' && i == 2) k.bridge_from = 0;
+      k.scans_skipped = i;
+      bytes += dataset::encodeJournalRecord({robot, ++seq, k});
+    }
+  LoopClosureMeasurement lc;
+  lc.owner = 'a';
+  lc.computed_at = 2500000000ull;
+  lc.key1 = 1;
+  lc.key2 = 2;
+  bytes += dataset::encodeJournalRecord({'a', ++seq, lc});
+  put(out, "journal", "two_robots.journal", bytes);
+  put(out, "journal", "torn_tail.journal", bytes.substr(0, bytes.size() - 7));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -192,6 +221,7 @@ int main(int argc, char** argv) {
     fs::create_directories(work);
     trialSeeds(work, out);
     nebulaSeeds(work, out);
+    journalSeeds(out);
     fs::remove_all(work);
   } catch (const std::exception& e) {
     std::cerr << "cosmo_fuzz_seeds: " << e.what() << "\n";

@@ -22,15 +22,15 @@ COSMO_FUZZ_TARGET(ros2_bag) {
   std::filesystem::remove_all(folder);
   std::filesystem::create_directories(folder);
   fuzz::inputFile(db3, static_cast<std::size_t>(data + size - db3), "robot1_walk_a_lidar/robot1_walk_a_lidar_0.db3");
-  if (split && header > data) fuzz::inputFile(data, static_cast<std::size_t>(header - data), "robot1_walk_a_lidar/metadata.yaml");
+  if (split && header > data)
+    fuzz::inputFile(data, static_cast<std::size_t>(header - data), "robot1_walk_a_lidar/metadata.yaml");
   const std::string path = folder.string();
   for (const auto& t : trials::listRos2Topics(path)) {
     if (t.type != "sensor_msgs/msg/PointCloud2") continue;
     try {
       trials::Ros2ScanSource source(path, t.name, false);
       Scan scan;
-      while (source.next(scan)) {
-      }
+      while (source.next(scan)) {}
       trials::readRos2TrialSpan(path, t.name, 'a');
     } catch (const std::runtime_error&) {  // a bad topic; the others still read
     }
