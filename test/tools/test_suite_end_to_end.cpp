@@ -1,0 +1,149 @@
+// cosmo_suite as a user runs it, on the CI suite (config/suites/ci.yaml: a small synthetic sequence in the MCD and
+// CU-Multi layouts, both comm models, two seeds, a noise-model estimate first): every dataset present, valid and
+// byte for byte what cosmo_generate writes when run alone on the same inputs; killed (SIGKILL) at a random moment
+// and run again: the same bytes; a changed sequence file redoes exactly its datasets; a bad suite file stops
+// before anything runs, naming the file and the key; a second suite on the same output folder is refused.
+// The simulator's and the scan cache are the test's own (COSMO_SIM_CACHE, COSMO_SCAN_CACHE), so that it can change a
+// sequence file without touching anyone else's.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include "cosmo/jrl/io.hpp"
+#include "cosmo/jrl/validate.hpp"
+#include "cosmo/suite/child_process.hpp"
+#include "cosmo/suite/job_record.hpp"
+#include "slurm_cluster.hpp"
+#include "suite_end_to_end.hpp"
+
+namespace fs = std::filesystem;
+using namespace cosmo;
+using namespace suite_e2e;
+
+TEST_F(SuiteEndToEnd, EveryDatasetIsThereValidAndWhatCosmoGenerateWritesAlone) {
+  const fs::path a = runA();
+  for (const auto& g : groups()) {
+    const fs::path dir = a / g.id;
+    ASSERT_TRUE(fs::exists(dir / suite::kRecordFile)) << g.id;
+    for (const char* comm : {"wifi", "proradio"}) {
+      const fs::path jrl = dir / ("suite_ci_" + std::string(comm) + ".jrl");
+      ASSERT_TRUE(fs::exists(jrl)) << jrl;
+      const jrl::Dataset d = jrl::readJrl(jrl.string());
+      EXPECT_TRUE(jrl::validate(d).empty()) << jrl;
+      EXPECT_TRUE(d.outliers.has_value()) << jrl << " is not labelled";
+    }
+  }
+  EXPECT_TRUE(fs::exists(a / "manifest.jsonl"));
+  std::ifstream manifest(a / "manifest.jsonl");
+  std::size_t lines = 0;
+  for (std::string l; std::getline(manifest, l);) ++lines;
+  EXPECT_EQ(lines, groups().size() + 1);  // + the estimate
+  const std::string html = readFile(a / "report.html");
+  EXPECT_NE(html.find("data:image/svg+xml;base64,"), std::string::npos);
+  EXPECT_EQ(html.find("src=\"ci_"), std::string::npos) << "the report reads figures from beside it";
+  EXPECT_NE(readFile(a / "report.md").find("| ci_mcd_s1_wifi | done |"), std::string::npos);
+
+  // the estimate and each group, by cosmo_generate alone into a folder of its own
+  const fs::path alone = root() / "alone";
+  const fs::path estimate = alone / "synthetic_cu.yaml";
+  Outcome e = runTool("cosmo_generate", {sequence("cu-multi"), "--estimate-noise-models", "b", "--estimate-only",
+                                     "--noise-models-out", estimate.string()});
+  ASSERT_EQ(e.status, 0) << e.output;
+  EXPECT_EQ(readFile(estimate), readFile(a / "noise_models/synthetic_cu/synthetic_cu.yaml"));
+  for (const auto& g : groups()) {
+    const fs::path out = alone / g.id;
+    std::vector<std::string> args{sequence(g.layout), "--comm", "wifi,proradio", "--seed", g.seed, "--out", out.string(),
+                                  "--quiet"};
+    if (g.layout == "cu-multi") args.insert(args.end(), {"--noise-models", (a / "noise_models/synthetic_cu/synthetic_cu.yaml").string()});
+    const Outcome r = runTool("cosmo_generate", args);
+    ASSERT_EQ(r.status, 0) << r.output;
+    expectSameFiles(out, a / g.id);
+  }
+}
+
+TEST_F(SuiteEndToEnd, KilledAtARandomMomentAndRunAgainGivesTheSameBytes) {
+  const fs::path a = runA();
+  const fs::path b = root() / "killed";
+  std::random_device rd;
+  const unsigned seed = rd();
+  std::mt19937 rng(seed);
+  const double at = std::uniform_real_distribution<double>(0.5, std::max(1.0, 0.8 * runASeconds()))(rng);
+  std::printf("SIGKILL after %.2f s (random seed %u; the whole run took %.1f s)\n", at, seed, runASeconds());
+  const pid_t pid = suite::spawnChild(suiteCommand(b, {"--jobs", "1"}), (root() / "killed.log").string());
+  std::this_thread::sleep_for(std::chrono::duration<double>(at));
+  // while it runs, a second suite on the same folder is refused
+  const Outcome second = runTool("cosmo_suite", {ciSuite(), "--out", b.string()});
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  if (second.status == 2)  // (the first may have finished already on a fast machine)
+    EXPECT_NE(second.output.find("is in use by another cosmo_suite"), std::string::npos) << second.output;
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // its children die with it (PDEATHSIG)
+  EXPECT_EQ(processesMentioning(b.string()), 0) << "a job of the killed suite still runs";
+  const Outcome again = runTool("cosmo_suite", {ciSuite(), "--out", b.string(), "--jobs", "2"});
+  ASSERT_EQ(again.status, 0) << again.output;
+  std::printf("%s", again.output.substr(0, again.output.find("[suite] start")).c_str());
+  for (const auto& g : groups()) expectSameFiles(b / g.id, a / g.id);
+  expectSameFiles(b / "noise_models/synthetic_cu", a / "noise_models/synthetic_cu");
+}
+
+TEST_F(SuiteEndToEnd, AChangedSequenceFileRedoesExactlyItsDatasets) {
+  const fs::path a = runA();
+  const fs::path seq = sequence("mcd");
+  const std::string original = readFile(seq);
+  std::ofstream(seq, std::ios::app) << "# changed by the test\n";
+  const Outcome r = runTool("cosmo_suite", {ciSuite(), "--out", a.string()});
+  std::ofstream(seq, std::ios::trunc) << original;
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("ci_mcd_s1: stale: input changed: sequence " + seq.string() + " -> to do"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("ci_mcd_s2: stale: input changed: sequence"), std::string::npos) << r.output;
+  for (const char* id : {"noise_models/synthetic_cu", "ci_cu_s1", "ci_cu_s2"})
+    EXPECT_NE(r.output.find(std::string(id) + ": current -> skipped"), std::string::npos) << id << "\n" << r.output;
+  EXPECT_NE(r.output.find("8 datasets: 4 done, 4 skipped as current, 0 failed"), std::string::npos) << r.output;
+  // the file is back as it was: those two are redone once more (the same bytes) and nothing else
+  const Outcome back = runTool("cosmo_suite", {ciSuite(), "--out", a.string()});
+  EXPECT_NE(back.output.find("8 datasets: 4 done, 4 skipped as current, 0 failed"), std::string::npos) << back.output;
+}
+
+TEST_F(SuiteEndToEnd, ABadSuiteFileStopsBeforeAnythingRunsNamingTheFileAndTheKey) {
+  const fs::path bad = root() / "bad_suite.yaml";
+  std::ofstream(bad) << readFile(ciSuite()) << "  sed: [3]\n";
+  const fs::path out = root() / "bad_out";
+  const Outcome r = runTool("cosmo_suite", {bad.string(), "--out", out.string()});
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find(bad.string() + ": variants.sed: unknown parameter (did you mean 'seed'?)"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(SuiteEndToEnd, OnASingleNodeSlurmClusterTheOutputsAreThoseOfTheLocalRun) {
+  const fs::path a = runA();
+  const SlurmCluster cluster(root() / "slurm");
+  if (!cluster.whyNot().empty()) GTEST_SKIP() << "no Slurm here: " << cluster.whyNot();
+  const fs::path c = root() / "slurm_out";
+  const Outcome r = runTool("cosmo_suite", {ciSuite(), "--out", c.string(), "--slurm", "--wait"});
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("submitted estimate-synthetic_cu: Slurm job"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("8 datasets: 8 done, 0 skipped as current, 0 failed"), std::string::npos) << r.output;
+  for (const auto& g : groups()) expectSameFiles(c / g.id, a / g.id);
+  expectSameFiles(c / "noise_models/synthetic_cu", a / "noise_models/synthetic_cu");
+  EXPECT_TRUE(fs::exists(c / "report.html"));
+  const Outcome st = runTool("cosmo_suite", {"status", "--out", c.string()});
+  EXPECT_NE(st.output.find("ci_cu_s2: done"), std::string::npos) << st.output;
+  // resumed under Slurm: everything current, nothing submitted
+  const Outcome again = runTool("cosmo_suite", {ciSuite(), "--out", c.string(), "--slurm"});
+  EXPECT_EQ(again.status, 0) << again.output;
+  EXPECT_NE(again.output.find("ci_cu_s2: current -> skipped"), std::string::npos) << again.output;
+  EXPECT_EQ(again.output.find("submitted"), std::string::npos) << again.output;
+}
