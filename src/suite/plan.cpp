@@ -187,7 +187,9 @@ Plan planSuite(const SuiteFile& suite, const PlanOptions& o) {
     plan.jobs.push_back(estimateJob(e, from, suite));
     addEstimateInputs(plan, plan.jobs.back(), from.config, e.trial);
   }
-  for (const auto& seq : seqs)
+  std::map<std::string, std::vector<std::string>> cold;  // group -> compressed bags not yet in the scan cache
+  for (const auto& seq : seqs) {
+    const std::vector<std::string> seq_cold = coldCompressedBags(seq.config);
     for (const auto& combo : variantGrid(suite)) {
       plan.jobs.push_back(groupJob(seq, combo, suite, o));
       Job& job = plan.jobs.back();
@@ -200,7 +202,10 @@ Plan planSuite(const SuiteFile& suite, const PlanOptions& o) {
         job.args.insert(job.args.end(), {"--noise-models", estimate_file});
       }
       addGroupInputs(plan, job, seq.config, estimate_file);
+      cold[job.id] = seq_cold;
     }
+  }
+  orderFirstPasses(plan, cold);
   checkUniqueIds(plan);
   checkInputsExist(plan);
   return plan;

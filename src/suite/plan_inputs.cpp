@@ -7,7 +7,9 @@
 #include <vector>
 
 #include "cosmo/pipeline/sequence_noise_models.hpp"
+#include "cosmo/trials/bag_format.hpp"
 #include "cosmo/trials/reference_file.hpp"
+#include "cosmo/trials/scan_cache.hpp"
 
 namespace fs = std::filesystem;
 
@@ -90,6 +92,38 @@ void addEstimateInputs(const Plan& plan, Job& job, const pipeline::SequenceConfi
   pipeline::SequenceConfig alone = config;
   alone.trials = {t};
   job.seconds = estimatedSequenceSeconds(alone);
+}
+
+std::vector<std::string> coldCompressedBags(const pipeline::SequenceConfig& config) {
+  std::vector<std::string> cold;
+  const std::string dir = trials::scanCacheDir();
+  if (dir.empty()) return cold;  // no cache: every run decompresses
+  for (const auto& t : config.trials) {
+    try {
+      if (!fs::is_regular_file(t.bag) || trials::detectBagFormat(t.bag) != trials::BagFormat::Ros1 ||
+          !trials::ros1ChunksCompressed(t.bag))
+        continue;
+    } catch (const std::exception&) {
+      continue;  // the run reports a bag it cannot read
+    }
+    if (!fs::exists(trials::scanCachePath(dir, t.bag, t.topic, t.stamp_at_end))) cold.push_back(t.bag);
+  }
+  return cold;
+}
+
+void orderFirstPasses(Plan& plan, const std::map<std::string, std::vector<std::string>>& cold) {
+  std::map<std::string, std::string> first;  // bag -> the group that decompresses it
+  for (auto& job : plan.jobs) {
+    const auto it = cold.find(job.id);
+    if (job.kind != Job::Kind::Datasets || it == cold.end()) continue;
+    for (const auto& bag : it->second) {
+      const auto owner = first.find(bag);
+      if (owner == first.end())
+        first[bag] = job.id;
+      else if (std::find(job.after.begin(), job.after.end(), owner->second) == job.after.end())
+        job.after.push_back(owner->second);
+    }
+  }
 }
 
 void checkInputsExist(const Plan& plan) {

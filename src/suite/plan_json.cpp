@@ -27,6 +27,7 @@ json toJson(const Job& j) {
           {"radio", j.radio},
           {"post_steps", steps},
           {"depends_on", j.depends_on},
+          {"after", j.after},
           {"inputs", inputs},
           {"robots", j.robots},
           {"seconds", j.seconds}};
@@ -47,6 +48,7 @@ Job jobFromJson(const json& o) {
     j.post_steps.push_back({s.at("program").get<std::string>(), s.at("verb").get<std::string>(),
                             s.at("args").get<std::vector<std::string>>(), s.at("suffix").get<std::string>()});
   j.depends_on = o.at("depends_on").get<std::vector<std::string>>();
+  j.after = o.at("after").get<std::vector<std::string>>();
   for (const auto& in : o.at("inputs"))
     j.inputs.push_back({in.at("what").get<std::string>(), in.at("path").get<std::string>(), in.at("always_hash").get<bool>()});
   j.robots = o.at("robots").get<int>();

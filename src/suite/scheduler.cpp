@@ -36,9 +36,15 @@ Scheduler::Scheduler(const Plan& plan, const std::vector<std::string>& todo, con
 unsigned Scheduler::width(int job) const { return std::min(jobWidth(plan_.jobs[job].robots, policy_), std::max(1u, policy_.cores)); }
 
 bool Scheduler::dependenciesDone(int job) const {
-  for (const auto& dep : plan_.jobs[job].depends_on)
-    for (std::size_t i = 0; i < plan_.jobs.size(); ++i)
-      if (plan_.jobs[i].id == dep && states_[i] != State::Done) return false;
+  const Job& j = plan_.jobs[job];
+  for (std::size_t i = 0; i < plan_.jobs.size(); ++i) {
+    const std::string& id = plan_.jobs[i].id;
+    if (std::find(j.depends_on.begin(), j.depends_on.end(), id) != j.depends_on.end() && states_[i] != State::Done)
+      return false;
+    if (std::find(j.after.begin(), j.after.end(), id) != j.after.end() &&
+        (states_[i] == State::Waiting || states_[i] == State::Running))
+      return false;
+  }
   return true;
 }
 

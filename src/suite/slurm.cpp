@@ -73,7 +73,8 @@ SlurmArray submitArray(const Plan& plan, const std::string& name, const std::vec
   if (!o.cpus_per_task && node_cpus) cpus = std::min(cpus, node_cpus);
   const std::string script = dir + "/" + name + ".sh";
   writeFileAtomically(script, batchScript(plan, list_path, o.plan_path, o.self_exe, o.run_id, dir, cpus));
-  std::vector<std::string> args{"--array=0-" + std::to_string(jobs.size() - 1), "--job-name=cosmo-" + name};
+  std::vector<std::string> args{"--array=0-" + std::to_string(jobs.size() - 1),
+                                "--job-name=cosmo-" + plan.suite_name + "-" + name};
   if (!after.empty()) args.push_back("--dependency=afterany:" + after);
   a.slurm_id = sbatch(args, o, script);
   return a;
@@ -95,41 +96,50 @@ std::string batchScript(const Plan& plan, const std::string& list_path, const st
   return s.str();
 }
 
+/// Each job's wave: 0 without anything to wait for among `todo`, else one more than the latest it waits for.
+std::map<std::string, int> waves(const Plan& plan, const std::vector<std::string>& todo) {
+  std::map<std::string, int> wave;
+  for (const auto& job : plan.jobs) {  // the plan lists what a job waits for before it
+    if (std::find(todo.begin(), todo.end(), job.id) == todo.end()) continue;
+    int w = 0;
+    for (const auto* deps : {&job.depends_on, &job.after})
+      for (const auto& d : *deps)
+        if (wave.count(d)) w = std::max(w, wave[d] + 1);
+    wave[job.id] = w;
+  }
+  return wave;
+}
+
 SlurmSubmission submitToSlurm(const Plan& plan, const std::vector<std::string>& todo, const SlurmOptions& o) {
+  if (todo.empty()) throw std::runtime_error("nothing to submit: every job is current");
   SlurmSubmission sub;
   sub.run_id = o.run_id;
   const std::string dir = suiteDir(plan.out_dir, "slurm/" + o.run_id);
   const unsigned node_cpus = largestNode();
-  const auto runs = [&](const std::string& id) { return std::find(todo.begin(), todo.end(), id) != todo.end(); };
-  std::map<std::string, std::string> estimate_slurm_id;  // estimate job -> its Slurm job id
-  std::vector<std::string> free_jobs;
-  std::map<std::string, std::vector<std::string>> users;  // estimate -> groups that wait for it
-  for (const auto& job : plan.jobs) {
-    if (!runs(job.id)) continue;
-    if (job.kind == Job::Kind::Estimate) {
-      sub.arrays.push_back(submitArray(plan, "estimate-" + fs::path(job.id).filename().string(), {job.id}, "", o, dir,
-                                       node_cpus));
-      estimate_slurm_id[job.id] = sub.arrays.back().slurm_id;
-      continue;
+  const std::map<std::string, int> wave = waves(plan, todo);
+  int last = 0;
+  for (const auto& [id, w] : wave) last = std::max(last, w);
+  std::map<std::string, std::string> array_of;  // job -> the Slurm id of its array
+  for (int w = 0; w <= last; ++w) {
+    std::vector<std::string> jobs;
+    std::string after;
+    for (const auto& job : plan.jobs) {
+      if (!wave.count(job.id) || wave.at(job.id) != w) continue;
+      jobs.push_back(job.id);
+      for (const auto* deps : {&job.depends_on, &job.after})
+        for (const auto& d : *deps)
+          if (array_of.count(d) && after.find(array_of[d]) == std::string::npos)
+            after += (after.empty() ? "" : ":") + array_of[d];
     }
-    const auto dep = std::find_if(job.depends_on.begin(), job.depends_on.end(),
-                                  [&](const std::string& d) { return estimate_slurm_id.count(d) > 0; });
-    if (dep == job.depends_on.end())
-      free_jobs.push_back(job.id);
-    else
-      users[*dep].push_back(job.id);
+    sub.arrays.push_back(submitArray(plan, "wave" + std::to_string(w), jobs, after, o, dir, node_cpus));
+    for (const auto& id : jobs) array_of[id] = sub.arrays.back().slurm_id;
   }
-  for (const auto& [estimate, jobs] : users)
-    sub.arrays.push_back(submitArray(plan, "after-" + fs::path(estimate).filename().string(), jobs,
-                                     estimate_slurm_id.at(estimate), o, dir, node_cpus));
-  if (!free_jobs.empty()) sub.arrays.push_back(submitArray(plan, "datasets", free_jobs, "", o, dir, node_cpus));
   std::string all;
   for (const auto& a : sub.arrays) all += (all.empty() ? "" : ":") + a.slurm_id;
   const std::string report = dir + "/report.sh";
   writeFileAtomically(report, "#!/bin/bash\n#SBATCH --cpus-per-task=1\n#SBATCH --output=" + dir +
                                   "/report-%j.out\nexec " + quoted(o.self_exe) + " report --plan " +
                                   quoted(o.plan_path) + " --run " + quoted(o.run_id) + "\n");
-  if (all.empty()) throw std::runtime_error("nothing to submit: every job is current");
   sub.report_job = sbatch({"--job-name=cosmo-report", "--dependency=afterany:" + all}, o, report);
   writeFileAtomically(dir + "/submitted.json", sub.toJson() + "\n");
   writeFileAtomically(suiteDir(plan.out_dir, "slurm") + "/last", o.run_id + "\n");

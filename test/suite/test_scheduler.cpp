@@ -2,6 +2,7 @@
 // dependents after it, the longest work first, a failed estimate blocking its dependents; the progress line.
 #include <gtest/gtest.h>
 
+#include "cosmo/suite/plan_inputs.hpp"
 #include "cosmo/suite/progress.hpp"
 #include "cosmo/suite/scheduler.hpp"
 
@@ -115,4 +116,23 @@ TEST(Progress, TheLineCountsDatasetsAndGivesAnEta) {
   c.processed_s = 0;
   EXPECT_EQ(progressLine(c).find("ETA"), std::string::npos);
   EXPECT_EQ(formatDuration(3725), "1 h 02 min");
+}
+
+TEST(Scheduler, AFirstPassOverASharedBagRunsBeforeTheOthersThatReadItWhateverItsEnd) {
+  Plan plan;
+  plan.jobs = {job("ntu_r3_00", 3, 600), job("ntu_r5_00", 5, 685), job("kth", 3, 900)};
+  orderFirstPasses(plan, {{"ntu_r3_00", {"/d/ntu_night_04.bag", "/d/ntu_day_01.bag"}},
+                          {"ntu_r5_00", {"/d/ntu_night_04.bag", "/d/ntu_day_02.bag"}},
+                          {"kth", {"/d/kth_day_06.bag"}}});
+  EXPECT_EQ(plan.jobs[1].after, std::vector<std::string>{"ntu_r3_00"});
+  EXPECT_TRUE(plan.jobs[0].after.empty());
+  EXPECT_TRUE(plan.jobs[2].after.empty());
+  Scheduler s(plan, {"ntu_r3_00", "ntu_r5_00", "kth"}, {16, 0});
+  EXPECT_EQ(s.next(), 2);  // kth (2700 robot-s) first; ntu_r5_00 (3425) waits for ntu_r3_00's first pass
+  s.started(2);
+  EXPECT_EQ(s.next(), 0);
+  s.started(0);
+  EXPECT_EQ(s.next(), -1);
+  s.finished(0, false);  // a failed first pass does not block it: it decompresses the bag itself
+  EXPECT_EQ(s.next(), 1);
 }

@@ -135,6 +135,18 @@ class SuiteEndToEnd : public ::testing::Test {
   }
   static double runASeconds() { return a_seconds_; }
 
+  /// Moves the reference run aside (to <root>/a_ref) while a test writes another run into the same output folder
+  /// (a dataset's metadata names its noise-model file, which lies in the output folder), and puts it back after.
+  struct ReferenceAside {
+    fs::path a, ref;
+    ReferenceAside() : a(runA()), ref(root() / "a_ref") { fs::rename(a, ref); }
+    ~ReferenceAside() {
+      std::error_code ec;
+      fs::remove_all(a, ec);
+      fs::rename(ref, a, ec);
+    }
+  };
+
  private:
   static inline fs::path* root_ = nullptr;
   static inline bool ran_a_ = false, a_ok_ = false;

@@ -290,30 +290,3 @@ TEST_F(ToolsOnFixtures, JrlIsByteIdenticalWithoutWithAColdAndWithAWarmScanCache)
   EXPECT_TRUE(off == cold) << "cache off and cold cache differ";
   EXPECT_TRUE(off == warm) << "cache off and warm cache differ";
 }
-
-/// The estimate of a sequence that names no noise models at all: written beside the outputs (and said where), then
-/// used for the dataset.
-TEST_F(ToolsOnFixtures, EstimateWithoutAModelFileWritesItBesideTheOutputs) {
-  const Fixture& f = mcd();
-  std::string yaml = readFile(f.sequence);
-  yaml = std::regex_replace(yaml, std::regex("\nenvironment: [a-z_]+\n"), "\n");
-  yaml = std::regex_replace(yaml, std::regex("\nname: tools_fixture\n"), "\nname: no_models\n");
-  ASSERT_EQ(yaml.find("environment"), std::string::npos);
-  const fs::path seq = f.dir / "no_models.yaml";  // beside the bags: its paths stay valid
-  std::ofstream(seq) << yaml;
-  const fs::path out = root() / "no_models_out";
-  const ToolRun plain = runTool("cosmo_generate", "'" + seq.string() + "' --out '" + out.string() + "' --quiet",
-                                "COSMO_SCAN_CACHE=off");
-  EXPECT_EQ(plain.status, 1) << plain.output;
-  EXPECT_NE(plain.output.find("names no noise models"), std::string::npos) << plain.output;
-  const ToolRun r = runTool("cosmo_generate",
-                            "'" + seq.string() + "' --estimate-noise-models b --out '" + out.string() + "' --quiet",
-                            "COSMO_SCAN_CACHE=off");
-  ASSERT_EQ(r.status, 0) << r.output;
-  const fs::path models = out / "no_models.noise_models.yaml";
-  EXPECT_NE(r.output.find("wrote the estimate to " + models.string()), std::string::npos) << r.output;
-  ASSERT_TRUE(fs::exists(models));
-  EXPECT_NE(readFile(models).find("from trial quad"), std::string::npos) << readFile(models);
-  const std::string recorder = readFile(out / "no_models_wifi.recorder.yaml");
-  EXPECT_NE(recorder.find(models.string()), std::string::npos) << recorder;
-}

@@ -4,6 +4,10 @@
 // Every job says the command it runs, the files it reads (their identity decides whether its outputs are
 // current), and the jobs it waits for (a dataset group that uses an estimate waits for it).
 //
+// A group that reads a compressed ROS 1 bag (MCD: bz2) whose scan cache is still empty starts after the first group
+// that reads it: the first pass decompresses it (libbz2, the slowest step of a run) and fills the cache the later
+// ones read, instead of each decompressing it again side by side.
+//
 // Names: a group is <label>[_<variant part>...] (e.g. ci_mcd_s1), its datasets <group>_<comm> (ci_mcd_s1_wifi);
 // an estimate is noise_models/<name>. Each job writes into its own folder below the output folder (<group>/,
 // noise_models/<name>/).
@@ -35,7 +39,10 @@ struct Job {
   std::vector<std::string> args;
   std::map<std::string, std::string> registration, radio;  ///< config keys set by variants (a config copy)
   std::vector<PostStep> post_steps;
-  std::vector<std::string> depends_on;  ///< job ids
+  std::vector<std::string> depends_on;  ///< job ids whose outputs it needs (a noise-model estimate)
+  /// Job ids it starts after, done or not: the group that first decodes a compressed bag it also reads (its scan
+  /// cache is empty), so that each bag is decompressed once (plan_inputs.hpp).
+  std::vector<std::string> after;
   std::vector<InputFile> inputs;
   int robots = 1;        ///< threads of its odometry pass (one per robot)
   double seconds = 0.0;  ///< sequence time it processes (estimated from the references; for the ETA)

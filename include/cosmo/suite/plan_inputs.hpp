@@ -1,7 +1,9 @@
 #pragma once
 // The files a job reads (plan.hpp: their identities decide whether its outputs are current) and the sequence
 // time it processes.
+#include <map>
 #include <string>
+#include <vector>
 
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/suite/plan.hpp"
@@ -16,6 +18,13 @@ void addGroupInputs(const Plan& plan, Job& job, const pipeline::SequenceConfig& 
 /// An estimate's inputs: the program, the sequence config, that trial's bag and reference, the front-end's
 /// config files.
 void addEstimateInputs(const Plan& plan, Job& job, const pipeline::SequenceConfig& config, const std::string& trial);
+
+/// The trial bags of `config` that a run would decompress first: ROS 1 bags with compressed chunks whose scan cache
+/// (trials/scan_cache.hpp) is not there yet.
+std::vector<std::string> coldCompressedBags(const pipeline::SequenceConfig& config);
+
+/// Sets each group's `after`: the earlier group (in the plan's order) that first reads a bag of `cold` it reads.
+void orderFirstPasses(Plan& plan, const std::map<std::string, std::vector<std::string>>& cold);
 
 /// Throws one std::runtime_error listing every input of every job that does not exist (with the suite file),
 /// estimates' outputs aside.

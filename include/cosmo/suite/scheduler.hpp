@@ -10,7 +10,8 @@
 //
 // Order: noise-model estimates first (others wait for them), then the longest work first (sequence seconds x
 // robots), which keeps the last job from starting late; ties in the plan's order. A job whose dependency failed
-// is not run.
+// is not run; a job that only starts after another (`after`: a first pass over a compressed bag) starts when that
+// one has ended, however it ended.
 #include <string>
 #include <vector>
 

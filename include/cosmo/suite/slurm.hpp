@@ -1,10 +1,12 @@
 #pragma once
 // A suite on a Slurm cluster: one array task per job that is not current (a dataset group: its comm models share
-// one odometry pass, as on one machine), each running `cosmo_suite job` exactly as a local run does, so the resume
-// rules and the outputs are the same. Each noise-model estimate is a job of its own; the groups that use it are an
-// array that starts after it (afterany: a task whose estimate failed stops with that reason, rather than waiting
-// forever); the other groups are one array that starts at once. A last job writes the manifest and the report
-// once every array has ended. The submission is kept in .suite/slurm/<run>/submitted.json for `cosmo_suite
+// one odometry pass, as on one machine; a noise-model estimate), each running `cosmo_suite job` exactly as a local
+// run does, so the resume rules and the outputs are the same. The jobs go in waves, one array each: wave 0 holds
+// the jobs that wait for nothing (the estimates among them), wave k those that wait for a job of wave k - 1 (the
+// groups that use an estimate, a group that starts after the first pass over a bag it shares), with
+// --dependency=afterany on the arrays of the jobs they wait for (afterany: a task whose estimate failed stops with
+// that reason rather than waiting in the queue for ever). A last job writes the manifest and the report once every
+// array has ended. The submission is kept in .suite/slurm/<run>/submitted.json for `cosmo_suite
 // status`. The output folder and the programs must be at the same paths on every node (a shared file system).
 #include <map>
 #include <string>
