@@ -1,8 +1,10 @@
 #include "cosmo/comm/radio_params.hpp"
+#include "cosmo/comm/radio_trace.hpp"
 #include "cosmo/common/param_list.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
 namespace cosmo {
@@ -77,7 +79,7 @@ RadioParams RadioParams::fromConfig(const ConfigNode& root) {
   try {
     p = byName(preset);
   } catch (const std::invalid_argument& e) { throw std::invalid_argument(node["preset"].where + ": " + e.what()); }
-  readParams(node, p, {"preset", "timeout_mode", "size_model"});
+  readParams(node, p, {"preset", "timeout_mode", "size_model", "trace"});
   if (node.has("timeout_mode")) {
     std::string s;
     node.read("timeout_mode", s);
@@ -87,6 +89,13 @@ RadioParams RadioParams::fromConfig(const ConfigNode& root) {
     std::string s;
     node.read("size_model", s);
     p.size_model = sizeModelFromString(s, node["size_model"].where);
+  }
+  if (node.has("trace")) {
+    std::string file;
+    node.read("trace", file);
+    std::filesystem::path path(file);
+    if (path.is_relative() && !node.file.empty()) path = std::filesystem::path(node.file).parent_path() / path;
+    p.trace = std::make_shared<const RadioTrace>(RadioTrace::read(path.string()));
   }
   p.validate(node.where.empty() ? "RadioParams" : node.where);
   return p;

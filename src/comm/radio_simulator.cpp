@@ -17,14 +17,19 @@ std::string toString(Transfer::Outcome outcome) {
   return outcome == Transfer::Outcome::Delivered ? "delivered" : "timed_out";
 }
 
+std::string toString(Transfer::Link link) {
+  return link == Transfer::Link::Distance ? "distance" : link == Transfer::Link::Trace ? "trace" : "mixed";
+}
+
 RadioSimulator::RadioSimulator(const RadioParams& p, std::vector<char> robots, std::uint64_t seed)
-    : params_(p), seed_(seed), rng_(seed) {
+    : params_(p), seed_(seed), rng_(seed), link_(p) {
   params_.validate();
   std::sort(robots.begin(), robots.end());
   robots.erase(std::unique(robots.begin(), robots.end()), robots.end());
   if (robots.empty()) throw std::invalid_argument("RadioSimulator: the team has no robots");
   robot_ids_ = robots;
   for (char r : robot_ids_) robots_[r] = Robot{};
+  if (params_.trace) params_.trace->checkTeam(robot_ids_);
 }
 
 RadioSimulator::Robot& RadioSimulator::robot(char id, const char* what) {
@@ -122,6 +127,12 @@ std::vector<Transfer> RadioSimulator::step(double t) {
   return terminateCommunications(t);
 }
 
+LinkSample RadioSimulator::sampleLink(char a, char b, double t, double distance) {
+  const LinkSample s = link_.sample(a, b, t, distance, radio_random::uniform01(rng_));
+  if (params_.trace) ++(s.from_trace ? stats_.trace_samples : stats_.fallback_samples);
+  return s;
+}
+
 void RadioSimulator::initializeNewCommunications(double t) {
   // Candidate pairs (sorted order), then a seeded random order so that no robot id is favoured.
   std::vector<std::pair<char, char>> candidates;
@@ -131,7 +142,7 @@ void RadioSimulator::initializeNewCommunications(double t) {
     for (std::size_t j = i + 1; j < robot_ids_.size(); ++j) {
       const Robot& b = robots_.at(robot_ids_[j]);
       if (!b.on || b.busy) continue;
-      if ((a.position - b.position).norm() > params_.d_init) continue;
+      if (!link_.inRange(robot_ids_[i], robot_ids_[j], t, (a.position - b.position).norm())) continue;
       if (undeliveredCount(robot_ids_[i], robot_ids_[j]) == 0 && undeliveredCount(robot_ids_[j], robot_ids_[i]) == 0)
         continue;
       candidates.emplace_back(robot_ids_[i], robot_ids_[j]);
@@ -146,7 +157,8 @@ void RadioSimulator::initializeNewCommunications(double t) {
     if (a.busy || b.busy) continue;
     const double d = (a.position - b.position).norm();
     ++stats_.init_attempts;
-    if (!radio_random::bernoulli(rng_, params_.phi(d))) continue;
+    const LinkSample link = sampleLink(ia, ib, t, d);
+    if (!link.connected) continue;
     const std::size_t na = undeliveredCount(ia, ib), nb = undeliveredCount(ib, ia);
     const bool a_sends = na > nb || (na == nb && radio_random::bernoulli(rng_, 0.5));
     const char s = a_sends ? ia : ib, r = a_sends ? ib : ia;
@@ -159,6 +171,9 @@ void RadioSimulator::initializeNewCommunications(double t) {
     c.bytes = sender.offers.at(c.keyframe).payload_bytes;
     c.last_progress = t;
     c.distance = d;
+    c.capacity_Bps = link.throughput_Bps;
+    c.latency = link.latency;
+    (link.from_trace ? c.used_trace : c.used_distance) = true;
     a.busy = b.busy = true;
     active_.push_back(c);
     new_this_step_.push_back(true);
@@ -188,28 +203,51 @@ void RadioSimulator::updateActiveCommunications(double t) {
     const Robot& r = robots_.at(c.receiver);
     c.distance = (s.position - r.position).norm();
     c.interference = interference[i];
-    bool connected;
-    if (new_this_step_[i]) {
-      connected = true;  // the initialization sample is this step's sample
-    } else {
-      connected = s.on && r.on && radio_random::bernoulli(rng_, params_.phi(c.distance));
+    bool connected = true;  // a new communication: the initialization sample is this step's sample
+    if (!new_this_step_[i]) {
+      connected = false;
+      if (s.on && r.on) {
+        const LinkSample link = sampleLink(c.sender, c.receiver, t, c.distance);
+        (link.from_trace ? c.used_trace : c.used_distance) = true;
+        connected = link.connected;
+        if (connected) {
+          c.capacity_Bps = link.throughput_Bps;
+          c.latency = link.latency;
+        }
+      }
       ++stats_.link_samples;
       if (connected) ++stats_.link_successes;
     }
-    const double rate = connected ? params_.bandwidthBps() / c.interference : 0.0;
+    const double rate = connected ? c.capacity_Bps / c.interference : 0.0;
     const double before = c.bytes_delivered;
     c.bytes_delivered = std::min(static_cast<double>(c.bytes), c.bytes_delivered + rate * params_.step);
     stats_.bytes_transmitted += c.bytes_delivered - before;
     c.throughput_Bps = rate;
-    if (connected) c.last_progress = t;
+    if (rate > 0.0) c.last_progress = t;
     new_this_step_[i] = false;
   }
+}
+
+void RadioSimulator::received(const Transfer& x) {
+  ++stats_.delivered;
+  stats_.bytes_delivered += static_cast<double>(x.bytes);
 }
 
 std::vector<Transfer> RadioSimulator::terminateCommunications(double t) {
   std::vector<Transfer> ended;
   std::vector<ActiveCommunication> keep;
   const double eps = 1e-9 * std::max(1.0, std::abs(t));
+  std::vector<Transfer> flying;
+  for (Transfer& x : in_flight_) {  // sent in earlier steps, arriving now
+    if (x.received > t + eps) {
+      flying.push_back(x);
+      continue;
+    }
+    x.received = t;
+    received(x);
+    ended.push_back(x);
+  }
+  in_flight_ = std::move(flying);
   for (const ActiveCommunication& c : active_) {
     Transfer x;
     x.sender = c.sender;
@@ -219,11 +257,13 @@ std::vector<Transfer> RadioSimulator::terminateCommunications(double t) {
     x.end = t;
     x.bytes = c.bytes;
     x.bytes_delivered = c.bytes_delivered;
+    x.link = c.used_trace ? (c.used_distance ? Transfer::Link::Mixed : Transfer::Link::Trace) : Transfer::Link::Distance;
     if (c.bytes_delivered >= static_cast<double>(c.bytes)) {
       x.outcome = Transfer::Outcome::Delivered;
       robots_.at(c.sender).delivered_to[c.receiver].insert(c.keyframe);
-      ++stats_.delivered;
-      stats_.bytes_delivered += static_cast<double>(c.bytes);
+      x.received = t + c.latency;
+      if (c.latency > 0.0) in_flight_.push_back(x);  // reaches the receiver in a later step
+      else received(x);
     } else {
       const double since = params_.timeout_mode == RadioParams::TimeoutMode::NoProgress ? c.last_progress : c.start;
       if (t - since < params_.timeout - eps) {
@@ -235,11 +275,12 @@ std::vector<Transfer> RadioSimulator::terminateCommunications(double t) {
     }
     robots_.at(c.sender).busy = false;
     robots_.at(c.receiver).busy = false;
-    ended.push_back(x);
+    if (x.outcome == Transfer::Outcome::TimedOut || c.latency <= 0.0) ended.push_back(x);
   }
   active_ = std::move(keep);
   new_this_step_.assign(active_.size(), false);
-  std::sort(ended.begin(), ended.end(), [](const Transfer& a, const Transfer& b) {
+  stats_.in_flight = in_flight_.size();
+  std::stable_sort(ended.begin(), ended.end(), [](const Transfer& a, const Transfer& b) {
     return a.sender != b.sender ? a.sender < b.sender : a.receiver < b.receiver;
   });
   log_.insert(log_.end(), ended.begin(), ended.end());

@@ -1,5 +1,8 @@
 #include "cosmo/comm/transfer_log.hpp"
+#include "cosmo/comm/radio_trace.hpp"
 
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,11 +14,14 @@
 namespace cosmo {
 
 void writeTransferCsv(std::ostream& out, const std::vector<Transfer>& transfers) {
-  out << "sender,receiver,keyframe,start,end,bytes,outcome\n";
+  out << "sender,receiver,keyframe,start,end,bytes,outcome,received,bytes_sent,link\n";
   out << std::fixed << std::setprecision(3);
-  for (const Transfer& x : transfers)
+  for (const Transfer& x : transfers) {
     out << x.sender << ',' << x.receiver << ',' << x.keyframe << ',' << x.start << ',' << x.end << ',' << x.bytes << ','
-        << toString(x.outcome) << '\n';
+        << toString(x.outcome) << ',';
+    if (std::isfinite(x.received)) out << x.received;
+    out << ',' << static_cast<std::uint64_t>(std::floor(x.bytes_delivered)) << ',' << toString(x.link) << '\n';
+  }
 }
 
 nlohmann::json transferSummary(const RadioStats& s, const RadioParams& p) {
@@ -44,6 +50,18 @@ nlohmann::json transferSummary(const RadioStats& s, const RadioParams& p) {
   return j;
 }
 
+nlohmann::json transferSummary(const RadioSimulator& radio) {
+  nlohmann::json j = transferSummary(radio.stats(), radio.params());
+  j["time_origin_ns"] = radio.timeOrigin();
+  j["in_flight"] = radio.stats().in_flight;
+  if (const auto& trace = radio.params().trace)
+    j["trace"] = {{"file", trace->source()},
+                  {"windows", trace->windowCount()},
+                  {"samples_from_trace", radio.stats().trace_samples},
+                  {"samples_from_distance_model", radio.stats().fallback_samples}};
+  return j;
+}
+
 std::string transferSummaryJson(const RadioStats& s, const RadioParams& p) { return transferSummary(s, p).dump(); }
 
 namespace {
@@ -60,16 +78,24 @@ void writeAtomically(const std::string& path, const std::string& text) {
   std::filesystem::rename(tmp, path, ec);
   if (ec) throw std::runtime_error(path + ": cannot rename temporary file: " + ec.message());
 }
-}  // namespace
 
-void writeTransferLog(const std::string& csv_path, const std::vector<Transfer>& transfers, const RadioStats& stats,
-                      const RadioParams& params) {
+void writeLogFiles(const std::string& csv_path, const std::vector<Transfer>& transfers, const nlohmann::json& summary) {
   std::ostringstream csv;
   writeTransferCsv(csv, transfers);
   writeAtomically(csv_path, csv.str());
   std::string base = csv_path;
   if (base.size() > 4 && base.compare(base.size() - 4, 4, ".csv") == 0) base.resize(base.size() - 4);
-  writeAtomically(base + ".summary.json", transferSummaryJson(stats, params) + "\n");
+  writeAtomically(base + ".summary.json", summary.dump() + "\n");
+}
+}  // namespace
+
+void writeTransferLog(const std::string& csv_path, const std::vector<Transfer>& transfers, const RadioStats& stats,
+                      const RadioParams& params) {
+  writeLogFiles(csv_path, transfers, transferSummary(stats, params));
+}
+
+void writeTransferLog(const std::string& csv_path, const RadioSimulator& radio) {
+  writeLogFiles(csv_path, radio.transferLog(), transferSummary(radio));
 }
 
 }  // namespace cosmo

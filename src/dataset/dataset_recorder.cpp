@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "cosmo/dataset/atomic_file.hpp"
+#include "cosmo/dataset/gap_bridge.hpp"
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/stats.hpp"
 
@@ -62,7 +63,7 @@ bool DatasetRecorder::knows(char robot) const {
 }
 
 void DatasetRecorder::addKeyframe(char robot, std::size_t index, StampNs stamp, const Pose3& odometry_from_previous,
-                                  const std::optional<Pose3>& reference_pose) {
+                                  const std::optional<Pose3>& reference_pose, std::optional<std::size_t> bridge_from) {
   const std::string what = "keyframe " + std::string(1, robot) + std::to_string(index);
   auto refuse = [&](const std::string& why) {
     ++counts_.rejected;
@@ -70,7 +71,8 @@ void DatasetRecorder::addKeyframe(char robot, std::size_t index, StampNs stamp, 
   };
   if (!knows(robot)) refuse("robot '" + std::string(1, robot) + "' is not in the recorder's robot list");
   if (index > jrl::kIndexMask) refuse("index too large for a JRL key");
-  if (index > 0 && !finitePose(odometry_from_previous)) refuse("odometry is not finite");
+  if (bridge_from && *bridge_from >= index) refuse("bridged from keyframe " + std::to_string(*bridge_from) + ", not before it");
+  if (index > 0 && !bridge_from && !finitePose(odometry_from_previous)) refuse("odometry is not finite");
   auto& frames = keyframes_[robot];
   if (frames.count(index)) refuse("duplicate keyframe index");
   const auto next = frames.lower_bound(index);
@@ -82,7 +84,8 @@ void DatasetRecorder::addKeyframe(char robot, std::size_t index, StampNs stamp, 
            std::to_string(std::prev(next)->second.stamp));
   Keyframe k;
   k.stamp = stamp;
-  k.odometry = index == 0 ? Pose3::Identity() : odometry_from_previous;
+  k.odometry = index == 0 || bridge_from ? Pose3::Identity() : odometry_from_previous;
+  k.bridge_from = bridge_from;
   if (reference_pose && finitePose(*reference_pose)) k.reference = *reference_pose;
   frames.emplace(index, k);
   ++counts_.keyframes[robot];
@@ -114,17 +117,47 @@ void DatasetRecorder::addLoopClosure(const LoopClosureMeasurement& input) {
   ++(own1 && own2 ? counts_.intra : counts_.inter);
 }
 
+std::optional<std::size_t> DatasetRecorder::Chain::find(std::size_t i) const {
+  const auto it = position.find(i);
+  return it == position.end() ? std::nullopt : std::optional<std::size_t>(it->second);
+}
+
+// From keyframe 0, each step goes to a keyframe bridged from the current one, else to the next index unless that
+// one is bridged from elsewhere.
+DatasetRecorder::Chain DatasetRecorder::chainOf(char robot) const {
+  Chain c;
+  const auto it = keyframes_.find(robot);
+  if (it == keyframes_.end()) return c;
+  const auto& frames = it->second;
+  std::map<std::size_t, std::size_t> bridged;  // from -> the first keyframe bridged from it
+  for (const auto& [index, frame] : frames)
+    if (frame.bridge_from) bridged.emplace(*frame.bridge_from, index);
+  auto at = frames.find(0);
+  while (at != frames.end()) {
+    c.position[at->first] = c.frames.size();
+    c.index.push_back(at->first);
+    c.frames.push_back(&at->second);
+    if (const auto b = bridged.find(at->first); b != bridged.end()) {
+      at = frames.find(b->second);
+    } else {
+      at = frames.find(at->first + 1);
+      if (at != frames.end() && at->second.bridge_from) break;
+    }
+  }
+  return c;
+}
+
+std::optional<std::size_t> DatasetRecorder::chainEnd(char robot) const {
+  const Chain c = chainOf(robot);
+  return c.empty() ? std::nullopt : std::optional<std::size_t>(c.index.back());
+}
+
 DatasetRecorder::Chains DatasetRecorder::keyframeChains(BuildReport& report) const {
   Chains chains;
   for (const char r : robots_) {
-    auto& c = chains[r];
+    chains[r] = chainOf(r);
     const auto it = keyframes_.find(r);
-    if (it == keyframes_.end()) continue;
-    for (const auto& [index, frame] : it->second) {
-      if (index != c.size()) break;
-      c.push_back(&frame);
-    }
-    report.keyframes_pending += it->second.size() - c.size();
+    if (it != keyframes_.end()) report.keyframes_pending += it->second.size() - chains[r].size();
   }
   return chains;
 }
@@ -133,7 +166,7 @@ std::map<char, std::vector<DatasetRecorder::Placed>> DatasetRecorder::placeLoopC
                                                                                         BuildReport& report) const {
   const auto written = [&](std::uint64_t key) {
     const auto c = chains.find(jrl::robotOf(key));
-    return c != chains.end() && jrl::indexOf(key) < c->second.size();
+    return c != chains.end() && c->second.find(jrl::indexOf(key));
   };
   std::map<char, std::vector<Placed>> placed;
   for (std::size_t i = 0; i < loop_closures_.size(); ++i) {
@@ -142,17 +175,17 @@ std::map<char, std::vector<DatasetRecorder::Placed>> DatasetRecorder::placeLoopC
       ++report.loop_closures_pending;
       continue;
     }
-    const auto& own = chains.at(lc.owner);
+    const Chain& own = chains.at(lc.owner);
     Placed p{0, &lc, i};
-    if (lc.computed_at > own.back()->stamp) {
+    if (lc.computed_at > own.frames.back()->stamp) {
       p.entry = own.size();  // after the last keyframe; split into one entry each (addRobot)
     } else {
       // Last keyframe with stamp <= computed_at (keyframe 0 when computed before it).
-      const auto after = std::upper_bound(own.begin(), own.end(), lc.computed_at,
+      const auto after = std::upper_bound(own.frames.begin(), own.frames.end(), lc.computed_at,
                                           [](StampNs t, const Keyframe* k) { return t < k->stamp; });
-      const std::size_t at = after == own.begin() ? 0 : static_cast<std::size_t>(after - own.begin()) - 1;
-      std::size_t earliest = jrl::indexOf(lc.key1);
-      if (jrl::robotOf(lc.key2) == lc.owner) earliest = std::max<std::size_t>(earliest, jrl::indexOf(lc.key2));
+      const std::size_t at = after == own.frames.begin() ? 0 : static_cast<std::size_t>(after - own.frames.begin()) - 1;
+      std::size_t earliest = *own.find(jrl::indexOf(lc.key1));
+      if (jrl::robotOf(lc.key2) == lc.owner) earliest = std::max(earliest, *own.find(jrl::indexOf(lc.key2)));
       p.entry = std::max(at, earliest);
     }
     placed[lc.owner].push_back(p);
@@ -162,7 +195,8 @@ std::map<char, std::vector<DatasetRecorder::Placed>> DatasetRecorder::placeLoopC
 
 void DatasetRecorder::addRobot(char r, const Chains& chains, std::vector<Placed> closures, jrl::Dataset& ds,
                                BuildReport& report) const {
-  const auto& own = chains.at(r);
+  const Chain& chain = chains.at(r);
+  const std::vector<const Keyframe*>& own = chain.frames;
   if (own.empty()) {
     report.robots_without_keyframes.push_back(r);
     return;
@@ -170,16 +204,25 @@ void DatasetRecorder::addRobot(char r, const Chains& chains, std::vector<Placed>
   ds.robots.push_back(r);
   std::sort(closures.begin(), closures.end());
 
+  const auto key = [&](std::size_t position) { return jrl::symbol(r, chain.index[position]); };
   std::vector<jrl::Entry> entries(own.size());
   std::vector<Pose3> init(own.size());
   init[0] = own[0]->reference.value_or(Pose3::Identity());
   entries[0].stamp = own[0]->stamp;
-  entries[0].factors.push_back(jrl::Factor::priorPose3(jrl::symbol(r, 0), init[0], priorCovariance()));
+  entries[0].factors.push_back(jrl::Factor::priorPose3(key(0), init[0], priorCovariance()));
   for (std::size_t i = 1; i < own.size(); ++i) {
     entries[i].stamp = own[i]->stamp;
-    entries[i].factors.push_back(
-        jrl::Factor::betweenPose3(jrl::symbol(r, i - 1), jrl::symbol(r, i), own[i]->odometry, noise_.odometry));
-    init[i] = init[i - 1] * own[i]->odometry;
+    Pose3 odometry = own[i]->odometry;
+    Matrix6 covariance = noise_.odometry;
+    if (own[i]->bridge_from) {
+      const dataset::GapBridge b = dataset::bridgeGap(own[i - 1]->stamp, own[i - 1]->reference, own[i]->stamp,
+                                                      own[i]->reference, noise_.odometry, keyframe_distance_);
+      odometry = b.measurement;
+      covariance = b.covariance;
+      report.bridges.push_back({r, chain.index[i - 1], chain.index[i], b.gap_seconds, b.rule});
+    }
+    entries[i].factors.push_back(jrl::Factor::betweenPose3(key(i - 1), key(i), odometry, covariance));
+    init[i] = init[i - 1] * odometry;
     ++report.odometry;
   }
 
@@ -188,11 +231,12 @@ void DatasetRecorder::addRobot(char r, const Chains& chains, std::vector<Placed>
   jrl::Values& gt = (*ds.groundtruth)[r];
   jrl::Values& in = (*ds.initialization)[r];
   for (std::size_t i = 0; i < own.size(); ++i) {
-    jrl::insertPose3(in, jrl::symbol(r, i), init[i]);
-    if (report.labelled) jrl::insertPose3(gt, jrl::symbol(r, i), *own[i]->reference);
+    jrl::insertPose3(in, key(i), init[i]);
+    if (report.labelled) jrl::insertPose3(gt, key(i), *own[i]->reference);
   }
-  const auto referenceOf = [&](std::uint64_t key) -> const std::optional<Pose3>& {
-    return chains.at(jrl::robotOf(key))[jrl::indexOf(key)]->reference;
+  const auto referenceOf = [&](std::uint64_t k) -> const std::optional<Pose3>& {
+    const Chain& c = chains.at(jrl::robotOf(k));
+    return c.frames[*c.find(jrl::indexOf(k))]->reference;
   };
   for (const Placed& p : closures) {
     const LoopClosureMeasurement& lc = *p.lc;
@@ -208,7 +252,7 @@ void DatasetRecorder::addRobot(char r, const Chains& chains, std::vector<Placed>
     const bool intra = jrl::robotOf(lc.key2) == r;
     ++(intra ? report.intra : report.inter);
     if (!intra && !in.count(lc.key2)) {
-      jrl::insertPose3(in, lc.key2, init[jrl::indexOf(lc.key1)] * lc.measurement);
+      jrl::insertPose3(in, lc.key2, init[*chain.find(jrl::indexOf(lc.key1))] * lc.measurement);
       if (report.labelled) jrl::insertPose3(gt, lc.key2, *referenceOf(lc.key2));
     }
     if (report.labelled) {
@@ -231,7 +275,7 @@ jrl::Dataset DatasetRecorder::build(BuildReport* report_out) const {
   // Labels need a reference pose for every written keyframe.
   std::size_t without_reference = 0;
   for (const auto& [r, c] : chains)
-    for (const Keyframe* k : c) without_reference += k->reference ? 0 : 1;
+    for (const Keyframe* k : c.frames) without_reference += k->reference ? 0 : 1;
   report.labelled = without_reference == 0;
   if (!report.labelled)
     report.labels_note = std::to_string(without_reference) +
@@ -303,6 +347,13 @@ std::string DatasetRecorder::metadataYaml(const BuildReport& report) const {
   out << "keyframes_pending: " << report.keyframes_pending << "  # after a gap in a robot's indices, not written\n";
   out << "loop_closures_pending: " << report.loop_closures_pending << "  # touching keys not written\n";
   out << "inputs_rejected: " << counts_.rejected << "\n";
+  out << "bridges:";  // odometry factors across front-end restarts (include/cosmo/dataset/gap_bridge.hpp)
+  if (report.bridges.empty()) out << " []";
+  for (const BuildReport::Bridge& b : report.bridges)
+    out << "\n  - {robot: " << b.robot << ", from: " << jrl::keyName(jrl::symbol(b.robot, b.from))
+        << ", to: " << jrl::keyName(jrl::symbol(b.robot, b.to)) << ", gap_seconds: " << b.gap_seconds
+        << ", rule: " << b.rule << "}";
+  out << "\n";
   for (const auto& [key, value] : extra_metadata_) out << key << ": " << value << "\n";
   return out.str();
 }

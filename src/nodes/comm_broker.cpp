@@ -9,8 +9,11 @@
 //             /comm/links          (visualization_msgs/MarkerArray, frame `world`) active links, coloured by
 //                                  their mean throughput so far (red 0 .. green B)
 //             /comm/stats          (std_msgs/String, JSON, once per step batch) counters + active links
+//             /comm/offered        (std_msgs/String, JSON, latched) per robot 1 + the highest keyframe index it
+//                                  offered: a restarted front-end numbers its keyframes after it
 // Params      ~robots [a, b, c] (or "a,b,c"; absent: the player's sequence, /player/robots), ~comm wifi|proradio,
-//             ~config (a config/comm/*.yaml, wins over ~comm), ~seed (int), ~size_model paper|real,
+//             ~config (a config/comm/*.yaml, wins over ~comm), ~trace (a radio trace CSV replayed inside its
+//             windows, phi(d) outside: comm/radio_trace.hpp), ~seed (int), ~size_model paper|real,
 //             ~timeout_mode no_progress|total_duration, ~log_file (CSV of every transfer + <name>.summary.json;
 //             written every 30 s of ROS time and on shutdown; empty = none), ~xz_preset (0..9, default 6),
 //             ~frame_id (default world), ~compress_payload (default true; false with size_model paper skips xz,
@@ -78,7 +81,7 @@ class CommBroker {
     std::lock_guard<std::mutex> lock(mutex_);
     if (o_.log_file.empty()) return;
     try {
-      writeTransferLog(o_.log_file, radio().transferLog(), radio().stats(), radio().params());
+      writeTransferLog(o_.log_file, radio());
     } catch (const std::exception& e) { ROS_ERROR("comm_broker: %s", e.what()); }
   }
 
@@ -96,6 +99,7 @@ class CommBroker {
     }
     links_pub_ = nh.advertise<visualization_msgs::MarkerArray>("comm/links", 2);
     stats_pub_ = nh.advertise<std_msgs::String>("comm/stats", 10);
+    offered_pub_ = nh.advertise<std_msgs::String>("comm/offered", 1, true);
   }
 
   void connectLockstep(ros::NodeHandle& nh) {
@@ -130,7 +134,17 @@ class CommBroker {
     std::lock_guard<std::mutex> lock(mutex_);
     offered_[{r, m.index}] = ros_glue::offeredKeyframeMeta(m);
     radio_.offer(r, m.index, std::move(payload));
+    publishOffered();
     runPendingSteps();
+  }
+
+  /// With the mutex held: per robot, where a restarted front-end continues its keyframe indices.
+  void publishOffered() {
+    nlohmann::json next = nlohmann::json::object();
+    for (const auto& [r, n] : radio_.nextIndex()) next[std::string(1, r)] = n;
+    std_msgs::String m;
+    m.data = next.dump();
+    offered_pub_.publish(m);
   }
 
   void onPose(char r, const geometry_msgs::PoseStamped& m) {
@@ -196,8 +210,9 @@ class CommBroker {
         if (pub.getNumSubscribers() == 0) return false;
       return true;
     };
-    if (!ros_glue::waitUntil(connected, ros_glue::wallDeadline(30.0)))
-      ROS_WARN("comm_broker: lockstep: not every front-end is connected; going on");
+    // No limit here: the player stops the run when a front-end never connects (its peer policy).
+    while (ros::ok() && !ros_glue::waitUntil(connected, ros_glue::wallDeadline(10.0)))
+      ROS_INFO("comm_broker: lockstep: waiting for every front-end's keyframe_scans and received_scans to connect");
   }
 
   void onStepRequest(const cosmo::RadioStepRequest& m) {
@@ -253,7 +268,7 @@ class CommBroker {
     if (o_.log_file.empty() || radio_time - last_log_write_ < 30.0) return;
     last_log_write_ = radio_time;
     try {
-      writeTransferLog(o_.log_file, radio().transferLog(), radio().stats(), radio().params());
+      writeTransferLog(o_.log_file, radio());
     } catch (const std::exception& ex) { ROS_ERROR_THROTTLE(30.0, "comm_broker: %s", ex.what()); }
   }
 
@@ -267,7 +282,7 @@ class CommBroker {
   std::vector<ros::Subscriber> keyframe_subs_, pose_subs_, trajectory_subs_;
   std::map<char, ros::Publisher> received_pubs_;
   ros::Subscriber sequence_sub_, step_request_sub_;
-  ros::Publisher links_pub_, stats_pub_, step_done_pub_;
+  ros::Publisher links_pub_, stats_pub_, step_done_pub_, offered_pub_;
 };
 
 }  // namespace

@@ -8,18 +8,25 @@
 // Publishes   keyframe_scans  (cosmo/Keyframe) keyframe scans offered to the comm_broker
 //             keyframes_meas  (cosmo/RecorderKeyframe), loop_closures (cosmo/RecorderLoopClosure) for the recorder
 //             ack             (cosmo/FrontendAck: last scan processed, scans / teammate scans processed,
-//                             keyframes offered, loop closures published) after every scan and delivery, for the
-//                             player's lockstep mode
+//                             keyframes offered, loop closures published, the last measurement number sent, scans
+//                             waiting and skipped) after every scan and delivery (real time: also every second)
 //             markers         (visualization_msgs/MarkerArray, frame world): trajectory, keyframes, loop closures
 //                             (green accepted inlier, orange accepted outlier vs. the reference, red rejected;
 //                             blue accepted when there is no reference)
 //             TF <r>/odom -> <r>/base_link (odometry) and world -> <r>/odom (alignment: reference of keyframe 0,
 //             identity without a reference)
+// The recorder (ros_glue::RecorderLink): every measurement is numbered and kept until /recorder/progress
+//   acknowledges it, and sent again to a respawned recorder. Real time: the scans wait in a bounded queue of
+//   ~scan_queue scans (the oldest waiting one is skipped when it is full, counted in the ack and the keyframes:
+//   ros_glue::ScanInput), and a front-end that starts while the recorder holds measurements of its robot is a
+//   restart: it continues the robot's keyframe indices and numbers, its first keyframe bridged (docs/design.md).
+//   The node ends (SIGINT) when the process that started it ends (team_launcher, roslaunch).
 // Params      ~robot (default: the namespace), ~config_dir (frontend/odometry/place_recognition/registration
 //             .yaml), ~odometry loam|reference|external, ~noise_models (YAML, for the inlier/outlier colours;
 //             empty in lockstep: the player's sequence's), ~world_frame (world), ~reference_wait (s of message
 //             time a scan waits for its reference pose; without any reference, live use, scans are processed
-//             this much later), ~lockstep (false), ~stamp end|start
+//             this much later), ~lockstep (false), ~scan_queue (real time, default 10), ~recorder_wait (s a
+//             starting front-end waits for the recorder's progress, default 10), ~stamp end|start
 //             (the sweep instant of the points' header stamp; scans are processed stamped at the sweep end)
 // Lockstep (~lockstep true, sequence.launch mode:=lockstep): the reference trajectory is the player's sequence's
 //   own (reference_trajectory, cosmo/ReferenceTrajectory, latched: the CSV as the offline driver reads it, poses
@@ -32,6 +39,12 @@
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdio>
 #include <memory>
 #include <optional>
 
@@ -48,7 +61,9 @@
 #include "cosmo/ros/node_main.hpp"
 #include "cosmo/ros/point_cloud.hpp"
 #include "cosmo/ros/pose_msg.hpp"
+#include "cosmo/ros/recorder_link.hpp"
 #include "cosmo/ros/resolved_sequence.hpp"
+#include "cosmo/ros/scan_input.hpp"
 #include "cosmo/ros/team_sequence_msg.hpp"
 
 using namespace cosmo;
@@ -58,7 +73,8 @@ namespace {
 struct Options {
   char robot = 'a';
   std::string config_dir, odometry = "loam", noise_models, world_frame = "world";
-  double reference_wait = 0.5;
+  double reference_wait = 0.5, recorder_wait = 10.0;
+  int scan_queue = 10;
   bool lockstep = false;
   bool stamp_at_end = true;  ///< ~stamp: the points topic's header stamp is the sweep end (else its start)
 };
@@ -77,6 +93,9 @@ Options readOptions(const ros::NodeHandle& pnh) {
   pnh.param<std::string>("world_frame", o.world_frame, o.world_frame);
   pnh.param("reference_wait", o.reference_wait, o.reference_wait);
   pnh.param("lockstep", o.lockstep, o.lockstep);
+  pnh.param("scan_queue", o.scan_queue, o.scan_queue);
+  pnh.param("recorder_wait", o.recorder_wait, o.recorder_wait);
+  if (o.scan_queue < 1) throw std::runtime_error("~scan_queue must be at least 1, got " + std::to_string(o.scan_queue));
   pnh.param<std::string>("stamp", stamp, stamp);
   if (stamp != "end" && stamp != "start")
     throw std::runtime_error("~stamp must be start or end (the sweep instant of the header stamp), got '" + stamp +
@@ -99,6 +118,7 @@ class FrontendNode {
       : o_(std::move(options)),
         params_(pipeline::FrontendParams::loadDir(o_.config_dir)),
         frontend_(std::make_unique<pipeline::RobotFrontend>(o_.robot, params_)),
+        recorder_(nh, o_.robot, !o_.lockstep, o_.recorder_wait),
         map_(o_.robot, markerNoiseModels(o_.noise_models)),
         pending_(toStampNs(o_.reference_wait), !o_.lockstep),
         odom_frame_(std::string(1, o_.robot) + "/odom"),
@@ -109,21 +129,57 @@ class FrontendNode {
              o_.lockstep ? ", lockstep (reference from the player's sequence)" : "");
   }
 
+  /// At the end: what it processed and skipped, its queue's and its memory's peaks (falling behind, docs/benchmarks.md).
+  void summary() const {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    std::printf("frontend %c: %zu scans processed, %u skipped, at most %zu waiting; %zu keyframes, %llu measurements "
+                "sent, %zu not acknowledged; peak memory %.0f MB\n",
+                o_.robot, frontend_->scansProcessed(), scansSkipped(), scans_ ? scans_->peak() : 0,
+                frontend_->keyframes().size(), static_cast<unsigned long long>(recorder_.lastSeq()),
+                recorder_.unacknowledged(), usage.ru_maxrss / 1024.0);
+    std::fflush(stdout);
+  }
+
  private:
   void advertise(ros::NodeHandle& nh) {
     offer_pub_ = nh.advertise<cosmo::Keyframe>("keyframe_scans", 100);
-    kf_pub_ = nh.advertise<cosmo::RecorderKeyframe>("keyframes_meas", 1000);
-    lc_pub_ = nh.advertise<cosmo::RecorderLoopClosure>("loop_closures", 1000);
     ack_pub_ = nh.advertise<cosmo::FrontendAck>("ack", 100);
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("markers", 5);
   }
 
   void subscribe(ros::NodeHandle& nh) {
-    points_sub_ = nh.subscribe("points", 5, &FrontendNode::onPoints, this);
+    scans_.emplace(nh, "points", o_.lockstep ? 0 : static_cast<std::size_t>(o_.scan_queue),
+                   [this](const sensor_msgs::PointCloud2::ConstPtr& m) { onPoints(m); }, !o_.lockstep);
+    if (!o_.lockstep) {  // real time: the numbering decided (a restart?) before the first scan; acks every second
+      start_timer_ = nh.createWallTimer(ros::WallDuration(0.1), [this](const ros::WallTimerEvent&) { startWhenDecided(); });
+      ack_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) {
+        ack(frontend_->lastStamp());
+      });
+    }
     ref_sub_ = nh.subscribe("reference_pose", 1000, &FrontendNode::onReference, this);
     recv_sub_ = nh.subscribe("received_scans", 100, &FrontendNode::onReceived, this);
     if (o_.lockstep) trajectory_sub_ = nh.subscribe("reference_trajectory", 1, &FrontendNode::onTrajectory, this);
     if (o_.odometry == "external") odom_sub_ = nh.subscribe("odom", 1000, &FrontendNode::onOdom, this);
+  }
+
+  /// A front-end numbering its keyframes where this one's numbering starts (a restart continues its robot's).
+  std::unique_ptr<pipeline::RobotFrontend> makeFrontend(Trajectory reference) const {
+    auto f = std::make_unique<pipeline::RobotFrontend>(o_.robot, params_, std::move(reference));
+    f->numberKeyframesFrom(recorder_.continuation().first_index);
+    return f;
+  }
+
+  // Real time: once the numbering is decided (a restart continues its robot's), the scans go ahead.
+  void startWhenDecided() {
+    if (!recorder_.decided()) return;
+    start_timer_.stop();
+    frontend_->numberKeyframesFrom(recorder_.continuation().first_index);  // no scan processed yet
+    scans_->resume();
+  }
+
+  std::uint32_t scansSkipped() const {
+    return recorder_.continuation().scans_skipped + static_cast<std::uint32_t>(scans_ ? scans_->skipped() : 0);
   }
 
   void onReference(const geometry_msgs::PoseStamped::ConstPtr& m) {
@@ -149,7 +205,7 @@ class FrontendNode {
       }
       if (reference.empty()) ROS_WARN("frontend %c: the sequence has no reference for this robot", o_.robot);
       useSequenceRegistration();
-      frontend_ = std::make_unique<pipeline::RobotFrontend>(o_.robot, params_, std::move(reference));
+      frontend_ = makeFrontend(std::move(reference));
     } catch (const std::exception& e) { ROS_ERROR("frontend %c: lockstep: %s; no reference", o_.robot, e.what()); }
     drainPending();
   }
@@ -171,7 +227,7 @@ class FrontendNode {
     if (o_.lockstep || registration_resolved_) return;
     registration_resolved_ = true;
     try {
-      if (useSequenceRegistration()) frontend_ = std::make_unique<pipeline::RobotFrontend>(o_.robot, params_);
+      if (useSequenceRegistration()) frontend_ = makeFrontend({});
     } catch (const std::exception& e) {
       ROS_ERROR("frontend %c: the player's sequence: %s; registration stays %s/registration.yaml's", o_.robot, e.what(),
                 o_.config_dir.c_str());
@@ -212,14 +268,14 @@ class FrontendNode {
     try {
       // Decoded with the topic's stamp convention: stamped at the sweep end as everywhere in the pipeline
       // (trials/point_cloud_decode.hpp); the player publishes scans stamped so.
-      const Scan scan = ros_glue::fromPointCloud2(m, o_.stamp_at_end, points_sub_.getTopic());
+      const Scan scan = ros_glue::fromPointCloud2(m, o_.stamp_at_end, scans_->topic());
       if (scan.stamp <= frontend_->lastStamp() && frontend_->scansProcessed() > 0)
         ROS_WARN_THROTTLE(5.0, "frontend %c: %s: stamp not increasing, scan dropped", o_.robot,
-                          points_sub_.getTopic().c_str());
+                          scans_->topic().c_str());
       else if (const std::optional<pipeline::ScanOutcome> out = processScan(scan))
         publish(*out, ros_glue::stampToRos(scan.stamp));
     } catch (const std::exception& e) {
-      ROS_ERROR_THROTTLE(5.0, "frontend %c: %s: %s", o_.robot, points_sub_.getTopic().c_str(), e.what());
+      ROS_ERROR_THROTTLE(5.0, "frontend %c: %s: %s", o_.robot, scans_->topic().c_str(), e.what());
     }
     ack(m.header.stamp.toNSec());
   }
@@ -257,7 +313,9 @@ class FrontendNode {
   /// To the recorder, and its scan offered to the teammates.
   void publishKeyframe(const pipeline::KeyframeRecord& kf) {
     const cosmo::RecorderKeyframe km = ros_glue::recorderKeyframeMsg(kf, o_.world_frame);
-    kf_pub_.publish(km);
+    cosmo::RecorderKeyframe measured = km;
+    measured.scans_skipped = scansSkipped();
+    recorder_.send(std::move(measured));
     offer_pub_.publish(ros_glue::keyframeOfferMsg(km, *frontend_->keyframeScan(kf.index), base_frame_));
   }
 
@@ -281,7 +339,7 @@ class FrontendNode {
 
   void loopClosure(const pipeline::LoopClosureAttempt& a) {
     if (a.accepted) {
-      lc_pub_.publish(ros_glue::recorderLoopClosureMsg(a, o_.world_frame));
+      recorder_.send(ros_glue::recorderLoopClosureMsg(a, o_.world_frame));
       ++loop_closures_published_;
     }
     ROS_INFO("frontend %c: loop closure %c%zu-%c%zu %s (%zu inliers, descriptor %.3f)", o_.robot, a.robot1, a.index1,
@@ -298,6 +356,9 @@ class FrontendNode {
     a.received = static_cast<std::uint32_t>(frontend_->teammateScansReceived() + received_dropped_);
     a.keyframes = static_cast<std::uint32_t>(frontend_->keyframes().size());
     a.loop_closures = static_cast<std::uint32_t>(loop_closures_published_);
+    a.seq = recorder_.lastSeq();
+    a.queued = static_cast<std::uint32_t>(scans_ ? scans_->queued() : 0);
+    a.skipped = scansSkipped();
     ack_pub_.publish(a);
   }
 
@@ -308,6 +369,7 @@ class FrontendNode {
   Options o_;
   pipeline::FrontendParams params_;
   std::unique_ptr<pipeline::RobotFrontend> frontend_;
+  ros_glue::RecorderLink recorder_;  ///< numbered measurements to the recorder, kept until acknowledged
   pipeline::FrontendMap map_;  ///< what the markers show
   pipeline::PendingScans<sensor_msgs::PointCloud2::ConstPtr> pending_;
   pipeline::ExternalOdometry odom_;
@@ -316,8 +378,10 @@ class FrontendNode {
   bool registration_resolved_ = false;  // real time: the player's sequence's registration keys looked up
   std::size_t received_dropped_ = 0;
   std::size_t loop_closures_published_ = 0;  ///< counted in the ack (the player's end-of-run handshake)
-  ros::Publisher offer_pub_, kf_pub_, lc_pub_, ack_pub_, marker_pub_;
-  ros::Subscriber points_sub_, ref_sub_, recv_sub_, odom_sub_, trajectory_sub_;
+  ros::Publisher offer_pub_, ack_pub_, marker_pub_;
+  ros::Subscriber ref_sub_, recv_sub_, odom_sub_, trajectory_sub_;
+  ros::WallTimer start_timer_, ack_timer_;
+  std::optional<ros_glue::ScanInput> scans_;  ///< last: its thread ends before the rest goes
   tf2_ros::TransformBroadcaster tf_;
 };
 
@@ -325,10 +389,15 @@ class FrontendNode {
 
 int main(int argc, char** argv) {
   cosmo::keepScanBuffersInProcess();
+  // Ends with the process that started it (team_launcher, roslaunch): a front-end never outlives its launch.
+  const pid_t parent = getppid();
+  prctl(PR_SET_PDEATHSIG, SIGINT);
+  if (getppid() != parent) return 1;  // the parent ended before prctl
   ros::init(argc, argv, "frontend");
   return ros_glue::runNode("frontend", [] {
     ros::NodeHandle nh, pnh("~");
     FrontendNode node(nh, readOptions(pnh));
     ros::spin();  // single-threaded: scans and received scans are processed in arrival order
+    node.summary();
   });
 }

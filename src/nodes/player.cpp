@@ -8,7 +8,9 @@
 //            /player/sequence        (cosmo/TeamSequence, latched) the resolved sequence: robots, spans, seed
 //            /<r>/reference_trajectory (cosmo/ReferenceTrajectory, latched) each robot's whole reference, bit-exact
 //            /player/progress        (std_msgs/String) "t / total" once per second of wall time
-//            /player/done            (std_msgs/Empty, latched) when it is done; then it exits
+//            /player/done            (std_msgs/Empty, latched) when it is done; then it exits 0
+//            /player/abort           (std_msgs/String, latched) why the run stops (a peer died or never connected);
+//                                    the recorder then writes the dataset so far marked incomplete; the player exits 1
 //            params /player/robots (as soon as the config is read: the launch starts one front-end per robot),
 //            /player/resolved_sequence, /player/resolved_seed, /player/resolved_data_root
 // Lockstep (~mode lockstep, default): the offline driver's event order (pipeline::LockstepSchedule, which TeamRun
@@ -19,12 +21,16 @@
 //   the recorder's intake (/recorder/progress) holds everything the front-ends acknowledged. The lockstep nodes
 //   take the sequence from the latched topics (nothing from disk). The protocol's side here: ros_glue::LockstepLink.
 //   Real time (~mode realtime): scans at ~rate x wall speed, nothing waited for (results may depend on CPU speed).
+// Peers (pipeline::PeerWatch, probed by ros_glue::PeerMonitor): the front-ends (~frontend_node, "{r}" replaced by
+//   the robot id), ~broker_node and ~recorder_node (empty: not watched). A peer that never connects (within
+//   ~connect_timeout s wall, the recorder ~recorder_timeout) or dies (lockstep: for ~death_grace s; the recorder for
+//   ~recorder_timeout s) stops the run by the policy of docs/design.md; every wait names what it waits for every
+//   10 s and has no other limit. ~status_file (optional): "done" or "stopped: <reason>" written at the end.
 // Params: ~sequence (config path; empty: the built-in synthetic sequence, cosmo_simulate --config ~simulate_config
 //         --out ~simulate_out, cached), ~data_root (empty: the config's precedence), ~mode, ~rate, ~seed (-1: the
-//         config's), ~max_seconds (0: all), ~ack_timeout (s wall; a silent front-end is skipped with a warning),
-//         ~connect_timeout (s wall for the nodes to connect), ~wait_for_broker, ~end_linger (s wall after the last
-//         scan; default 3 realtime, 0 lockstep), ~world_frame, ~noise_models / ~config_dir (checked before anything
-//         is played: a run that cannot be labelled does not start).
+//         config's), ~max_seconds (0: all), ~wait_for_broker (lockstep: a radio runs), ~end_linger (s wall after the
+//         last scan; default 3 realtime, 0 lockstep), ~world_frame, ~noise_models / ~config_dir (checked before
+//         anything is played: a run that cannot be labelled does not start), and the peers' above.
 #include <geometry_msgs/PoseStamped.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
@@ -33,19 +39,25 @@
 #include <tf2_ros/transform_broadcaster.h>
 
 #include <atomic>
+#include <fstream>
 #include <map>
 #include <optional>
+#include <random>
 #include <nlohmann/json.hpp>
 
 #include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/pipeline/reference_stream.hpp"
+#include "cosmo/pipeline/team_drain.hpp"
 #include "cosmo/ros/bag_scan_source.hpp"
 #include "cosmo/ros/lockstep_link.hpp"
+#include "cosmo/ros/lockstep_msgs.hpp"
 #include "cosmo/ros/node_main.hpp"
+#include "cosmo/ros/peer_probe.hpp"
 #include "cosmo/ros/played_sequence.hpp"
 #include "cosmo/ros/point_cloud.hpp"
 #include "cosmo/ros/pose_msg.hpp"
+#include "cosmo/ros/recorder_msgs.hpp"
 #include "cosmo/ros/team_sequence_msg.hpp"
 
 using namespace cosmo;
@@ -54,10 +66,17 @@ namespace {
 
 struct Options {
   ros_glue::SequenceChoice sequence;
-  std::string mode = "lockstep", world_frame = "world";
-  double rate = 1.0, ack_timeout = 30.0, connect_timeout = 120.0, end_linger = -1.0;
+  std::string mode = "lockstep", world_frame = "world", status_file;
+  std::string frontend_node = "/{r}/frontend", broker_node = "/comm_broker", recorder_node = "/recorder";
+  pipeline::PeerPolicyParams peers;
+  double rate = 1.0, end_linger = -1.0;
   bool wait_for_broker = true;
   bool lockstep() const { return mode == "lockstep"; }
+  std::string frontendNode(char r) const {
+    std::string n = frontend_node;
+    if (const auto at = n.find("{r}"); at != std::string::npos) n.replace(at, 3, std::string(1, r));
+    return n;
+  }
 };
 
 ros_glue::SequenceChoice readSequenceChoice(const ros::NodeHandle& pnh) {
@@ -78,9 +97,14 @@ Options readOptions(const ros::NodeHandle& pnh) {
   o.sequence = readSequenceChoice(pnh);
   pnh.param("mode", o.mode, o.mode);
   pnh.param("rate", o.rate, o.rate);
-  pnh.param("ack_timeout", o.ack_timeout, o.ack_timeout);
-  pnh.param("connect_timeout", o.connect_timeout, o.connect_timeout);
   pnh.param("wait_for_broker", o.wait_for_broker, o.wait_for_broker);
+  pnh.param("status_file", o.status_file, o.status_file);
+  pnh.param("frontend_node", o.frontend_node, o.frontend_node);
+  pnh.param("broker_node", o.broker_node, o.broker_node);
+  pnh.param("recorder_node", o.recorder_node, o.recorder_node);
+  pnh.param("connect_timeout", o.peers.connect_timeout, o.peers.connect_timeout);
+  pnh.param("death_grace", o.peers.death_grace, o.peers.death_grace);
+  pnh.param("recorder_timeout", o.peers.recorder_timeout, o.peers.recorder_timeout);
   pnh.param("end_linger", o.end_linger, o.end_linger);
   pnh.param("world_frame", o.world_frame, o.world_frame);
   if (o.mode != "lockstep" && o.mode != "realtime")
@@ -90,27 +114,84 @@ Options readOptions(const ros::NodeHandle& pnh) {
   return o;
 }
 
+/// A random id of a run (the recorder's journal names it).
+std::string randomRunId() {
+  std::random_device rd;
+  char id[32];
+  std::snprintf(id, sizeof id, "%08x%08x", rd(), rd());
+  return id;
+}
+
+/// The peers the player watches, by the options (a front-end per robot, the broker, the recorder).
+pipeline::PeerWatch peerWatch(const Options& o, const std::vector<char>& robots) {
+  pipeline::PeerWatch watch(o.lockstep() ? pipeline::RunMode::Lockstep : pipeline::RunMode::Realtime, o.peers);
+  for (char r : robots) watch.expect(o.frontendNode(r), pipeline::PeerRole::Frontend, std::string("the front-end of robot ") + r);
+  if (o.wait_for_broker && !o.broker_node.empty())
+    watch.expect(o.broker_node, pipeline::PeerRole::Broker, "the comm_broker");
+  if (!o.recorder_node.empty()) watch.expect(o.recorder_node, pipeline::PeerRole::Recorder, "the recorder");
+  return watch;
+}
+
 class Player {
  public:
   Player(ros::NodeHandle& nh, Options options, ros_glue::PlayedSequence sequence)
-      : o_(std::move(options)), seq_(std::move(sequence)) {
+      : o_(std::move(options)), seq_(std::move(sequence)), peers_("player", peerWatch(o_, seq_.robots())) {
     advertise(nh);
     stats_sub_ = nh.subscribe<std_msgs::String>("/comm/stats", 100, [this](const std_msgs::String::ConstPtr& m) {
       try {
         broker_delivered_ = nlohmann::json::parse(m->data).value("delivered", std::uint64_t{0});
       } catch (const std::exception&) {}
     });
-    if (o_.lockstep()) lockstep_.emplace(nh, seq_.robots(), o_.ack_timeout);
+    recorder_sub_ = nh.subscribe<cosmo::RecorderProgress>(
+        "/recorder/progress", 10, [this](const cosmo::RecorderProgress::ConstPtr& m) {
+          std::lock_guard<std::mutex> lock(recorder_mutex_);
+          recorder_ = *m;
+        });
+    if (!o_.lockstep())
+      for (char r : seq_.robots())
+        ack_subs_.push_back(nh.subscribe<cosmo::FrontendAck>(
+            std::string("/") + r + "/ack", 10, [this, r](const cosmo::FrontendAck::ConstPtr& m) {
+              std::lock_guard<std::mutex> lock(recorder_mutex_);
+              drain_.reported(r, ros_glue::frontendProgressFromMsg(*m), m->queued, ros::WallTime::now().toSec());
+            }));
+    if (o_.lockstep()) {
+      ros_glue::LockstepLink::Peers peers{&peers_, {}, o_.wait_for_broker ? o_.broker_node : "", o_.recorder_node};
+      for (char r : seq_.robots()) peers.frontends[r] = o_.frontendNode(r);
+      lockstep_.emplace(nh, seq_.robots(), std::move(peers));
+    }
     publishSequence();
   }
 
-  /// Waits for the front-ends (and, in lockstep, the broker) to connect; decides whether a radio runs.
+  /// The whole run; 0 when it is done, 1 when the peer policy stopped it (the recorder then wrote the dataset so
+  /// far marked incomplete). Writes ~status_file (before /player/done).
+  int run() {
+    try {
+      connect();
+      play();
+      finish();
+      return 0;
+    } catch (const ros_glue::RunStopped& stop) {
+      stopRun(stop.what());
+      writeStatus(std::string("stopped: ") + stop.what());
+      return 1;
+    }
+  }
+
+ private:
+  /// Waits until every peer connected (or was given up on, real time); in lockstep whether a radio runs.
   void connect() {
-    const ros::WallTime deadline = ros_glue::wallDeadline(o_.connect_timeout);
-    for (auto& [r, pub] : points_pub_) ros_glue::waitUntil([&] { return pub.getNumSubscribers() > 0; }, deadline);
-    for (auto& [r, pub] : pose_pub_)
-      if (!seq_.references[r].empty()) ros_glue::waitUntil([&] { return pub.getNumSubscribers() > 0; }, deadline);
-    if (lockstep_) lockstep_->connect(deadline, o_.wait_for_broker);
+    for (char r : seq_.robots())
+      peers_.setLinkCheck(o_.frontendNode(r), [this, r] {
+        const bool reference = seq_.references.at(r).empty() || pose_pub_.at(r).getNumSubscribers() > 0;
+        return points_pub_.at(r).getNumSubscribers() > 0 && reference && (!lockstep_ || lockstep_->frontendLinked(r));
+      });
+    if (lockstep_ && o_.wait_for_broker) peers_.setLinkCheck(o_.broker_node, [this] { return lockstep_->brokerLinked(); });
+    peers_.start();
+    while (ros::ok() && !peers_.connected()) {
+      if (const auto stop = peers_.stopReason()) throw ros_glue::RunStopped(*stop);
+      ros::WallDuration(0.05).sleep();
+    }
+    if (lockstep_) lockstep_->useBroker(o_.wait_for_broker && lockstep_->brokerLinked());
   }
 
   /// Publishes every scan up to the end, in the team's order (lockstep) or at wall speed (real time).
@@ -122,6 +203,7 @@ class Player {
     char robot;
     Scan scan;
     while (ros::ok() && stream.next(robot, scan) && scan.stamp <= seq_.end) {
+      if (const auto stop = peers_.stopReason()) throw ros_glue::RunStopped(*stop);
       if (lockstep_)
         lockstep_->beforeScan(robot, scan.stamp);
       else
@@ -131,26 +213,79 @@ class Player {
     }
   }
 
-  /// The last acks, the radio through the end, the recorder's intake complete; then /player/done.
+  /// The last acks, the radio through the end, the recorder's intake complete (real time: the front-ends' waiting
+  /// scans processed and what they sent held by the recorder); then /player/done.
   void finish() {
     if (lockstep_) lockstep_->finish(seq_.end);
     publishClock(seq_.end);
     const ros::WallTime linger = ros::WallTime::now();
-    while (ros::ok() && (ros::WallTime::now() - linger).toSec() < o_.end_linger) {
-      publishClock(seq_.end + toStampNs((ros::WallTime::now() - linger).toSec() * 1e-3));
+    ros::WallTime next_notice = linger + ros::WallDuration(10.0);
+    while (ros::ok()) {
+      const ros::WallTime now = ros::WallTime::now();
+      std::string behind;
+      if ((now - linger).toSec() >= o_.end_linger && (lockstep_ || (behind = realtimeBehind()).empty())) break;
+      if (const auto stop = peers_.stopReason()) throw ros_glue::RunStopped(*stop);
+      if (now >= next_notice) {
+        ROS_INFO("player: waiting for robots %s to process their waiting scans and the recorder to hold what they sent",
+                 behind.c_str());
+        next_notice = now + ros::WallDuration(10.0);
+      }
+      publishClock(seq_.end + toStampNs((now - linger).toSec() * 1e-3));
       ros::WallDuration(0.05).sleep();
     }
     ROS_INFO("player: done, %zu scans in %.1f s wall for %.1f s of sequence", published_,
              (ros::WallTime::now() - wall_start_).toSec(), seq_.seconds());
+    writeStatus("done");
     done_pub_.publish(std_msgs::Empty());
     ros::WallDuration(0.5).sleep();
   }
 
- private:
+  /// Real time: the robots whose front-end is alive and not drained (pipeline::TeamDrain): scans waiting, busy,
+  /// counters still moving, or measurements the recorder does not hold yet.
+  std::string realtimeBehind() {
+    std::lock_guard<std::mutex> lock(recorder_mutex_);
+    std::string behind;
+    const double now = ros::WallTime::now().toSec();
+    for (char r : seq_.robots()) {
+      if (!peers_.alive(o_.frontendNode(r))) continue;
+      const std::uint64_t acked = recorder_ ? ros_glue::recorderAcked(*recorder_, r) : drain_.lastSeq(r);
+      if (!drain_.drained(r, acked, now)) behind += r;
+    }
+    return behind;
+  }
+
+  /// Tells the recorder why the run stops (/player/abort) and waits for it to write the dataset so far.
+  void stopRun(const std::string& reason) {
+    std_msgs::String m;
+    m.data = reason;
+    abort_pub_.publish(m);
+    ROS_ERROR("player: the run stops: %s", reason.c_str());
+    const auto written = [this] {
+      std::lock_guard<std::mutex> lock(recorder_mutex_);
+      return recorder_ && !recorder_->incomplete.empty();
+    };
+    const bool recorder = !o_.recorder_node.empty() && peers_.alive(o_.recorder_node);
+    if (recorder && ros_glue::waitUntil(written, ros_glue::wallDeadline(30.0))) {
+      std::lock_guard<std::mutex> lock(recorder_mutex_);
+      ROS_ERROR("player: the recorder wrote the dataset so far, marked incomplete: %s", recorder_->written.c_str());
+    } else {
+      ROS_ERROR("player: the recorder did not confirm a write (%s); what it acknowledged is in its journal",
+                recorder ? "no answer within 30 s" : "it is not running");
+    }
+  }
+
+  void writeStatus(const std::string& status) const {
+    if (o_.status_file.empty()) return;
+    std::ofstream out(o_.status_file);
+    out << status << "\n";
+    if (!out) ROS_ERROR("player: cannot write ~status_file %s", o_.status_file.c_str());
+  }
+
   void advertise(ros::NodeHandle& nh) {
     clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
     progress_pub_ = nh.advertise<std_msgs::String>("/player/progress", 10);
     done_pub_ = nh.advertise<std_msgs::Empty>("/player/done", 1, true);
+    abort_pub_ = nh.advertise<std_msgs::String>("/player/abort", 1, true);
     sequence_pub_ = nh.advertise<cosmo::TeamSequence>(ros_glue::kTeamSequenceTopic, 1, true);
     for (char r : seq_.robots()) {
       const std::string ns = std::string("/") + r;
@@ -161,7 +296,10 @@ class Player {
   }
 
   void publishSequence() {
-    sequence_pub_.publish(ros_glue::teamSequenceToMsg(seq_.config, seq_.timing));
+    cosmo::TeamSequence sequence = ros_glue::teamSequenceToMsg(seq_.config, seq_.timing);
+    sequence.run_id = run_id_;
+    sequence_pub_.publish(sequence);
+    ROS_INFO("player: run %s", run_id_.c_str());
     for (char r : seq_.robots())
       trajectory_pub_[r].publish(ros_glue::trajectoryToMsg(r, seq_.references[r], o_.world_frame));
   }
@@ -219,15 +357,21 @@ class Player {
 
   Options o_;
   ros_glue::PlayedSequence seq_;
+  std::string run_id_ = randomRunId();  ///< the recorder's journal belongs to this run
   std::optional<ros_glue::LockstepLink> lockstep_;  ///< lockstep mode: the team's event order through the nodes
   std::atomic<std::uint64_t> broker_delivered_{0};  ///< /comm/stats, for the progress line
   std::size_t published_ = 0;
   pipeline::ReferenceStream reference_stream_;  ///< the reference poses sent beside the scans
   ros::WallTime wall_start_, last_progress_;
-  ros::Publisher clock_pub_, progress_pub_, done_pub_, sequence_pub_;
+  std::mutex recorder_mutex_;                        ///< guards recorder_ and drain_
+  std::optional<cosmo::RecorderProgress> recorder_;  ///< the recorder's latest /recorder/progress
+  pipeline::TeamDrain drain_;  ///< real time: whether each front-end is done with what it was given
+  ros::Publisher clock_pub_, progress_pub_, done_pub_, abort_pub_, sequence_pub_;
   std::map<char, ros::Publisher> points_pub_, pose_pub_, trajectory_pub_;
-  ros::Subscriber stats_sub_;
+  ros::Subscriber stats_sub_, recorder_sub_;
+  std::vector<ros::Subscriber> ack_subs_;
   tf2_ros::TransformBroadcaster tf_;
+  ros_glue::PeerMonitor peers_;  ///< last: its thread (link checks use the publishers) ends first
 };
 
 }  // namespace
@@ -235,17 +379,20 @@ class Player {
 int main(int argc, char** argv) {
   cosmo::keepScanBuffersInProcess();
   ros::init(argc, argv, "player");
-  return ros_glue::runNode("player", [] {
+  int code = 0;
+  std::string status_file;
+  const int failed = ros_glue::runNode("player", [&] {
     ros::NodeHandle nh, pnh("~");
     const Options options = readOptions(pnh);
+    status_file = options.status_file;
     ros_glue::PlayedSequence sequence = ros_glue::resolvePlayedSequence(options.sequence);
     ROS_INFO("player: sequence %s, %zu robots, %.1f s, mode %s", sequence.config.name.c_str(),
              sequence.config.trials.size(), sequence.seconds(), options.mode.c_str());
     Player player(nh, options, std::move(sequence));
     ros::AsyncSpinner spinner(1);
     spinner.start();
-    player.connect();
-    player.play();
-    player.finish();
+    code = player.run();
   });
+  if (failed && !status_file.empty()) std::ofstream(status_file) << "failed: see the player's log\n";
+  return failed ? failed : code;
 }

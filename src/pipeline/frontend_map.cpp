@@ -5,7 +5,7 @@ namespace cosmo::pipeline {
 FrontendMap::FrontendMap(char robot, std::optional<NoiseModels> noise) : robot_(robot), labeller_(std::move(noise)) {}
 
 void FrontendMap::addKeyframe(const KeyframeRecord& kf) {
-  if (kf.index == 0 && kf.reference) world_T_odom_ = *kf.reference * kf.odom_pose.inverse();
+  if (trajectory_.empty() && kf.reference) world_T_odom_ = *kf.reference * kf.odom_pose.inverse();
   const Eigen::Vector3d position =
       kf.reference ? kf.reference->translation() : (world_T_odom_ * kf.odom_pose).translation();
   positions_[{robot_, kf.index}] = position;

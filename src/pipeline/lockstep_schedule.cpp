@@ -47,9 +47,9 @@ void LockstepSchedule::radioStepped(StampNs next_step, const std::map<char, std:
   for (const auto& [r, n] : delivered) delivered_[r] = n;
 }
 
-void LockstepSchedule::recorderReported(char robot, std::uint32_t keyframes, std::uint32_t loop_closures) {
+void LockstepSchedule::recorderReported(char robot, std::uint64_t acked) {
   recorder_reported_ = true;
-  recorded_[robot] = {keyframes, loop_closures};
+  recorded_[robot] = acked;
 }
 
 bool LockstepSchedule::scansProcessed() const { return handed_over_.empty(); }
@@ -68,15 +68,15 @@ bool LockstepSchedule::deliveriesProcessed() const {
   return true;
 }
 
-bool LockstepSchedule::recorderComplete() const {
-  if (!recorder_reported_) return true;
+bool LockstepSchedule::recorderComplete() const { return !recorder_reported_ || robotsNotRecorded().empty(); }
+
+std::vector<char> LockstepSchedule::robotsNotRecorded() const {
+  std::vector<char> behind;
   for (const auto& [r, p] : progress_) {
     const auto it = recorded_.find(r);
-    const std::uint32_t keyframes = it == recorded_.end() ? 0 : it->second.first;
-    const std::uint32_t closures = it == recorded_.end() ? 0 : it->second.second;
-    if (keyframes < p.keyframes || closures < p.loop_closures) return false;
+    if ((it == recorded_.end() ? 0 : it->second) < p.seq) behind.push_back(r);
   }
-  return true;
+  return behind;
 }
 
 RadioStepOrder LockstepSchedule::radioStepOrder(StampNs through) const {

@@ -19,6 +19,8 @@ RadioBroker::RadioBroker(const RadioParams& params, std::vector<char> robots, st
 void RadioBroker::offer(char robot, std::uint32_t index, PayloadStore::Payload payload) {
   const PayloadStore::Sizes sizes = payloads_.store(robot, index, std::move(payload));
   radio_->offerKeyframe(robot, index, sizes.payload, sizes.raw);
+  std::uint32_t& next = next_index_[robot];
+  next = std::max(next, index + 1);
   if (lockstep_ && !started()) early_offers_.push_back({robot, index, sizes});
   steps_.offerArrived(robot);
 }
@@ -59,6 +61,7 @@ std::uint64_t RadioBroker::start() {
   origin_ = radioGridOrigin(sequence_->first, radio_->params().step);
   const std::uint64_t seed = deriveSeed(sequence_->second, "radio");
   radio_ = std::make_unique<RadioSimulator>(radio_->params(), radio_->robots(), seed);
+  radio_->setTimeOrigin(origin_);
   for (const EarlyOffer& o : early_offers_) radio_->offerKeyframe(o.robot, o.index, o.sizes.payload, o.sizes.raw);
   early_offers_.clear();
   steps_.start();
@@ -100,6 +103,7 @@ RadioBroker::StepBatch RadioBroker::stepRealTime(double now, const DeliveryFn& o
   if (!grid_started_ || now - radio_->nextStepTime() > 3600.0) {
     batch.grid_restarted = grid_started_;
     radio_->setStartTime(std::ceil(now / dt - 1e-9) * dt);
+    if (!grid_started_) radio_->setTraceOrigin(radio_->nextStepTime());  // a trace's time 0: the first step
     grid_started_ = true;
   } else if (radio_->nextStepTime() - now > 1.0) {
     batch.time_went_back = true;

@@ -88,7 +88,7 @@ ScanOutcome RobotFrontend::afterOdometry(StampNs stamp, OdometryResult odometry,
 
   KeyframeRecord kf;
   kf.robot = robot_;
-  kf.index = kd.index;
+  kf.index = first_index_ + kd.index;
   kf.stamp = stamp;
   kf.odom_pose = odometry.pose;
   kf.relative = kd.index == 0 ? Pose3::Identity() : kd.relative;
@@ -97,8 +97,8 @@ ScanOutcome RobotFrontend::afterOdometry(StampNs stamp, OdometryResult odometry,
   out.keyframe = kf;
 
   std::shared_ptr<const Scan> kf_scan = take_keyframe();
-  const std::vector<LoopCandidate> candidates = recognizer_.addOwnKeyframe(kd.index, *kf_scan);
-  own_scans_[kd.index] = std::make_shared<const KeptScan>(kf_scan, spill_);
+  const std::vector<LoopCandidate> candidates = recognizer_.addOwnKeyframe(kf.index, *kf_scan);
+  own_scans_[kf.index] = std::make_shared<const KeptScan>(kf_scan, spill_);
   latest_scan_ = std::move(kf_scan);
   for (const auto& c : candidates) {
     PendingLoopClosure p = registerPair(c, stamp);

@@ -28,6 +28,7 @@ TeamRun::TeamRun(std::string dataset_name, std::map<char, Trajectory> references
   // One feature cache for the team: a delivered scan is the sender's own object, so its features are computed
   // once, not once per robot that registers against it (same results).
   recorder_.setMetadata(params.metadata);
+  radio_.setTimeOrigin(time_origin);
   auto features = std::make_shared<FeatureCache>(
       params.frontend.spill_keyframes ? std::make_shared<SpillFile>(params.frontend.spill_dir) : nullptr);
   if (params.registration_threads > 0) pool_ = std::make_shared<RegistrationPool>(params.registration_threads);

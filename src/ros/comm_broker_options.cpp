@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "cosmo/comm/radio_trace.hpp"
 #include "cosmo/common/config.hpp"
 #include "cosmo/ros/robot_list.hpp"
 
@@ -17,6 +18,9 @@ RadioParams readRadioParams(const ros::NodeHandle& pnh) {
   if (pnh.getParam("size_model", size_model)) params.size_model = sizeModelFromString(size_model, "~size_model");
   if (pnh.getParam("timeout_mode", timeout_mode))
     params.timeout_mode = timeoutModeFromString(timeout_mode, "~timeout_mode");
+  std::string trace;
+  if (pnh.getParam("trace", trace) && !trace.empty())
+    params.trace = std::make_shared<const RadioTrace>(RadioTrace::read(trace));
   return params;
 }
 

@@ -5,32 +5,49 @@
 
 #include "cosmo/ros/lockstep_msgs.hpp"
 #include "cosmo/ros/node_main.hpp"
+#include "cosmo/ros/recorder_msgs.hpp"
 
 namespace cosmo::ros_glue {
 
-LockstepLink::LockstepLink(ros::NodeHandle& nh, const std::vector<char>& robots, double ack_timeout)
-    : ack_timeout_(ack_timeout), schedule_(robots, false) {
+namespace {
+constexpr double kNoticePeriod = 10.0;  // s between "still waiting" messages
+
+std::string robotList(const std::vector<char>& robots) {
+  std::string s;
+  for (char r : robots) s += (s.empty() ? "" : ", ") + std::string(1, r);
+  return s;
+}
+}  // namespace
+
+LockstepLink::LockstepLink(ros::NodeHandle& nh, const std::vector<char>& robots, Peers peers)
+    : peers_(std::move(peers)), schedule_(robots, false) {
+  if (!peers_.recorder.empty()) schedule_.expectRecorder();
   step_pub_ = nh.advertise<cosmo::RadioStepRequest>("/comm/step_request", 10);
-  for (char r : robots)
+  for (char r : robots) {
+    ack_index_[r] = ack_subs_.size();
     ack_subs_.push_back(nh.subscribe<cosmo::FrontendAck>(
         std::string("/") + r + "/ack", 1000, [this, r](const cosmo::FrontendAck::ConstPtr& m) { onAck(r, *m); }));
+  }
   step_done_sub_ = nh.subscribe<cosmo::RadioStepDone>(
       "/comm/step_done", 100, [this](const cosmo::RadioStepDone::ConstPtr& m) { onStepDone(*m); });
   recorder_sub_ = nh.subscribe<cosmo::RecorderProgress>(
       "/recorder/progress", 10, [this](const cosmo::RecorderProgress::ConstPtr& m) { onRecorder(*m); });
 }
 
-bool LockstepLink::connect(const ros::WallTime& deadline, bool wait_for_broker) {
-  for (auto& sub : ack_subs_) waitUntil([&] { return sub.getNumPublishers() > 0; }, deadline);
-  if (wait_for_broker) {
-    const auto broker = [&] { return step_pub_.getNumSubscribers() > 0 && step_done_sub_.getNumPublishers() > 0; };
-    waitUntil(broker, deadline);
-    use_broker_ = broker();
-    if (!use_broker_) ROS_WARN("player: lockstep without a lockstep comm_broker (no /comm/step_request subscriber)");
-  }
+bool LockstepLink::frontendLinked(char robot) const {
+  const auto it = ack_index_.find(robot);
+  return it != ack_index_.end() && ack_subs_[it->second].getNumPublishers() > 0;
+}
+
+bool LockstepLink::brokerLinked() const {
+  return step_pub_.getNumSubscribers() > 0 && step_done_sub_.getNumPublishers() > 0;
+}
+
+void LockstepLink::useBroker(bool use) {
   std::lock_guard<std::mutex> lock(mutex_);
-  schedule_.useRadio(use_broker_);
-  return use_broker_;
+  use_broker_ = use;
+  schedule_.useRadio(use);
+  if (!use) ROS_WARN("player: lockstep without a lockstep comm_broker: no radio");
 }
 
 void LockstepLink::beforeScan(char robot, StampNs stamp) {
@@ -51,7 +68,12 @@ void LockstepLink::scanHandedOver(char robot, StampNs stamp) {
 void LockstepLink::finish(StampNs end) {
   waitForScans();
   stepRadio(end);
-  waitFor("recorder intake", [&] { return schedule_.recorderComplete(); });
+  waitFor(
+      [&] {
+        return "the recorder to hold every measurement of robots " + robotList(schedule_.robotsNotRecorded()) +
+               describePeer(peers_.recorder);
+      },
+      [&] { return schedule_.recorderComplete(); });
 }
 
 void LockstepLink::onAck(char robot, const cosmo::FrontendAck& m) {
@@ -67,27 +89,50 @@ void LockstepLink::onStepDone(const cosmo::RadioStepDone& m) {
 
 void LockstepLink::onRecorder(const cosmo::RecorderProgress& m) {
   std::lock_guard<std::mutex> lock(mutex_);
-  for (std::size_t i = 0; i < m.robots.size() && i < m.keyframes.size() && i < m.loop_closures.size(); ++i)
-    schedule_.recorderReported(m.robots[i], m.keyframes[i], m.loop_closures[i]);
+  for (char r : m.robots) schedule_.recorderReported(r, recorderAcked(m, r));
 }
 
-bool LockstepLink::waitFor(const char* what, const std::function<bool()>& done) {
-  const auto locked = [&] {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return done();
-  };
-  if (waitUntil(locked, wallDeadline(ack_timeout_), 0.0005)) return true;
-  if (ros::ok()) ROS_WARN("player: no %s within %.0f s; continuing", what, ack_timeout_);
+bool LockstepLink::waitFor(const std::function<std::string()>& what, const std::function<bool()>& done) {
+  const ros::WallTime start = ros::WallTime::now();
+  ros::WallTime next_notice = start + ros::WallDuration(kNoticePeriod);
+  while (ros::ok()) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (done()) return true;
+    }
+    if (peers_.monitor)
+      if (const std::optional<std::string> stop = peers_.monitor->stopReason()) throw RunStopped(*stop);
+    const ros::WallTime now = ros::WallTime::now();
+    if (now >= next_notice) {
+      std::string waited;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        waited = what();
+      }
+      ROS_INFO("player: still waiting (%.0f s) for %s", (now - start).toSec(), waited.c_str());
+      next_notice = now + ros::WallDuration(kNoticePeriod);
+    }
+    ros::WallDuration(0.0005).sleep();
+  }
   return false;
 }
 
+std::string LockstepLink::describePeer(const std::string& node) const {
+  if (!peers_.monitor || node.empty()) return "";
+  try {
+    return "; " + peers_.monitor->describe(node);
+  } catch (const std::exception&) { return ""; }
+}
+
 void LockstepLink::waitForScans() {
-  if (waitFor("front-end ack", [&] { return schedule_.scansProcessed(); })) return;
-  std::lock_guard<std::mutex> lock(mutex_);
-  std::string behind;
-  for (char r : schedule_.robotsBehind()) behind += r;
-  ROS_WARN("player: front-ends %s did not acknowledge their last scan; going on without", behind.c_str());
-  schedule_.stopWaitingForScans();
+  waitFor(
+      [&] {
+        std::string peers;
+        for (char r : schedule_.robotsBehind())
+          if (const auto it = peers_.frontends.find(r); it != peers_.frontends.end()) peers += describePeer(it->second);
+        return "the acks of robots " + robotList(schedule_.robotsBehind()) + " for their last scan" + peers;
+      },
+      [&] { return schedule_.scansProcessed(); });
 }
 
 // The broker runs every radio step <= t once the keyframes offered so far reached it; the scans it delivered are
@@ -101,8 +146,11 @@ void LockstepLink::stepRadio(StampNs t) {
   }
   const std::uint32_t seq = ++step_seq_;
   step_pub_.publish(radioStepRequestMsg(seq, t, order));
-  if (!waitFor("comm_broker step", [&] { return step_done_seq_ >= seq; })) return;
-  waitFor("delivered scans processed", [&] { return schedule_.deliveriesProcessed(); });
+  if (!waitFor([&] { return "the comm_broker's radio step " + std::to_string(seq) + describePeer(peers_.broker); },
+               [&] { return step_done_seq_ >= seq; }))
+    return;
+  waitFor([&] { return "the processing of the scans the radio delivered"; },
+          [&] { return schedule_.deliveriesProcessed(); });
 }
 
 }  // namespace cosmo::ros_glue

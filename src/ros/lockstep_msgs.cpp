@@ -51,6 +51,7 @@ pipeline::FrontendProgress frontendProgressFromMsg(const cosmo::FrontendAck& msg
   p.received = msg.received;
   p.keyframes = msg.keyframes;
   p.loop_closures = msg.loop_closures;
+  p.seq = msg.seq;
   return p;
 }
 

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <vector>
 
 #include "cosmo/comm/transfer_log.hpp"
 
@@ -29,12 +30,25 @@ TEST(TransferLog, CsvAndSummaryFiles) {
   std::ifstream in(csv);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "sender,receiver,keyframe,start,end,bytes,outcome");
+  EXPECT_EQ(line, "sender,receiver,keyframe,start,end,bytes,outcome,received,bytes_sent,link");
   int delivered = 0, timed_out = 0, rows = 0;
   while (std::getline(in, line)) {
     ++rows;
-    delivered += line.find(",delivered") != std::string::npos;
-    timed_out += line.find(",timed_out") != std::string::npos;
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+    if (line.back() == ',') cells.emplace_back();
+    ASSERT_EQ(cells.size(), 10u) << line;
+    EXPECT_EQ(cells[9], "distance");
+    if (cells[6] == "delivered") {
+      ++delivered;
+      EXPECT_EQ(cells[7], cells[4]);  // received in the step it completed: no latency without a trace
+      EXPECT_EQ(cells[8], cells[5]);  // every byte sent
+    } else {
+      ++timed_out;
+      EXPECT_EQ(cells[7], "");
+      EXPECT_LT(std::stoull(cells[8]), std::stoull(cells[5]));
+    }
   }
   EXPECT_EQ(rows, static_cast<int>(sim.transferLog().size()));
   EXPECT_EQ(delivered, static_cast<int>(sim.stats().delivered));
@@ -46,5 +60,12 @@ TEST(TransferLog, CsvAndSummaryFiles) {
   EXPECT_EQ(j["params"]["timeout_mode"], "no_progress");
   EXPECT_FALSE(std::filesystem::exists(csv + ".tmp"));
   EXPECT_THROW(writeTransferLog((dir / "missing" / "x.csv").string(), {}, sim.stats(), p), std::runtime_error);
+  sim.setTimeOrigin(1700000000000000000ULL);
+  writeTransferLog(csv, sim);
+  std::ifstream js2((dir / "transfers.summary.json").string());
+  const auto j2 = nlohmann::json::parse(js2);
+  EXPECT_EQ(j2["time_origin_ns"].get<std::uint64_t>(), 1700000000000000000ULL);
+  EXPECT_EQ(j2["in_flight"], 0);
+  EXPECT_FALSE(j2.contains("trace"));
   std::filesystem::remove_all(dir);
 }

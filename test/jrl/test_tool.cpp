@@ -109,3 +109,27 @@ TEST(CosmoJrlTool, SolvePlotAndExport) {
   EXPECT_EQ(run("solve /nonexistent/x.jrl").first, 1);
   fs::remove_all(dir);
 }
+
+TEST(CosmoJrlTool, InjectWritesAValidLabelledDatasetAndRejectsBadOptions) {
+  if (toolPath().empty()) GTEST_SKIP() << "cosmo_jrl is not built beside this test";
+  const fs::path dir = fs::temp_directory_path() / ("cosmo_tool_inject_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string out_jrl = (dir / "tiny_50_random.jrl").string();
+  auto [rc, out] = run("inject " + kTiny + " " + out_jrl + " --rate 0.5 --kind random --seed 3");
+  EXPECT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find("injected 2 random outliers"), std::string::npos) << out;  // 2 closures -> 2 of 4
+  std::tie(rc, out) = run("validate " + out_jrl);
+  EXPECT_EQ(rc, 0) << out;
+  std::tie(rc, out) = run("stats " + out_jrl);
+  EXPECT_NE(out.find("tiny_50_random"), std::string::npos) << out;
+  const std::string first = out;
+  EXPECT_EQ(run("inject " + kTiny + " " + out_jrl + " --rate 0.5 --kind random --seed 3").first, 0);
+  EXPECT_EQ(run("stats " + out_jrl).second, first);  // same seed, same dataset
+  EXPECT_EQ(run("inject " + kTiny + " " + out_jrl + " --kind random --seed 3").first, 2);  // no --rate
+  EXPECT_EQ(run("inject " + kTiny + " " + out_jrl + " --rate 0.5 --kind wrong --seed 3").first, 2);
+  EXPECT_EQ(run("inject " + kTiny + " " + out_jrl + " --rate 0.5 --intra --inter --seed 3").first, 2);
+  EXPECT_EQ(run("inject " + kTiny + " " + out_jrl + " --rate 1.5 --seed 3").first, 2);
+  EXPECT_EQ(run("inject /nonexistent.jrl " + out_jrl + " --rate 0.5 --seed 3").first, 2);
+  EXPECT_EQ(run("inject --help").first, 0);
+  fs::remove_all(dir);
+}

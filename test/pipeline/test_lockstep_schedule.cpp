@@ -100,14 +100,30 @@ TEST(LockstepSchedule, DeliveriesCountAsProcessedOnceTheReceiverReportsThem) {
 
 TEST(LockstepSchedule, TheRecorderIsCompleteWhenItHoldsWhatTheFrontendsSent) {
   LockstepSchedule s({'a', 'b'}, true);
-  s.frontendReported('a', progress(1000, 5, 0, 3, 1));
+  FrontendProgress a = progress(1000, 5, 0, 3, 1);
+  a.seq = 4;  // 3 keyframes and a loop closure
+  s.frontendReported('a', a);
   EXPECT_TRUE(s.recorderComplete());  // no recorder has reported: nothing to wait for
-  s.recorderReported('a', 2, 1);
+  s.recorderReported('a', 3);
   EXPECT_FALSE(s.recorderComplete());
-  s.recorderReported('a', 3, 1);
+  EXPECT_EQ(s.robotsNotRecorded(), (std::vector<char>{'a'}));
+  s.recorderReported('a', 4);
   EXPECT_TRUE(s.recorderComplete());
-  s.frontendReported('b', progress(1000, 2, 0, 1, 0));
+  FrontendProgress b = progress(1000, 2, 0, 1, 0);
+  b.seq = 1;
+  s.frontendReported('b', b);
   EXPECT_FALSE(s.recorderComplete());
-  s.recorderReported('b', 1, 0);
+  s.recorderReported('b', 1);
+  EXPECT_TRUE(s.recorderComplete());
+}
+
+TEST(LockstepSchedule, AnExpectedRecorderIsWaitedForBeforeItReports) {
+  LockstepSchedule s({'a'}, true);
+  s.expectRecorder();
+  FrontendProgress a = progress(1000, 5, 0, 1, 0);
+  a.seq = 1;
+  s.frontendReported('a', a);
+  EXPECT_FALSE(s.recorderComplete());
+  s.recorderReported('a', 1);
   EXPECT_TRUE(s.recorderComplete());
 }

@@ -4,9 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <sstream>
 #include <vector>
 
+#include "cosmo/comm/radio_trace.hpp"
 #include "cosmo/comm/scan_compression.hpp"
+#include "cosmo/comm/transfer_log.hpp"
 #include "cosmo/pipeline/radio_broker.hpp"
 #include "cosmo/pipeline/seed_streams.hpp"
 #include "cosmo/pipeline/team_radio.hpp"
@@ -237,4 +240,59 @@ TEST(RadioBroker, RealTimeStepsFollowTheTimeGivenAndRestartAfterAJump) {
   EXPECT_TRUE(batch.grid_restarted);
   EXPECT_EQ(batch.steps, 1u);  // the new grid's first step, at 9000
   EXPECT_NEAR(batch.last_time, 9000.0, 1e-9);
+}
+
+TEST(RadioBroker, LockstepReplaysARadioTraceWithTheOfflineRuleAndLog) {
+  // A trace with latency, a blackout, and a pair left to phi(d): the broker's transfer log is the offline rule's.
+  RadioParams params = RadioParams::wifi();
+  std::istringstream text(
+      "robot_a,robot_b,start,duration,throughput_Bps,latency,connected\n"
+      "a,b,0,8,300000,0.25,1\na,b,8,4,300000,0,0\na,b,12,20,800000,0.05,1\n");
+  params.trace = std::make_shared<const RadioTrace>(RadioTrace::parse(text, "trace.csv"));
+  RadioBroker broker(params, {'a', 'b', 'c'}, 99, true, false, 6);
+  std::vector<std::shared_ptr<const Scan>> scans;
+  for (int k = 0; k < 12; ++k) scans.push_back(scanOf(20000 + 1000 * k, kStart + k));
+  for (int k = 0; k < 12; ++k) broker.offer(k % 2 ? 'a' : 'b', static_cast<std::uint32_t>(k), broker.pack(scans[k]));
+  broker.setSequence(kStart, 7, {'a', 'b', 'c'});
+  broker.setReference('a', standing(0.0));
+  broker.setReference('b', standing(200.0));  // beyond d_init: only the trace connects a and b
+  broker.setReference('c', standing(10.0));   // a-c: phi(d)
+  broker.start();
+  Recorded rec;
+  QueuedRadioStep q;
+  q.seq = 1;
+  q.order.through = kStart + 40000000000ULL;
+  q.order.robots = {'a', 'b', 'c'};
+  q.order.on = {true, true, true};
+  q.order.keyframes = {6, 6, 0};
+  broker.request(q);
+  broker.runReadySteps(rec.onDelivery(), rec.onDone());
+
+  RadioSimulator offline(params, {'a', 'b', 'c'}, deriveSeed(7, "radio"));
+  for (int k = 0; k < 12; ++k)
+    offline.offerKeyframe(k % 2 ? 'a' : 'b', k, rawPayloadBytes(*scans[k]), rawPayloadBytes(*scans[k]));
+  advanceRadio(
+      offline, radioGridOrigin(kStart, params.step), q.order.through,
+      [](char r, StampNs) {
+        RadioRobotState s;
+        s.on = true;
+        s.position = Eigen::Vector3d(r == 'a' ? 0.0 : r == 'b' ? 200.0 : 10.0, 0, 0);
+        return s;
+      },
+      [](StampNs, const Transfer&) {});
+  std::ostringstream got, want;
+  writeTransferCsv(got, broker.radio().transferLog());
+  writeTransferCsv(want, offline.transferLog());
+  EXPECT_EQ(got.str(), want.str());
+  std::size_t ab = 0;
+  for (const Transfer& x : broker.radio().transferLog()) {
+    if (x.outcome != Transfer::Outcome::Delivered || x.sender == 'c' || x.receiver == 'c') continue;
+    ++ab;
+    EXPECT_FALSE(x.end - 0.05 >= 8.0 && x.end - 0.05 < 12.0) << "sent in the blackout, at " << x.end;
+    EXPECT_GT(x.received, x.end);  // latency
+  }
+  EXPECT_GT(ab, 4u);
+  EXPECT_GT(broker.radio().stats().fallback_samples, 0u);  // a-c and b-c
+  EXPECT_EQ(rec.delivered.size(), broker.radio().stats().delivered);
+  for (const auto& [stamp, x] : rec.delivered) EXPECT_EQ(stamp, radioStepStamp(broker.origin(), x.received));
 }

@@ -8,6 +8,7 @@
 #include <memory>
 #include <sstream>
 
+#include "cosmo/comm/radio_trace.hpp"
 #include "cosmo/pipeline/scan_stream.hpp"
 #include "cosmo/pipeline/seed_streams.hpp"
 #include "cosmo/pipeline/sequence_references.hpp"
@@ -272,4 +273,33 @@ TEST(TeamRun, RegistrationThreadsStopCleanlyWithoutFinish) {
     keyframes = run.counts().keyframes;
   }
   EXPECT_GT(keyframes, 2u);
+}
+
+TEST(TeamRun, ReplaysARadioTraceInsteadOfTheDistanceModel) {
+  // A trace that keeps a and b disconnected for the whole run: nothing is delivered, where phi(d) delivers, and every
+  // connectivity sample came from the trace.
+  const auto& trials = team();
+  const SequenceTiming timing = timingOf(trials, 5, 0.5);
+  const auto deliveredWith = [&](const RadioParams& radio, RadioStats* stats) {
+    TeamRunParams params;
+    params.frontend = FrontendParams::loadDir(defaultConfigDir());
+    params.reference_odometry = true;
+    params.radio = radio;
+    TeamRun run("test_team", referencesOf(trials, timing), params, deriveSeed(5, "radio"), timing.start());
+    MergedScanStream stream = streamOf(trials, timing);
+    char robot;
+    Scan scan;
+    while (stream.next(robot, scan)) run.addScan(robot, scan);
+    run.finish(timing.end());
+    *stats = run.radio().stats();
+    return run.counts().transfers_delivered;
+  };
+  RadioStats model, traced;
+  EXPECT_GT(deliveredWith(RadioParams::wifi(), &model), 0u);
+  RadioParams blackout = RadioParams::wifi();
+  std::istringstream text("robot_a,robot_b,start,duration,throughput_Bps,latency,connected\na,b,-10,100000,0,0,0\n");
+  blackout.trace = std::make_shared<const RadioTrace>(RadioTrace::parse(text, "blackout.csv"));
+  EXPECT_EQ(deliveredWith(blackout, &traced), 0u);
+  EXPECT_GT(traced.trace_samples, 0u);
+  EXPECT_EQ(traced.fallback_samples, 0u);
 }

@@ -28,8 +28,11 @@ geometry_msgs::Pose pose(double x, double y, double yaw) {
   return p;
 }
 
+// Measurement numbers per sending robot: keyframe i is number i + 1; a robot's loop closure comes after its first
+// five keyframes (number 6), a keyframe i >= 5 after it (i + 2).
 cosmo::RecorderKeyframe keyframe(char r, unsigned i) {
   cosmo::RecorderKeyframe m;
+  m.seq = i < 5 ? i + 1 : i + 2;
   m.header.stamp = ros::Time(1700000000 + i, r == 'b' ? 250000000 : 0);
   m.header.frame_id = "world";
   m.robot = std::string(1, r);
@@ -50,6 +53,7 @@ cosmo::RecorderLoopClosure closure(char owner, double t, char r1, unsigned i1, c
   lc.robot2 = std::string(1, r2);
   lc.index2 = i2;
   lc.measurement = m;
+  lc.seq = 6;
   return lc;
 }
 

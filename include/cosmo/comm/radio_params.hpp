@@ -2,11 +2,14 @@
 // Parameters of the simulated radio (spec section 5, paper Fig. "Model Hyperparameters"): one shared channel of
 // bandwidth B, connectivity probability phi(d) = min(P_max, alpha (beta^(d / r_max) - beta)) clamped at 0,
 // initialization within d_init, interference within d_intf, step delta and timeout T.
+#include <memory>
 #include <string>
 
 #include "cosmo/common/config.hpp"
 
 namespace cosmo {
+
+class RadioTrace;
 
 struct RadioParams {
   /// Channel bandwidth B in kB/s (1 kB = 1000 bytes).
@@ -38,6 +41,11 @@ struct RadioParams {
   double size_factor_mean = 0.653;
   double size_factor_stddev = 0.04;
 
+  /// Comm model `trace`: a radio trace replayed instead of phi(d) inside its windows (comm/link_model.hpp); the
+  /// values above still hold outside them. Null: the distance model alone. Config key `trace: FILE` (relative to
+  /// the config file's folder).
+  std::shared_ptr<const RadioTrace> trace;
+
   /// Connectivity probability at distance d (m).
   double phi(double d) const;
   /// Bandwidth in bytes per second.
@@ -47,7 +55,7 @@ struct RadioParams {
   void validate(const std::string& where = "RadioParams") const;
 
   /// Reads a config/comm/*.yaml file (keys at the root or under `comm:`); a missing key keeps the Wi-Fi
-  /// value, unless `preset: proradio` picks the Pro-Radio values as the base.
+  /// value, unless `preset: proradio` picks the Pro-Radio values as the base; `trace: FILE` reads that trace.
   static RadioParams fromConfig(const ConfigNode& node);
   /// The paper's Wi-Fi model (B 2000 kB/s, d_init 30 m, d_intf 40 m, P_max 0.7, alpha 1.1, beta 0.1, r_max 70 m).
   static RadioParams wifi();
@@ -57,8 +65,8 @@ struct RadioParams {
   /// "wifi" or "proradio" (also "pro-radio", "pro_radio"); throws std::invalid_argument otherwise.
   static RadioParams byName(const std::string& name);
 
-  /// The YAML keys, one per member (common/param_list.hpp); `preset`, `timeout_mode` and `size_model` are read by
-  /// fromConfig.
+  /// The YAML keys, one per member (common/param_list.hpp); `preset`, `timeout_mode`, `size_model` and `trace` are
+  /// read by fromConfig.
   template <class Visitor>
   void visit(Visitor&& v) {
     v("bandwidth_kBps", bandwidth_kBps);

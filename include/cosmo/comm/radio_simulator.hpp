@@ -5,6 +5,10 @@
 //   2. for every active communication sample C ~ Bernoulli(phi(d)) and integrate T = (B / I) * C * delta,
 //      I = 1 + other active communications with an endpoint within d_intf of either endpoint;
 //   3. terminate: delivered when the integrated bytes reach the payload, timed out after T (RadioParams).
+// Connectivity, the throughput alone on the channel (B) and the latency (0) come from the link model
+// (comm/link_model.hpp): phi(d), or a radio trace inside its windows. With a latency L the sender and receiver are
+// free once the last byte is sent; the transfer reaches the receiver (step() returns it, Transfer::received) at the
+// first step at or after end + L.
 //
 // Decisions (documented in the README):
 // * Who sends: a pair runs one communication in one direction. The sender is the robot with more keyframes
@@ -31,8 +35,10 @@
 #include <set>
 #include <vector>
 
+#include "cosmo/comm/link_model.hpp"
 #include "cosmo/comm/radio_params.hpp"
 #include "cosmo/comm/transfer.hpp"
+#include "cosmo/common/time.hpp"
 
 namespace cosmo {
 
@@ -48,6 +54,9 @@ struct ActiveCommunication {
   double distance = 0.0;         ///< distance (m) at the last step
   int interference = 1;          ///< I_ab at the last step
   double throughput_Bps = 0.0;   ///< bytes per second in the last step (0 when the sample failed)
+  double capacity_Bps = 0.0;     ///< the link's throughput alone on the channel, at its last connected sample
+  double latency = 0.0;          ///< the link's latency (s) at its last connected sample
+  bool used_trace = false, used_distance = false;  ///< which link models answered its samples
 };
 
 /// Summary counters of a run.
@@ -62,12 +71,16 @@ struct RadioStats {
   double bytes_delivered = 0.0;    ///< payload bytes of delivered transfers
   double bytes_transmitted = 0.0;  ///< all bytes that got through, also of transfers that timed out
   std::uint64_t keyframes_offered = 0;
+  /// With a radio trace: connectivity samples (init attempts and links) answered by its windows, and by phi(d)
+  /// outside them (the fallback).
+  std::uint64_t trace_samples = 0, fallback_samples = 0;
+  std::uint64_t in_flight = 0;  ///< sent in full, not yet received (a trace's latency)
 };
 
 class RadioSimulator {
  public:
   /// `robots`: the team's ids (sorted and de-duplicated internally). Throws std::invalid_argument on invalid
-  /// parameters or an empty team.
+  /// parameters or an empty team, std::runtime_error (file and line) when the radio trace names another robot.
   RadioSimulator(const RadioParams& p, std::vector<char> robots, std::uint64_t seed);
 
   /// Position (world frame, m) and on/off of a robot; call before each step (or when it changes).
@@ -84,6 +97,14 @@ class RadioSimulator {
   double nextStepTime() const { return start_time_ + static_cast<double>(next_index_) * params_.step; }
   /// Restart the step grid at t.
   void setStartTime(double t);
+  /// Radio time of the radio trace's time 0 (default 0).
+  void setTraceOrigin(double t) { link_.setTraceOrigin(t); }
+  /// The stamp of radio time 0, for the transfer log (default 0: radio time is UNIX time).
+  void setTimeOrigin(StampNs origin) { time_origin_ = origin; }
+  StampNs timeOrigin() const { return time_origin_; }
+  /// Keep every connectivity sample (linkRecords(), RadioTrace::fromRecords: a trace of this run).
+  void recordLinks(bool on) { link_.setRecording(on); }
+  const std::vector<LinkRecord>& linkRecords() const { return link_.records(); }
 
   const RadioParams& params() const { return params_; }
   const std::vector<char>& robots() const { return robot_ids_; }
@@ -121,12 +142,17 @@ class RadioSimulator {
   void updateActiveCommunications(double t);
   std::vector<Transfer> terminateCommunications(double t);
   std::size_t pickKeyframe(const Robot& sender, char receiver);
+  LinkSample sampleLink(char a, char b, double t, double distance);
+  void received(const Transfer& x);
 
   RadioParams params_;
   std::vector<char> robot_ids_;
   std::map<char, Robot> robots_;
   std::uint64_t seed_;
   std::mt19937_64 rng_;
+  LinkModel link_;
+  std::vector<Transfer> in_flight_;  ///< sent in full; `received` holds the time they arrive
+  StampNs time_origin_ = 0;
   std::vector<ActiveCommunication> active_;
   std::vector<ActiveCommunication> last_step_;
   std::vector<bool> new_this_step_;  ///< parallel to active_: started in the current step

@@ -16,6 +16,7 @@ namespace cosmo {
 struct ConfigNode {
   YAML::Node node;
   std::string where;  ///< "file.yaml: section.sub"
+  std::string file{};  ///< the file it was loaded from (empty: made in memory)
 
   /// Load a file; throws naming the file when it is missing or malformed.
   static ConfigNode load(const std::string& path);

@@ -22,6 +22,9 @@
 // has potential outliers only (no groundtruth, no outlier_factors) and report().labels_note says why.
 // Keyframes after a gap in a robot's indices and loop closures touching keys not (yet) written are left out
 // of this build (they are kept and enter a later build once the gap is filled).
+// A bridged keyframe (the first of a restarted front-end, addKeyframe's bridge_from) continues the robot's chain
+// after keyframe bridge_from, whatever the indices between (they may never come): its odometry factor joins the two
+// by the bridge rule (gap_bridge.hpp) and is listed in the build report and the metadata.
 #include <cstddef>
 #include <cstdint>
 #include <map>
@@ -73,6 +76,13 @@ struct BuildReport {
   std::size_t keyframes_pending = 0;           ///< keyframes after a gap in their robot's indices
   std::size_t loop_closures_pending = 0;       ///< loop closures touching keys not written
   std::vector<char> robots_without_keyframes;  ///< left out of `robots`
+  struct Bridge {
+    char robot = 'a';
+    std::size_t from = 0, to = 0;  ///< keyframe indices
+    double gap_seconds = 0.0;
+    std::string rule;
+  };
+  std::vector<Bridge> bridges;  ///< odometry factors across front-end restarts (gap_bridge.hpp)
 };
 
 class DatasetRecorder {
@@ -83,9 +93,15 @@ class DatasetRecorder {
   /// Keyframe `index` of `robot` at `stamp` with the odometry T_{index-1}^-1 * T_index (ignored for index 0)
   /// and its reference (world) pose when known. Throws std::invalid_argument naming the problem (unknown
   /// robot, duplicate index, non-finite odometry, stamp not between its neighbours'); a non-finite reference
-  /// pose is kept as "no reference".
+  /// pose is kept as "no reference". `bridge_from`: the first keyframe of a restarted front-end, following keyframe
+  /// *bridge_from (< index) by the bridge rule; its odometry is ignored.
   void addKeyframe(char robot, std::size_t index, StampNs stamp, const Pose3& odometry_from_previous,
-                   const std::optional<Pose3>& reference_pose);
+                   const std::optional<Pose3>& reference_pose,
+                   std::optional<std::size_t> bridge_from = std::nullopt);
+  /// The last keyframe index of `robot`'s chain (what build() writes), if it has keyframe 0.
+  std::optional<std::size_t> chainEnd(char robot) const;
+  /// The nominal keyframe distance the bridge rule divides a gap's length by (gap_bridge.hpp; default 2 m).
+  void setKeyframeDistance(double metres) { keyframe_distance_ = metres; }
   /// Throws std::invalid_argument naming the problem (unknown robot, no key owned by `owner`, key1 == key2,
   /// non-finite measurement, the same owner/keys/computed_at twice).
   void addLoopClosure(const LoopClosureMeasurement& lc);
@@ -124,13 +140,26 @@ class DatasetRecorder {
     StampNs stamp = 0;
     Pose3 odometry = Pose3::Identity();
     std::optional<Pose3> reference;
+    std::optional<std::size_t> bridge_from;
   };
   bool knows(char robot) const;
 
   // build()'s steps.
   struct Placed;  ///< a loop closure placed in an entry of its owner
-  using Chains = std::map<char, std::vector<const Keyframe*>>;
-  /// Per robot, its contiguous keyframes 0..n-1 (the ones written).
+  /// A robot's written keyframes in order: 0, 1, 2, ..., each the next index or a bridge from the one before.
+  struct Chain {
+    std::vector<std::size_t> index;
+    std::vector<const Keyframe*> frames;
+    std::map<std::size_t, std::size_t> position;  ///< keyframe index -> position in the chain
+    std::size_t size() const { return frames.size(); }
+    bool empty() const { return frames.empty(); }
+    /// The position of keyframe `index`, when written.
+    std::optional<std::size_t> find(std::size_t index) const;
+  };
+  using Chains = std::map<char, Chain>;
+  /// `robot`'s chain.
+  Chain chainOf(char robot) const;
+  /// Per robot, its chain (the keyframes written).
   Chains keyframeChains(BuildReport& report) const;
   /// Per owner, the loop closures between written keyframes, each placed in one of the owner's entries.
   std::map<char, std::vector<Placed>> placeLoopClosures(const Chains& chains, BuildReport& report) const;
@@ -143,6 +172,7 @@ class DatasetRecorder {
   NoiseModels noise_;
   OutlierRule rule_;
   double critical_value_ = kChi2Critical95Dof6;
+  double keyframe_distance_ = 2.0;
   std::vector<std::pair<std::string, std::string>> extra_metadata_;
   std::map<char, std::map<std::size_t, Keyframe>> keyframes_;
   std::vector<LoopClosureMeasurement> loop_closures_;  ///< normalised (key1 owned), in arrival order

@@ -2,7 +2,8 @@
 // What a front-end's map display shows (the frontend node's rviz markers), without ROS: its keyframe trajectory in
 // the world frame and its loop closures as segments between the two keyframes, each with its label
 // (closure_label.hpp). A keyframe's world position is its reference pose, else its odometry pose moved by the
-// odometry-to-world alignment (the reference of keyframe 0 times its odometry pose^-1; identity without one).
+// odometry-to-world alignment (the reference of its first keyframe times its odometry pose^-1; identity without
+// one).
 // Teammates' keyframes are known by the reference poses their delivered scans carry.
 #include <cstddef>
 #include <map>

@@ -24,6 +24,7 @@ struct FrontendProgress {
   std::uint32_t received = 0;       ///< teammate scans processed (deliveries)
   std::uint32_t keyframes = 0;      ///< keyframes offered to the radio
   std::uint32_t loop_closures = 0;  ///< accepted loop closures sent to the recorder
+  std::uint64_t seq = 0;            ///< the last measurement number sent to the recorder (0: none)
 };
 
 /// A request to step the radio through `through`: the robots' states, and the keyframe offers that must have
@@ -58,8 +59,8 @@ class LockstepSchedule {
   /// The radio ran its steps through the requested stamp: `next_step` is where the next one lies (a scan stamped
   /// at or after it needs a radio step first), `delivered` the scans delivered so far, per receiver.
   void radioStepped(StampNs next_step, const std::map<char, std::uint32_t>& delivered);
-  /// The recorder's intake so far.
-  void recorderReported(char robot, std::uint32_t keyframes, std::uint32_t loop_closures);
+  /// The recorder holds every measurement of `robot` numbered up to `acked`.
+  void recorderReported(char robot, std::uint64_t acked);
 
   /// Every scan handed over was processed.
   bool scansProcessed() const;
@@ -69,9 +70,13 @@ class LockstepSchedule {
   void stopWaitingForScans() { handed_over_.clear(); }
   /// Every scan the radio delivered was processed by its receiver.
   bool deliveriesProcessed() const;
-  /// The recorder holds every keyframe and loop closure the front-ends reported (true before it reported at all:
-  /// a run without a recorder).
+  /// A recorder is part of the run: recorderComplete() waits for it also before it reported.
+  void expectRecorder() { recorder_reported_ = true; }
+  /// The recorder holds every measurement the front-ends reported sending (true before it reported at all, unless
+  /// expected: a run without a recorder).
   bool recorderComplete() const;
+  /// Robots whose measurements the recorder does not hold yet.
+  std::vector<char> robotsNotRecorded() const;
   /// The request that steps the radio through `through`.
   RadioStepOrder radioStepOrder(StampNs through) const;
 
@@ -87,7 +92,7 @@ class LockstepSchedule {
   std::map<char, FrontendProgress> progress_;
   std::map<char, std::uint32_t> delivered_;
   bool recorder_reported_ = false;
-  std::map<char, std::pair<std::uint32_t, std::uint32_t>> recorded_;
+  std::map<char, std::uint64_t> recorded_;  ///< the recorder's acked, per robot
 };
 
 }  // namespace cosmo::pipeline

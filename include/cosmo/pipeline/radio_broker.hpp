@@ -99,6 +99,8 @@ class RadioBroker {
   const RadioSimulator& radio() const { return *radio_; }
   /// Scans handed to each receiver so far.
   const std::map<char, std::uint32_t>& delivered() const { return delivered_; }
+  /// Per robot, 1 + the highest keyframe index it offered (a restarted front-end numbers its keyframes after it).
+  const std::map<char, std::uint32_t>& nextIndex() const { return next_index_; }
 
  private:
   struct EarlyOffer {
@@ -114,6 +116,7 @@ class RadioBroker {
   std::unique_ptr<RadioSimulator> radio_;
   PayloadStore payloads_;
   std::map<char, std::uint32_t> delivered_;
+  std::map<char, std::uint32_t> next_index_;
   // lockstep
   RadioStepQueue steps_;
   std::optional<std::pair<StampNs, std::uint64_t>> sequence_;  ///< start, seed

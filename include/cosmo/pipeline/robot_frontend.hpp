@@ -39,7 +39,7 @@ namespace cosmo::pipeline {
 /// A keyframe this robot took.
 struct KeyframeRecord {
   char robot = 'a';
-  std::size_t index = 0;
+  std::size_t index = 0;  ///< from 0, or from RobotFrontend::numberKeyframesFrom()
   StampNs stamp = 0;
   Pose3 odom_pose = Pose3::Identity();  ///< sensor pose in this robot's odometry frame
   Pose3 relative = Pose3::Identity();   ///< odometry from the previous keyframe (identity for index 0)
@@ -134,6 +134,10 @@ class RobotFrontend {
   /// spill file, e.g. spillFile(), to keep the features out of memory.)
   void shareFeatureCache(std::shared_ptr<FeatureCache> cache);
 
+  /// Numbers this front-end's keyframes from `first` instead of 0 (a restarted front-end continues its robot's
+  /// indices, so that no index names two poses); before the first scan.
+  void numberKeyframesFrom(std::size_t first) { first_index_ = first; }
+
   /// Appends a reference (world) sensor pose as it arrives (live use); stamps not after the last are ignored.
   void appendReference(StampNs stamp, const Pose3& sensor_in_world);
 
@@ -189,6 +193,7 @@ class RobotFrontend {
   std::shared_ptr<FeatureCache> feature_cache_;
   std::shared_ptr<RegistrationPool> pool_;
 
+  std::size_t first_index_ = 0;  ///< the index of this front-end's first keyframe
   Pose3 last_pose_ = Pose3::Identity();
   StampNs last_stamp_ = 0;
   std::size_t scans_ = 0, accepted_ = 0, rejected_ = 0, received_ = 0;

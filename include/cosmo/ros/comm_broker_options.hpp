@@ -17,8 +17,8 @@ struct CommBrokerOptions {
   bool compress = true, lockstep = false;
 };
 
-/// The radio's parameters: ~comm (wifi | proradio) or ~config (a config/comm/*.yaml, wins), then ~size_model and
-/// ~timeout_mode when set.
+/// The radio's parameters: ~comm (wifi | proradio) or ~config (a config/comm/*.yaml, wins), then ~size_model,
+/// ~timeout_mode and ~trace (a radio trace CSV, comm/radio_trace.hpp; wins over the config's) when set.
 RadioParams readRadioParams(const ros::NodeHandle& pnh);
 /// Every parameter; throws std::runtime_error naming the one that is out of range.
 CommBrokerOptions readCommBrokerOptions(const ros::NodeHandle& pnh);

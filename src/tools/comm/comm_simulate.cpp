@@ -2,6 +2,7 @@
 //
 //   comm_simulate [--comm wifi|proradio|<file.yaml>] [--seed N] [--kf-distance 2.0] [--scan-points 65536]
 //                 [--size-model paper|real] [--timeout-mode no_progress|total_duration] [--tail 0]
+//                 [--trace TRACE.csv] [--write-trace TRACE.csv]
 //                 --out transfers.csv  a=<traj> b=<traj>[@offset_s] ...
 //
 // <traj>: a TUM file (stamp x y z qx qy qz qw) or an MCD pose_inW.csv (by the .csv extension). @offset_s
@@ -9,7 +10,11 @@
 // travel along the reference (a stand-in for the front-end's odometry keyframes) with S = 12 * --scan-points
 // bytes (with --size-model real the payload is S * 0.653, there being no scan to compress). Robots are off
 // before their first pose and stay on at their last pose until the latest end (+ --tail seconds).
-// Writes the CSV (sender,receiver,keyframe,start,end,bytes,outcome) and <out>.summary.json; prints the summary.
+// Radio time 0 (and a trace's time 0) is the earliest trajectory start rounded down to the step grid.
+// --trace replays a radio trace (comm/radio_trace.hpp) inside its windows, --comm's phi(d) outside them;
+// --write-trace writes the run's own connectivity samples as a trace, which replayed with the same seed and
+// trajectories gives the same transfers.
+// Writes the CSV (comm/transfer_log.hpp) and <out>.summary.json; prints the summary.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -18,7 +23,10 @@
 #include <map>
 #include <string>
 
+#include <fstream>
+
 #include "cosmo/comm/radio_simulator.hpp"
+#include "cosmo/comm/radio_trace.hpp"
 #include "cosmo/comm/transfer_log.hpp"
 #include "cosmo/common/pose_io.hpp"
 
@@ -27,15 +35,15 @@ using namespace cosmo;
 namespace {
 constexpr const char* kUsage =
     "usage: comm_simulate [--comm wifi|proradio|file.yaml] [--seed N] [--kf-distance m] [--scan-points n] "
-    "[--size-model paper|real] [--timeout-mode no_progress|total_duration] [--tail s] --out transfers.csv "
-    "a=traj[@offset_s] b=traj ...\n";
+    "[--size-model paper|real] [--timeout-mode no_progress|total_duration] [--tail s] [--trace TRACE.csv] "
+    "[--write-trace TRACE.csv] --out transfers.csv a=traj[@offset_s] b=traj ...\n";
 
 int usage(const char* msg) {
   std::fprintf(stderr, "comm_simulate: %s\n%s", msg, kUsage);
   return 2;
 }
 struct Options {
-  std::string comm = "wifi", out, size_model, timeout_mode;
+  std::string comm = "wifi", out, size_model, timeout_mode, trace, write_trace;
   std::uint64_t seed = 0;
   double kf_distance = 2.0, tail = 0.0;
   std::size_t scan_points = 65536;
@@ -86,6 +94,10 @@ std::string parseArgs(int argc, char** argv, Options& o) {
       o.tail = std::stod(next());
     else if (a == "--out")
       o.out = next();
+    else if (a == "--trace")
+      o.trace = next();
+    else if (a == "--write-trace")
+      o.write_trace = next();
     else if (a.size() > 2 && a[1] == '=')
       o.trajectories[a[0]] = readRobotTrajectory(a);
     else
@@ -103,6 +115,7 @@ RadioParams radioParams(const Options& o) {
                            : RadioParams::byName(o.comm);
   if (!o.size_model.empty()) params.size_model = sizeModelFromString(o.size_model, "--size-model");
   if (!o.timeout_mode.empty()) params.timeout_mode = timeoutModeFromString(o.timeout_mode, "--timeout-mode");
+  if (!o.trace.empty()) params.trace = std::make_shared<const RadioTrace>(RadioTrace::read(o.trace));
   return params;
 }
 
@@ -114,16 +127,17 @@ void simulate(const Options& o, RadioSimulator& sim) {
     t0 = std::min(t0, t.startStamp());
     t1 = std::max(t1, t.endStamp());
   }
-  const double step = sim.params().step;
-  sim.setStartTime(std::ceil(toSeconds(t0) / step) * step);
-  const double end = toSeconds(t1) + o.tail;
+  const StampNs step_ns = toStampNs(sim.params().step);
+  const StampNs origin = (t0 / step_ns) * step_ns;
+  sim.setTimeOrigin(origin);
+  const double end = toSeconds(t1 - origin) + o.tail;
   std::map<char, Eigen::Vector3d> last_pos;
   std::map<char, double> travelled;
   std::map<char, std::size_t> next_kf;
   const std::size_t raw = 12 * o.scan_points;
   const std::size_t real = static_cast<std::size_t>(0.653 * raw);
   for (double t = sim.nextStepTime(); t <= end + 1e-9; t = sim.nextStepTime()) {
-    const StampNs stamp = static_cast<StampNs>(std::llround(t * 1e9));
+    const StampNs stamp = origin + static_cast<StampNs>(std::llround(t * 1e9));
     for (const auto& [r, traj] : o.trajectories) {
       if (stamp < traj.startStamp()) continue;  // off before its first measurement
       const Eigen::Vector3d p = traj.atClamped(stamp).translation();
@@ -158,9 +172,15 @@ int main(int argc, char** argv) {
     std::vector<char> ids;
     for (const auto& [r, t] : o.trajectories) ids.push_back(r);
     RadioSimulator sim(radioParams(o), ids, o.seed);
+    sim.recordLinks(!o.write_trace.empty());
     simulate(o, sim);
-    writeTransferLog(o.out, sim.transferLog(), sim.stats(), sim.params());
-    std::cout << transferSummaryJson(sim.stats(), sim.params()) << "\n";
+    writeTransferLog(o.out, sim);
+    if (!o.write_trace.empty()) {
+      std::ofstream out(o.write_trace);
+      RadioTrace::fromRecords(sim.linkRecords(), sim.params().step).write(out);
+      if (!out.flush()) throw std::runtime_error(o.write_trace + ": cannot write");
+    }
+    std::cout << transferSummary(sim).dump() << "\n";
   } catch (const std::exception& e) {
     std::fprintf(stderr, "comm_simulate: %s\n", e.what());
     return 1;

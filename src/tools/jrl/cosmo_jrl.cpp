@@ -5,13 +5,19 @@
 //   cosmo_jrl plot FILE... [-o DIR] [--no-png]
 //   cosmo_jrl solve FILE... [--json]
 //   cosmo_jrl export FILE [--g2o OUT.g2o] [--tum DIR] [--labels OUT.csv]
+//   cosmo_jrl inject IN.jrl OUT.jrl --rate R --kind random|local|group|mixed [--group-size K]
+//             [--intra|--inter|--both] --seed N [--rate-of injected|all] [--outlier-rule fidelity|squared]
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "cosmo/backend/dataset_check.hpp"
+#include "cosmo/dataset/outlier_injection.hpp"
 #include "cosmo/jrl/exports.hpp"
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/stats.hpp"
@@ -26,6 +32,8 @@ const char* kUsage =
     "       cosmo_jrl plot [-o DIR] [--no-png] FILE...\n"
     "       cosmo_jrl solve [--json] FILE...\n"
     "       cosmo_jrl export FILE [--g2o OUT.g2o] [--tum DIR] [--labels OUT.csv]\n"
+    "       cosmo_jrl inject IN.jrl OUT.jrl --rate R --kind random|local|group|mixed [--group-size K]\n"
+    "                 [--intra|--inter|--both] --seed N [--rate-of injected|all] [--outlier-rule fidelity|squared]\n"
     "       cosmo_jrl --help\n"
     "\n"
     "stats     per dataset: name, robots, duration (last minus first entry stamp, MM:SS), total length of the\n"
@@ -45,6 +53,7 @@ const char* kUsage =
     "export    --g2o: one global graph (VERTEX_SE3:QUAT / EDGE_SE3:QUAT, ids in key order, information\n"
     "          matrices in g2o's convention); --tum: ground truth and initialization per robot as TUM files in DIR;\n"
     "          --labels: every loop closure with its error against the ground truth, d^2 and label (CSV).\n"
+    "inject    adds loop closures that are wrong by the kind's rule, labelled outliers (cosmo_jrl inject --help).\n"
     "\n"
     "exit code: 0 on success (validate: every file valid), 1 on invalid or unreadable files, 2 on usage errors\n";
 
@@ -155,11 +164,66 @@ int exportFiles(const Args& a) {
   });
 }
 
+/// cosmo_jrl inject: its own options (CLI11); `args` are the words after "inject".
+int inject(std::vector<std::string> args) {
+  CLI::App app{
+      "Adds loop closures that are wrong by the kind's rule (docs/design.md, \"Injected outliers\"), each with the "
+      "dataset's loop-closure covariance, in the entry where the front-end would have made it, listed in "
+      "potential_outlier_factors and outlier_factors. Rate: the share of injected closures among the loop closures "
+      "in scope after injection (--rate-of all: of every labelled outlier, natural ones included).",
+      "cosmo_jrl inject"};
+  std::string in, out, kind = "random", rate_of = "injected", rule = "fidelity";
+  cosmo::InjectionParams p;
+  app.add_option("IN", in, "input JRL (with ground truth and outlier labels)")->required()->check(CLI::ExistingFile);
+  app.add_option("OUT", out, "output JRL (its name: the file stem)")->required();
+  app.add_option("--rate", p.rate, "outlier rate in [0, 1)")->required()->check(CLI::Range(0.0, 0.999999));
+  app.add_option("--kind", kind, "random | local | group | mixed")
+      ->check(CLI::IsMember({"random", "local", "group", "mixed"}));
+  app.add_option("--group-size", p.draw.group_size, "closures per group (group, mixed)")->check(CLI::Range(1, 1000));
+  auto* intra = app.add_flag("--intra", "pairs of poses of one robot only");
+  auto* inter = app.add_flag("--inter", "pairs of poses of two robots only");
+  auto* both = app.add_flag("--both", "both (default; in the dataset's intra / inter proportion)");
+  intra->excludes(inter)->excludes(both);
+  inter->excludes(both);
+  app.add_option("--seed", p.seed, "random seed (same seed, same output)")->required();
+  app.add_option("--rate-of", rate_of, "injected (default) | all: what the rate counts")
+      ->check(CLI::IsMember({"injected", "all"}));
+  app.add_option("--outlier-rule", rule, "the dataset's label rule, which every injected closure fails")
+      ->check(CLI::IsMember({"fidelity", "squared"}));
+  app.add_option("--local-radius", p.draw.local_radius_m, "local: pose pairs at most this far apart (m)")
+      ->check(CLI::PositiveNumber);
+  std::reverse(args.begin(), args.end());  // CLI11 takes a vector in reverse order
+  try {
+    app.parse(args);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  p.kind = *cosmo::parseOutlierKind(kind);
+  p.scope = intra->count() ? cosmo::ClosureScope::Intra
+                           : inter->count() ? cosmo::ClosureScope::Inter : cosmo::ClosureScope::Both;
+  p.rate_of = rate_of == "all" ? cosmo::RateOf::All : cosmo::RateOf::Injected;
+  p.draw.rule = *cosmo::parseOutlierRule(rule);
+  try {
+    cosmo::InjectionReport report;
+    cosmo::jrl::Dataset d = cosmo::injectOutliers(cosmo::jrl::readJrl(in), p, &report);
+    d.name = std::filesystem::path(out).stem().string();
+    const auto violations = cosmo::jrl::validate(d);
+    if (!violations.empty()) throw std::runtime_error(out + ": not written: " + violations.front().str());
+    cosmo::jrl::writeJrl(out, d);
+    std::cout << cosmo::formatInjection(report, p.kind) << "\nwrote " << out << "\n";
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) return usageError("missing command");
+  if (args[0] == "inject") return inject({args.begin() + 1, args.end()});
   if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::cout << kUsage;
     return 0;

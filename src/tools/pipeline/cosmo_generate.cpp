@@ -36,6 +36,7 @@
 #include "cosmo/common/text_list.hpp"
 #include "cosmo/pipeline/kept_scan.hpp"
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/comm/radio_trace.hpp"
 #include "cosmo/comm/transfer_log.hpp"
 #include "cosmo/jrl/stats.hpp"
 #include "cosmo/backend/dataset_check.hpp"
@@ -69,8 +70,8 @@ void usage() {
          "  --data-root DIR      the folder the trials' bags and references are below (default: the config's\n"
          "                       data_root key, else $COSMO_DATA_ROOT, else the config's folder)\n"
          "  --no-check           skip the pre-flight check (cosmo_check) that stops a run that would be unlabelled\n"
-         "  --comm LIST          comm models, comma separated (wifi, proradio, or a config/comm/*.yaml); default "
-         "wifi.\n"
+         "  --comm LIST          comm models, comma separated (wifi, proradio, a config/comm/*.yaml, or a radio\n"
+         "                       trace .csv replayed with Wi-Fi's phi(d) outside its windows); default wifi.\n"
          "                       The robots' odometry and keyframes are computed once for all of them\n"
          "  --seed N             overrides the sequence config's seed\n"
          "  --out DIR            output folder (default: current folder)\n"
@@ -102,6 +103,13 @@ RadioParams radioFor(const std::string& comm, const std::string& config_dir, std
   if (comm.size() > 5 && comm.substr(comm.size() - 5) == ".yaml") {
     label = fs::path(comm).stem().string();
     return RadioParams::fromConfig(ConfigNode::load(comm));
+  }
+  if (comm.size() > 4 && comm.substr(comm.size() - 4) == ".csv") {  // a radio trace, Wi-Fi's phi(d) outside it
+    label = fs::path(comm).stem().string();
+    RadioParams p = radioFor("wifi", config_dir, label);
+    label = fs::path(comm).stem().string();
+    p.trace = std::make_shared<const RadioTrace>(RadioTrace::read(comm));
+    return p;
   }
   label = comm == "pro-radio" || comm == "pro_radio" ? "proradio" : comm;
   const fs::path file = fs::path(config_dir) / "comm" / (label + ".yaml");
@@ -444,7 +452,7 @@ Written writeOutputs(const TeamRun& run, const fs::path& out_dir, const std::str
   w.jrl = out_dir / (name + ".jrl");
   w.report = run.recorder().write(w.jrl.string());
   w.csv = out_dir / (name + "_transfers.csv");
-  writeTransferLog(w.csv.string(), run.radio().transferLog(), run.radio().stats(), run.radio().params());
+  writeTransferLog(w.csv.string(), run.radio());
   return w;
 }
 
@@ -456,6 +464,11 @@ void printDataset(const TeamRun& run, const Written& w) {
   const jrl::Dataset dataset = run.recorder().build();
   const auto violations = jrl::validate(dataset);
   std::printf("wrote %s (%zu entries; transfer log %s)\n", jrl.string().c_str(), report.entries, csv.string().c_str());
+  const RadioStats& radio = run.radio().stats();
+  if (const auto& trace = run.radio().params().trace)
+    std::printf("  radio trace %s: %llu connectivity samples from its windows, %llu from phi(d) outside them\n",
+                trace->source().c_str(), static_cast<unsigned long long>(radio.trace_samples),
+                static_cast<unsigned long long>(radio.fallback_samples));
   if (!report.labelled) std::printf("  no outlier labels: %s\n", report.labels_note.c_str());
   std::printf("%s\n", jrl::formatStats(jrl::computeStats(dataset)).c_str());
   std::printf("  validate: %zu violations\n", violations.size());
