@@ -1,4 +1,5 @@
 #include "cosmo/common/config.hpp"
+#include "cosmo/common/nearest_name.hpp"
 
 #include <algorithm>
 #include <cstddef>

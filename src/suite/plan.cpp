@@ -5,6 +5,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "cosmo/common/nearest_name.hpp"
 #include "cosmo/pipeline/sequence_noise_models.hpp"
 #include "cosmo/suite/file_identity.hpp"
 #include "cosmo/suite/plan_inputs.hpp"
@@ -58,6 +59,18 @@ const Resolved& findLabel(const std::vector<Resolved>& seqs, const std::string& 
                            (near.empty() ? "" : " (did you mean '" + near + "'?)"));
 }
 
+/// `gate_threshold` sets the gate on top of the sequence's keys: a variant that sets the gate too would be overruled.
+void checkGateThresholdAlone(const SuiteFile& suite) {
+  const auto has = [&](const std::string& key) {
+    return std::any_of(suite.variants.begin(), suite.variants.end(), [&](const VariantAxis& a) { return a.key == key; });
+  };
+  if (!has("gate_threshold")) return;
+  for (const char* key : {"registration", "registration.gate", "registration.min_structure_overlap"})
+    if (has(key))
+      throw std::runtime_error(suite.path + ": variants: give `gate_threshold` or `" + std::string(key) +
+                               "`, not both (the threshold sets gate: strict and min_structure_overlap)");
+}
+
 /// Every combination of the variant axes' values (a grid, the first axis slowest); `repeats: N` is N values.
 std::vector<std::vector<std::pair<std::string, VariantValue>>> variantGrid(const SuiteFile& suite) {
   std::vector<std::vector<std::pair<std::string, VariantValue>>> grid{{}};
@@ -80,6 +93,7 @@ std::vector<std::vector<std::pair<std::string, VariantValue>>> variantGrid(const
     grid = next;
   }
   if (seed && repeats) throw std::runtime_error(suite.path + ": variants: give `seed` or `repeats`, not both");
+  checkGateThresholdAlone(suite);
   return grid;
 }
 

@@ -42,7 +42,7 @@ std::string progressLine(const ProgressCounts& c) {
       << c.running << " running, " << c.left << " left";
   if (c.running + c.left > 0) {
     out << "; " << std::lround(c.remaining_s) << " s of sequence to process";
-    if (c.processed_s > 0.0 && c.elapsed_s > 0.0)
+    if (c.processed_s >= kEtaAfterShare * (c.processed_s + c.remaining_s) && c.processed_s > 0.0 && c.elapsed_s > 0.0)
       out << ", ETA " << formatDuration(c.remaining_s / (c.processed_s / c.elapsed_s));
   }
   return out.str();

@@ -5,7 +5,9 @@
 #include <stdexcept>
 
 #include "cosmo/comm/radio_params.hpp"
+#include "cosmo/common/nearest_name.hpp"
 #include "cosmo/common/param_list.hpp"
+#include "cosmo/pipeline/gate_threshold.hpp"
 #include "cosmo/registration/registration_params.hpp"
 
 namespace cosmo::suite {
@@ -108,12 +110,33 @@ VariantKey radioParamKey() {
           [](const std::string& sub, const VariantValue& v, VariantEffect& e) { e.radio[sub] = v.scalar; }};
 }
 
+/// The registration gate's acceptance threshold (pipeline/gate_threshold.hpp): `cosmo_generate --gate-threshold X`,
+/// which sets `gate: strict`, `min_structure_overlap: X` on top of the sequence's own keys.
+VariantKey gateThresholdKey() {
+  const auto check = [](const VariantValue& v) {
+    requireScalar(v);
+    try {
+      std::size_t used = 0;
+      const double x = std::stod(v.scalar, &used);
+      if (used != v.scalar.size()) throw std::invalid_argument("trailing text");
+      pipeline::gateThresholdKeys(x);
+    } catch (const std::exception&) { fail(v, "expected a threshold in [0, 1], got '" + v.scalar + "'"); }
+  };
+  return {"gate_threshold", "the strict gate's min_structure_overlap, on top of the sequence's keys (sweep 0.40-0.70)",
+          [check](const std::string&, const VariantValue& v) { check(v); },
+          [](const std::string&, const VariantValue& v) { return "gate-" + v.scalar; },
+          [](const std::string&, const VariantValue& v, VariantEffect& e) {
+            e.generate_args.insert(e.generate_args.end(), {"--gate-threshold", v.scalar});
+          }};
+}
+
 /// Outliers added to each finished JRL by `cosmo_jrl inject` (the back-end controls, issue 36).
 VariantKey injectKey() {
-  static const std::vector<std::string> fields{"rate", "kind", "seed", "group_size", "loops"};
-  return {"inject", "outliers added to each finished JRL: {rate: R, kind: random|local|group|mixed, seed: N}",
+  static const std::vector<std::string> fields{"rate", "kind", "seed", "group_size", "loops", "rate_of"};
+  return {"inject", "outliers added to each finished JRL: {rate: R, kind: random|local|group|mixed, seed: N}, or none",
           [](const std::string&, const VariantValue& v) {
-            if (v.fields.empty()) fail(v, "expected a map {rate: R, kind: K, seed: N}");
+            if (v.fields.empty() && v.scalar == "none") return;  // the sweep's baseline: the dataset as made
+            if (v.fields.empty()) fail(v, "expected a map {rate: R, kind: K, seed: N} or none");
             for (const auto& [k, value] : v.fields)
               if (std::find(fields.begin(), fields.end(), k) == fields.end()) {
                 const std::string near = nearestName(k, fields);
@@ -131,16 +154,25 @@ VariantKey injectKey() {
             if (v.fields.count("loops") && v.fields.at("loops") != "intra" && v.fields.at("loops") != "inter" &&
                 v.fields.at("loops") != "both")
               fail(v, "loops: expected intra, inter or both");
+            if (v.fields.count("rate_of") && v.fields.at("rate_of") != "injected" && v.fields.at("rate_of") != "all")
+              fail(v, "rate_of: expected injected or all");
           },
-          [](const std::string&, const VariantValue& v) {
+          [](const std::string&, const VariantValue& v) -> std::string {
+            if (v.fields.empty()) return "inj-none";
             const auto get = [&](const char* k, const char* d) { return v.fields.count(k) ? v.fields.at(k) : d; };
-            return "inj-" + v.fields.at("kind") + "-" + v.fields.at("rate") + "-s" + get("seed", "0");
+            std::string tag = "inj-" + v.fields.at("kind") + "-" + v.fields.at("rate") + "-s" + get("seed", "0");
+            if (v.fields.count("group_size")) tag += "-g" + v.fields.at("group_size");
+            if (v.fields.count("loops")) tag += "-" + v.fields.at("loops");
+            if (v.fields.count("rate_of")) tag += "-of-" + v.fields.at("rate_of");
+            return tag;
           },
           [](const std::string&, const VariantValue& v, VariantEffect& e) {
+            if (v.fields.empty()) return;
             PostStep step{"cosmo_jrl", "inject", {"--rate", v.fields.at("rate"), "--kind", v.fields.at("kind")}, ""};
             step.args.insert(step.args.end(), {"--seed", v.fields.count("seed") ? v.fields.at("seed") : "0"});
             if (v.fields.count("group_size")) step.args.insert(step.args.end(), {"--group-size", v.fields.at("group_size")});
             if (v.fields.count("loops")) step.args.push_back("--" + v.fields.at("loops"));
+            if (v.fields.count("rate_of")) step.args.insert(step.args.end(), {"--rate-of", v.fields.at("rate_of")});
             e.post_steps.push_back(step);
           }};
 }
@@ -150,7 +182,7 @@ VariantKey injectKey() {
 const std::vector<VariantKey>& variantKeys() {
   static const std::vector<VariantKey> keys{seedKey(),           repeatsKey(),           odometryKey(),
                                             registrationPresetKey(), registrationParamKey(), radioParamKey(),
-                                            injectKey()};
+                                            gateThresholdKey(),      injectKey()};
   return keys;
 }
 

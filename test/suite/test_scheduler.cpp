@@ -115,6 +115,8 @@ TEST(Progress, TheLineCountsDatasetsAndGivesAnEta) {
             "3 min 20 s");
   c.processed_s = 0;
   EXPECT_EQ(progressLine(c).find("ETA"), std::string::npos);
+  c.processed_s = 10;  // under 2 % of the 610 s: too early for a rate
+  EXPECT_EQ(progressLine(c).find("ETA"), std::string::npos);
   EXPECT_EQ(formatDuration(3725), "1 h 02 min");
 }
 

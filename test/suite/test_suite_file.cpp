@@ -3,6 +3,8 @@
 // all named before anything runs; the shipped suite files read.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "cosmo/suite/plan.hpp"
 #include "suite_fixture.hpp"
 
@@ -206,4 +208,49 @@ TEST(SuitePlan, TheShippedSuitesRead) {
   EXPECT_EQ(bench.estimates[0].name, "cu_boulder");
   EXPECT_EQ(bench.estimates[0].from, "kittredge_loop");
   EXPECT_NE(bench.estimates[0].why.find("Kittredge Loop Robot 3"), std::string::npos);
+}
+
+/// The back-end controls as variants: the gate threshold passes `cosmo_generate --gate-threshold X` (on top of the
+/// sequence's own registration keys, so a sequence that sets the gate may be swept), injected outliers a
+/// `cosmo_jrl inject` step with every option; a bad threshold names its place; the threshold with a gate variant
+/// stops.
+TEST(SuitePlan, TheGateThresholdAndInjectedOutliersAreVariants) {
+  Folder f;
+  suite_test::writeSequence(f, "own", "beta", 2, 5.0, "environment: synthetic\nregistration:\n  gate: paper\n");
+  const auto suite = f.write("s.yaml", "sequences:\n  - sequence: own/beta.yaml\nvariants:\n  gate_threshold: [0.45, 0.7]\n"
+                                       "  inject: [{rate: 0.2, kind: group, seed: 3, group_size: 4, rate_of: all}]\n");
+  const Plan plan = planSuite(SuiteFile::load(suite.string()), suite_test::planOptions(f));
+  ASSERT_EQ(ids(plan), (std::vector<std::string>{"beta_gate-0.45_inj-group-0.2-s3-g4-of-all",
+                                                 "beta_gate-0.7_inj-group-0.2-s3-g4-of-all"}));
+  const Job& j = plan.jobs[1];
+  const auto gate = std::find(j.args.begin(), j.args.end(), "--gate-threshold");
+  ASSERT_NE(gate, j.args.end());
+  EXPECT_EQ(*(gate + 1), "0.7");
+  EXPECT_TRUE(j.registration.empty());  // no config copy: the option goes on top of the sequence's keys
+  ASSERT_EQ(j.post_steps.size(), 1u);
+  EXPECT_EQ(j.post_steps[0].args, (std::vector<std::string>{"--rate", "0.2", "--kind", "group", "--seed", "3",
+                                                            "--group-size", "4", "--rate-of", "all"}));
+  const std::string bad = loadError(f, "sequences:\n  - sequence: x.yaml\nvariants:\n  gate_threshold: [0.5, 1.5]\n");
+  EXPECT_NE(bad.find("variants.gate_threshold[1]: expected a threshold in [0, 1], got '1.5'"), std::string::npos) << bad;
+  EXPECT_NE(loadError(f, "sequences:\n  - sequence: x.yaml\nvariants:\n  gate_treshold: [0.5]\n")
+                .find("did you mean 'gate_threshold'"),
+            std::string::npos);
+  const auto both = f.write("b.yaml", "sequences:\n  - sequence: own/beta.yaml\nvariants:\n  gate_threshold: [0.5]\n"
+                                      "  registration: [strict]\n");
+  try {
+    planSuite(SuiteFile::load(both.string()), suite_test::planOptions(f));
+    FAIL() << "gate_threshold and a registration preset together";
+  } catch (const std::exception& e) { EXPECT_NE(std::string(e.what()).find("not both"), std::string::npos) << e.what(); }
+}
+
+TEST(SuitePlan, TheShippedSweepReads) {
+  const SuiteFile s = SuiteFile::load(std::string(COSMO_SOURCE_DIR) + "/config/suites/ci_controls.yaml");
+  ASSERT_EQ(s.variants.size(), 2u);
+  EXPECT_EQ(s.variants[0].key, "gate_threshold");
+  EXPECT_EQ(s.variants[1].key, "inject");
+  EXPECT_EQ(s.variants[1].values[0].scalar, "none");  // the baseline of the sweep: no step
+  VariantEffect none;
+  std::string sub;
+  findVariantKey("inject", sub)->apply(sub, s.variants[1].values[0], none);
+  EXPECT_TRUE(none.post_steps.empty());
 }

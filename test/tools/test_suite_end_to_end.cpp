@@ -187,3 +187,32 @@ TEST_F(SuiteEndToEnd, AnEstimateWithoutAModelFileIsWrittenBesideTheOutputsAndUse
   EXPECT_NE(readFile(models).find("from trial suite_b"), std::string::npos) << readFile(models);
   EXPECT_NE(readFile(out / "no_models_wifi.recorder.yaml").find(models.string()), std::string::npos);
 }
+
+/// The gate-threshold variant's option is the sequence's own `registration:` keys: `--gate-threshold 0.7` gives the
+/// bytes of a copy of the sequence with `gate: strict`, `min_structure_overlap: 0.7`; a threshold outside [0, 1]
+/// stops before anything runs, naming the option.
+TEST_F(SuiteEndToEnd, TheGateThresholdOptionIsTheSequencesOwnKeys) {
+  const fs::path cached = sequence("mcd");
+  std::string yaml = readFile(cached);
+  ASSERT_EQ(yaml.find("\nregistration:"), std::string::npos) << cached;
+  yaml += "\ndata_root: " + cached.parent_path().string() + "\nregistration:\n  gate: strict\n  min_structure_overlap: 0.7\n";
+  const fs::path keys_dir = root() / "gate_keys";
+  fs::create_directories(keys_dir);
+  std::ofstream(keys_dir / cached.filename()) << yaml;
+  const std::vector<std::string> common{"--comm", "wifi", "--max-seconds", "12", "--quiet"};
+  std::vector<std::string> with_keys{(keys_dir / cached.filename()).string(), "--out", (root() / "gate_a").string()};
+  std::vector<std::string> with_option{cached.string(), "--gate-threshold", "0.7", "--out", (root() / "gate_b").string()};
+  with_keys.insert(with_keys.end(), common.begin(), common.end());
+  with_option.insert(with_option.end(), common.begin(), common.end());
+  const Outcome a = runTool("cosmo_generate", with_keys), b = runTool("cosmo_generate", with_option);
+  ASSERT_EQ(a.status, 0) << a.output;
+  ASSERT_EQ(b.status, 0) << b.output;
+  const std::string jrl = "suite_ci_wifi.jrl";
+  EXPECT_TRUE(readFile(root() / "gate_a" / jrl) == readFile(root() / "gate_b" / jrl));
+  const Outcome bad = runTool("cosmo_generate", {cached.string(), "--gate-threshold", "1.5", "--out",
+                                                 (root() / "gate_c").string()});
+  EXPECT_EQ(bad.status, 1) << bad.output;
+  EXPECT_NE(bad.output.find("--gate-threshold: gate threshold (min_structure_overlap) must be in [0, 1]"),
+            std::string::npos)
+      << bad.output;
+}

@@ -45,8 +45,4 @@ struct ConfigNode {
   }
 };
 
-/// The name in `known` nearest to `key` by edit distance, when it is close enough to be a likely misspelling
-/// (at most max(2, a third of the key's length) edits); "" otherwise.
-std::string nearestName(const std::string& key, const std::vector<std::string>& known);
-
 }  // namespace cosmo

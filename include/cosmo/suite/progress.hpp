@@ -1,10 +1,13 @@
 #pragma once
 // The suite's progress line: datasets done / running / left, the sequence time still to process, and an ETA from
 // the rate at which this run has processed sequence time so far (finished jobs and the progress lines of the
-// running ones' logs). Before any of it is known the ETA is left out.
+// running ones' logs). Until the run has processed kEtaAfterShare of its sequence time the ETA is left out: a rate
+// taken from the first seconds (a first pass decompressing, an estimate that prints no progress) is far off.
 #include <string>
 
 namespace cosmo::suite {
+
+constexpr double kEtaAfterShare = 0.02;
 
 /// How far cosmo_generate's log says it is: the sequence seconds its progress lines reached, summed over its comm
 /// models' passes (the last line of each "[<comm>] t / T s" kind), and the sequence's length T (0 when not printed).

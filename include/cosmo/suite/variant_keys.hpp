@@ -9,7 +9,8 @@
 //   registration: [paper, strict]      config/registration.yaml presets                 reg-paper, reg-strict
 //   registration.KEY: [v1, v2]         one config/registration.yaml key                 KEY-v1 (e.g. min_overlap-0.4)
 //   radio.KEY: [v1, v2]                one config/comm/<model>.yaml key, every model    KEY-v1 (bandwidth_kBps-500)
-//   inject: [{rate: 0.1, kind: random, seed: 1}]   `cosmo_jrl inject` on each JRL     inj-random-0.1-s1
+//   gate_threshold: [0.45, 0.62]       cosmo_generate --gate-threshold X                gate-0.45
+//   inject: [none, {rate: 0.1, kind: random, seed: 1}]   `cosmo_jrl inject` on each JRL   inj-none, inj-random-0.1-s1
 //
 // Config keys reach the run through a copy of the config folder with those keys set (a sequence's own
 // `registration:` keys still go on top of it, so a variant may not set a key its sequence sets: plan.cpp stops).

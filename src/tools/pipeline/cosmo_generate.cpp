@@ -5,7 +5,7 @@
 //
 //   cosmo_generate SEQUENCE.yaml [--data-root DIR] [--comm wifi,proradio] [--seed N] [--out DIR] [--config-dir DIR]
 //                  [--noise-models FILE] [--outlier-rule fidelity|squared] [--reference-odometry]
-//                  [--registration-threads N] [--max-seconds S] [--no-check] [--quiet]
+//                  [--registration-threads N] [--max-seconds S] [--gate-threshold X] [--no-check] [--quiet]
 //                  [--estimate-noise-models TRIAL [--noise-models-out FILE] [--estimate-only] [--good-translation M]
 //                  [--good-rotation RAD]]
 //
@@ -34,6 +34,7 @@
 
 #include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/common/text_list.hpp"
+#include "cosmo/pipeline/gate_threshold.hpp"
 #include "cosmo/pipeline/kept_scan.hpp"
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/comm/radio_trace.hpp"
@@ -66,7 +67,7 @@ void usage() {
       << "usage: cosmo_generate SEQUENCE.yaml [--data-root DIR] [--comm wifi,proradio] [--seed N] [--out DIR]\n"
          "         [--config-dir DIR] [--noise-models FILE] [--outlier-rule fidelity|squared]\n"
          "         [--reference-odometry] [--serial-odometry] [--registration-threads N] [--max-seconds S] "
-         "[--no-check] [--quiet]\n"
+         "[--gate-threshold X] [--no-check] [--quiet]\n"
          "  --data-root DIR      the folder the trials' bags and references are below (default: the config's\n"
          "                       data_root key, else $COSMO_DATA_ROOT, else the config's folder)\n"
          "  --no-check           skip the pre-flight check (cosmo_check) that stops a run that would be unlabelled\n"
@@ -96,7 +97,9 @@ void usage() {
          "                       on (0: on the team's thread; default: the machine's cores; 0 with "
          "--serial-odometry);\n"
          "                       the output is the same byte for byte\n"
-         "  --max-seconds S      stop after S seconds of sequence time (quick looks)\n";
+         "  --max-seconds S      stop after S seconds of sequence time (quick looks)\n"
+         "  --gate-threshold X   the registration gate's acceptance threshold (gate: strict, min_structure_overlap:\n"
+         "                       X in [0, 1], on top of the sequence's registration: keys; a sweep 0.40-0.70)\n";
 }
 
 RadioParams radioFor(const std::string& comm, const std::string& config_dir, std::string& label) {
@@ -186,6 +189,7 @@ struct Options {
   bool estimate_only = false;
   unsigned long long seed = 0;
   double max_seconds = 0.0;
+  std::optional<double> gate_threshold;
   int registration_threads = -1;  // -1: the default
 };
 
@@ -226,6 +230,8 @@ bool readOption(const std::string& a, const std::function<std::string()>& value,
     o.registration_threads = std::stoi(value());
   else if (a == "--max-seconds")
     o.max_seconds = std::stod(value());
+  else if (a == "--gate-threshold")
+    o.gate_threshold = std::stod(value());
   else if (a == "--quiet")
     o.quiet = true;
   else
@@ -272,6 +278,15 @@ std::optional<int> parseArgs(int argc, char** argv, Options& o) {
     return 2;
   }
   return std::nullopt;
+}
+
+/// The options that change the sequence's config: --seed, --gate-threshold.
+void applyConfigOptions(const Options& o, SequenceConfig& config) {
+  if (o.seed_given) config.seed = o.seed;
+  if (!o.gate_threshold) return;
+  try {
+    applyGateThreshold(config, *o.gate_threshold);
+  } catch (const std::invalid_argument& e) { throw std::runtime_error(std::string("--gate-threshold: ") + e.what()); }
 }
 
 /// The options that need each other or a range.
@@ -548,7 +563,7 @@ int main(int argc, char** argv) {
     bench::Stopwatch total;
     Sequence seq;
     seq.config = SequenceConfig::load(o.sequence_path, o.data_root);
-    if (o.seed_given) seq.config.seed = o.seed;
+    applyConfigOptions(o, seq.config);
     const TeamRunParams params = teamRunParams(seq.config, o);
     if (o.estimate_only) return 0;
     fs::create_directories(o.out_dir);
