@@ -39,6 +39,7 @@
 #include "cosmo/Keyframe.h"
 #include "cosmo/comm/radio_status.hpp"
 #include "cosmo/comm/transfer_log.hpp"
+#include "cosmo/pipeline/clock_skew.hpp"
 #include "cosmo/pipeline/radio_broker.hpp"
 #include "cosmo/ros/comm_broker_options.hpp"
 #include "cosmo/ros/lockstep_msgs.hpp"
@@ -132,6 +133,9 @@ class CommBroker {
       return;
     }
     std::lock_guard<std::mutex> lock(mutex_);
+    if (!o_.lockstep && !ros::Time::isSimTime())  // live robots: their clocks against this one
+      if (const auto skew = clock_skew_.observe(r, m.header.stamp.toNSec(), ros::Time::now().toNSec()))
+        ROS_WARN("comm_broker: %s", skew->c_str());
     offered_[{r, m.index}] = ros_glue::offeredKeyframeMeta(m);
     radio_.offer(r, m.index, std::move(payload));
     publishOffered();
@@ -203,16 +207,18 @@ class CommBroker {
 
   // Every front-end's offers and deliveries connected (a message sent before its connection exists is lost).
   void waitForFrontends() {
-    const auto connected = [&] {
-      for (const auto& sub : keyframe_subs_)
-        if (sub.getNumPublishers() == 0) return false;
-      for (const auto& [r, pub] : received_pubs_)
-        if (pub.getNumSubscribers() == 0) return false;
-      return true;
+    const auto missing = [&] {
+      std::string robots;
+      std::size_t i = 0;
+      for (char r : radio().robots())
+        if (keyframe_subs_[i++].getNumPublishers() == 0 || received_pubs_.at(r).getNumSubscribers() == 0) robots += r;
+      return robots;
     };
     // No limit here: the player stops the run when a front-end never connects (its peer policy).
-    while (ros::ok() && !ros_glue::waitUntil(connected, ros_glue::wallDeadline(10.0)))
-      ROS_INFO("comm_broker: lockstep: waiting for every front-end's keyframe_scans and received_scans to connect");
+    while (ros::ok() && !ros_glue::waitUntil([&] { return missing().empty(); }, ros_glue::wallDeadline(10.0)))
+      ROS_INFO("comm_broker: lockstep: waiting for the front-ends of robots %s (/<r>/keyframe_scans from it, "
+               "/<r>/received_scans to it); the player stops the run if one never connects",
+               missing().c_str());
   }
 
   void onStepRequest(const cosmo::RadioStepRequest& m) {
@@ -275,6 +281,7 @@ class CommBroker {
   Options o_;
   std::mutex mutex_;
   RadioBroker radio_;
+  pipeline::ClockSkewWatch clock_skew_;  ///< live robots' clocks, from their offers' stamps
   std::map<std::pair<char, std::size_t>, cosmo::Keyframe> offered_;  ///< what deliveries carry besides the scan
   double last_log_write_ = 0.0;
   std::string sequence_name_;
@@ -288,7 +295,7 @@ class CommBroker {
 }  // namespace
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "comm_broker");
+  ros_glue::initNode(argc, argv, "comm_broker");
   return ros_glue::runNode("comm_broker", [] {
     ros::NodeHandle nh, pnh("~");
     CommBroker broker(nh, ros_glue::readCommBrokerOptions(pnh));

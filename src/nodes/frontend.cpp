@@ -30,7 +30,7 @@
 //             (the sweep instant of the points' header stamp; scans are processed stamped at the sweep end)
 // Lockstep (~lockstep true, sequence.launch mode:=lockstep): the reference trajectory is the player's sequence's
 //   own (reference_trajectory, cosmo/ReferenceTrajectory, latched: the CSV as the offline driver reads it, poses
-//   bit-exact; the rounded reference_pose messages are ignored; scans wait until it arrived), reference odometry takes
+//   bit-exact; reference_pose is not subscribed to; scans wait until it arrived), reference odometry takes
 //   it held at the ends as TeamRun does, and loop closures on delivered scans are stamped with the broker's delivery
 //   step (Keyframe.received_at); with the bit-exact pose fields of the recorder messages this makes the JRL
 //   byte-identical to cosmo_generate's.
@@ -127,6 +127,10 @@ class FrontendNode {
     subscribe(nh);
     ROS_INFO("frontend %c: odometry %s, config %s%s", o_.robot, o_.odometry.c_str(), o_.config_dir.c_str(),
              o_.lockstep ? ", lockstep (reference from the player's sequence)" : "");
+    if (o_.lockstep && !ros::Time::isSimTime())
+      ROS_WARN("frontend %c: /use_sim_time was not set when this node started: it runs on this machine's clock, not "
+               "the player's /clock (start the base's launch first; the dataset does not depend on it)",
+               o_.robot);
   }
 
   /// At the end: what it processed and skipped, its queue's and its memory's peaks (falling behind, docs/benchmarks.md).
@@ -157,9 +161,17 @@ class FrontendNode {
         ack(frontend_->lastStamp());
       });
     }
-    ref_sub_ = nh.subscribe("reference_pose", 1000, &FrontendNode::onReference, this);
+    if (!o_.lockstep)  // lockstep: the sequence's own reference (onTrajectory); nothing else crosses the network
+      ref_sub_ = nh.subscribe("reference_pose", 1000, &FrontendNode::onReference, this);
     recv_sub_ = nh.subscribe("received_scans", 100, &FrontendNode::onReceived, this);
-    if (o_.lockstep) trajectory_sub_ = nh.subscribe("reference_trajectory", 1, &FrontendNode::onTrajectory, this);
+    if (o_.lockstep) {
+      trajectory_sub_ = nh.subscribe("reference_trajectory", 1, &FrontendNode::onTrajectory, this);
+      waiting_timer_ = nh.createWallTimer(ros::WallDuration(10.0), [this](const ros::WallTimerEvent&) {
+        if (sequence_loaded_) return waiting_timer_.stop();
+        ROS_WARN("frontend %c: no sequence from the player yet (%s): %s", o_.robot, trajectory_sub_.getTopic().c_str(),
+                 ros_glue::whereThisNodeIs().c_str());
+      });
+    }
     if (o_.odometry == "external") odom_sub_ = nh.subscribe("odom", 1000, &FrontendNode::onOdom, this);
   }
 
@@ -381,6 +393,7 @@ class FrontendNode {
   ros::Publisher offer_pub_, ack_pub_, marker_pub_;
   ros::Subscriber ref_sub_, recv_sub_, odom_sub_, trajectory_sub_;
   ros::WallTimer start_timer_, ack_timer_;
+  ros::WallTimer waiting_timer_;  ///< lockstep: says where it waits while the sequence has not arrived
   std::optional<ros_glue::ScanInput> scans_;  ///< last: its thread ends before the rest goes
   tf2_ros::TransformBroadcaster tf_;
 };
@@ -393,7 +406,7 @@ int main(int argc, char** argv) {
   const pid_t parent = getppid();
   prctl(PR_SET_PDEATHSIG, SIGINT);
   if (getppid() != parent) return 1;  // the parent ended before prctl
-  ros::init(argc, argv, "frontend");
+  ros_glue::initNode(argc, argv, "frontend");
   return ros_glue::runNode("frontend", [] {
     ros::NodeHandle nh, pnh("~");
     FrontendNode node(nh, readOptions(pnh));

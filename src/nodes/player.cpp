@@ -21,6 +21,11 @@
 //   the recorder's intake (/recorder/progress) holds everything the front-ends acknowledged. The lockstep nodes
 //   take the sequence from the latched topics (nothing from disk). The protocol's side here: ros_glue::LockstepLink.
 //   Real time (~mode realtime): scans at ~rate x wall speed, nothing waited for (results may depend on CPU speed).
+// Robot-side playback (~playback robot): the player reads no bag and no reference. Each robot's trial_player
+//   (robot.launch playback:=robot, on the robot's machine) announces its trial's span and reference and its
+//   read-ahead stamps; the player merges them into the same order and asks each robot for its scans
+//   (/<r>/play_scan) instead of publishing /<r>/points (ros_glue::RobotPlayback). The trial players are peers too
+//   (~trial_player_node, "{r}" replaced by the robot id). Everything else is unchanged.
 // Peers (pipeline::PeerWatch, probed by ros_glue::PeerMonitor): the front-ends (~frontend_node, "{r}" replaced by
 //   the robot id), ~broker_node and ~recorder_node (empty: not watched). A peer that never connects (within
 //   ~connect_timeout s wall, the recorder ~recorder_timeout) or dies (lockstep: for ~death_grace s; the recorder for
@@ -30,7 +35,8 @@
 //         --out ~simulate_out, cached), ~data_root (empty: the config's precedence), ~mode, ~rate, ~seed (-1: the
 //         config's), ~max_seconds (0: all), ~wait_for_broker (lockstep: a radio runs), ~end_linger (s wall after the
 //         last scan; default 3 realtime, 0 lockstep), ~world_frame, ~noise_models / ~config_dir (checked before
-//         anything is played: a run that cannot be labelled does not start), and the peers' above.
+//         anything is played: a run that cannot be labelled does not start), ~playback (base | robot), and the
+//         peers' above.
 #include <geometry_msgs/PoseStamped.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
@@ -41,6 +47,7 @@
 #include <atomic>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <optional>
 #include <random>
 #include <nlohmann/json.hpp>
@@ -58,6 +65,7 @@
 #include "cosmo/ros/point_cloud.hpp"
 #include "cosmo/ros/pose_msg.hpp"
 #include "cosmo/ros/recorder_msgs.hpp"
+#include "cosmo/ros/robot_playback.hpp"
 #include "cosmo/ros/team_sequence_msg.hpp"
 
 using namespace cosmo;
@@ -66,14 +74,17 @@ namespace {
 
 struct Options {
   ros_glue::SequenceChoice sequence;
-  std::string mode = "lockstep", world_frame = "world", status_file;
+  std::string mode = "lockstep", world_frame = "world", status_file, playback = "base";
   std::string frontend_node = "/{r}/frontend", broker_node = "/comm_broker", recorder_node = "/recorder";
+  std::string trial_player_node = "/{r}/trial_player";
   pipeline::PeerPolicyParams peers;
   double rate = 1.0, end_linger = -1.0;
   bool wait_for_broker = true;
   bool lockstep() const { return mode == "lockstep"; }
-  std::string frontendNode(char r) const {
-    std::string n = frontend_node;
+  bool robotPlayback() const { return playback == "robot"; }
+  std::string frontendNode(char r) const { return forRobot(frontend_node, r); }
+  std::string trialPlayerNode(char r) const { return forRobot(trial_player_node, r); }
+  static std::string forRobot(std::string n, char r) {
     if (const auto at = n.find("{r}"); at != std::string::npos) n.replace(at, 3, std::string(1, r));
     return n;
   }
@@ -102,6 +113,8 @@ Options readOptions(const ros::NodeHandle& pnh) {
   pnh.param("frontend_node", o.frontend_node, o.frontend_node);
   pnh.param("broker_node", o.broker_node, o.broker_node);
   pnh.param("recorder_node", o.recorder_node, o.recorder_node);
+  pnh.param("trial_player_node", o.trial_player_node, o.trial_player_node);
+  pnh.param("playback", o.playback, o.playback);
   pnh.param("connect_timeout", o.peers.connect_timeout, o.peers.connect_timeout);
   pnh.param("death_grace", o.peers.death_grace, o.peers.death_grace);
   pnh.param("recorder_timeout", o.peers.recorder_timeout, o.peers.recorder_timeout);
@@ -109,6 +122,9 @@ Options readOptions(const ros::NodeHandle& pnh) {
   pnh.param("world_frame", o.world_frame, o.world_frame);
   if (o.mode != "lockstep" && o.mode != "realtime")
     throw std::runtime_error("~mode must be lockstep or realtime, got '" + o.mode + "'");
+  if (o.playback != "base" && o.playback != "robot")
+    throw std::runtime_error("~playback must be base (this node reads the trials) or robot (each robot's "
+                             "trial_player does), got '" + o.playback + "'");
   if (!(o.rate > 0)) o.rate = 1.0;
   if (o.end_linger < 0) o.end_linger = o.lockstep() ? 0.0 : 3.0;
   return o;
@@ -126,6 +142,9 @@ std::string randomRunId() {
 pipeline::PeerWatch peerWatch(const Options& o, const std::vector<char>& robots) {
   pipeline::PeerWatch watch(o.lockstep() ? pipeline::RunMode::Lockstep : pipeline::RunMode::Realtime, o.peers);
   for (char r : robots) watch.expect(o.frontendNode(r), pipeline::PeerRole::Frontend, std::string("the front-end of robot ") + r);
+  if (o.robotPlayback())  // a robot's trial player is a front-end's input: the same policy
+    for (char r : robots)
+      watch.expect(o.trialPlayerNode(r), pipeline::PeerRole::Frontend, std::string("the trial player of robot ") + r);
   if (o.wait_for_broker && !o.broker_node.empty())
     watch.expect(o.broker_node, pipeline::PeerRole::Broker, "the comm_broker");
   if (!o.recorder_node.empty()) watch.expect(o.recorder_node, pipeline::PeerRole::Recorder, "the recorder");
@@ -134,8 +153,12 @@ pipeline::PeerWatch peerWatch(const Options& o, const std::vector<char>& robots)
 
 class Player {
  public:
-  Player(ros::NodeHandle& nh, Options options, ros_glue::PlayedSequence sequence)
-      : o_(std::move(options)), seq_(std::move(sequence)), peers_("player", peerWatch(o_, seq_.robots())) {
+  Player(ros::NodeHandle& nh, Options options, ros_glue::PlayedSequence sequence,
+         std::unique_ptr<ros_glue::RobotPlayback> robot_playback)
+      : o_(std::move(options)),
+        seq_(std::move(sequence)),
+        robot_playback_(std::move(robot_playback)),
+        peers_("player", peerWatch(o_, seq_.robots())) {
     advertise(nh);
     stats_sub_ = nh.subscribe<std_msgs::String>("/comm/stats", 100, [this](const std_msgs::String::ConstPtr& m) {
       try {
@@ -183,9 +206,15 @@ class Player {
     for (char r : seq_.robots())
       peers_.setLinkCheck(o_.frontendNode(r), [this, r] {
         const bool reference = seq_.references.at(r).empty() || pose_pub_.at(r).getNumSubscribers() > 0;
-        return points_pub_.at(r).getNumSubscribers() > 0 && reference && (!lockstep_ || lockstep_->frontendLinked(r));
-      });
-    if (lockstep_ && o_.wait_for_broker) peers_.setLinkCheck(o_.broker_node, [this] { return lockstep_->brokerLinked(); });
+        const bool points = robot_playback_ || points_pub_.at(r).getNumSubscribers() > 0;  // else the robot's own
+        return points && reference && (!lockstep_ || lockstep_->frontendLinked(r));
+      }, std::string("/") + r + "/ack");
+    if (robot_playback_)
+      for (char r : seq_.robots())
+        peers_.setLinkCheck(o_.trialPlayerNode(r), [this, r] { return robot_playback_->listening(r); },
+                            ros_glue::scansAheadTopic(r));
+    if (lockstep_ && o_.wait_for_broker)
+      peers_.setLinkCheck(o_.broker_node, [this] { return lockstep_->brokerLinked(); }, "/comm/step_done");
     peers_.start();
     while (ros::ok() && !peers_.connected()) {
       if (const auto stop = peers_.stopReason()) throw ros_glue::RunStopped(*stop);
@@ -196,7 +225,11 @@ class Player {
 
   /// Publishes every scan up to the end, in the team's order (lockstep) or at wall speed (real time).
   void play() {
-    pipeline::MergedScanStream stream = ros_glue::openSequenceStream(seq_.config, seq_.timing);
+    pipeline::MergedScanStream stream =
+        robot_playback_ ? pipeline::MergedScanStream(robot_playback_->sources([this] {
+          if (const auto stop = peers_.stopReason()) throw ros_glue::RunStopped(*stop);
+        }), seq_.timing)
+                        : ros_glue::openSequenceStream(seq_.config, seq_.timing);
     publishClock(seq_.timing.start());
     ros::WallDuration(0.5).sleep();
     wall_start_ = last_progress_ = ros::WallTime::now();
@@ -289,7 +322,7 @@ class Player {
     sequence_pub_ = nh.advertise<cosmo::TeamSequence>(ros_glue::kTeamSequenceTopic, 1, true);
     for (char r : seq_.robots()) {
       const std::string ns = std::string("/") + r;
-      points_pub_[r] = nh.advertise<sensor_msgs::PointCloud2>(ns + "/points", 5);
+      if (!robot_playback_) points_pub_[r] = nh.advertise<sensor_msgs::PointCloud2>(ns + "/points", 5);
       pose_pub_[r] = nh.advertise<geometry_msgs::PoseStamped>(ns + "/reference_pose", 200);
       trajectory_pub_[r] = nh.advertise<cosmo::ReferenceTrajectory>(ros_glue::referenceTrajectoryTopic(r), 1, true);
     }
@@ -320,9 +353,12 @@ class Player {
   void publishScan(char robot, const Scan& scan) {
     publishClock(scan.stamp);
     publishReferenceUpTo(robot, scan.stamp);
-    points_pub_[robot].publish(ros_glue::toPointCloud2(
-        scan, std::string(1, robot) + "/base_link",
-        o_.lockstep() ? ros_glue::PointTimeEncoding::RelativeSeconds : ros_glue::PointTimeEncoding::OusterNs));
+    if (robot_playback_)  // the robot publishes it on its own machine
+      robot_playback_->play(robot, seq_.timing.of(robot).toRecorded(scan.stamp), scan.stamp);
+    else
+      points_pub_[robot].publish(ros_glue::toPointCloud2(
+          scan, std::string(1, robot) + "/base_link",
+          o_.lockstep() ? ros_glue::PointTimeEncoding::RelativeSeconds : ros_glue::PointTimeEncoding::OusterNs));
     if (lockstep_) lockstep_->scanHandedOver(robot, scan.stamp);
     ++published_;
   }
@@ -357,6 +393,7 @@ class Player {
 
   Options o_;
   ros_glue::PlayedSequence seq_;
+  std::unique_ptr<ros_glue::RobotPlayback> robot_playback_;  ///< robot-side playback: the robots read the trials
   std::string run_id_ = randomRunId();  ///< the recorder's journal belongs to this run
   std::optional<ros_glue::LockstepLink> lockstep_;  ///< lockstep mode: the team's event order through the nodes
   std::atomic<std::uint64_t> broker_delivered_{0};  ///< /comm/stats, for the progress line
@@ -374,23 +411,53 @@ class Player {
   ros_glue::PeerMonitor peers_;  ///< last: its thread (link checks use the publishers) ends first
 };
 
+/// The run stops before anything was played: /player/abort for the nodes that wait (the trial players exit), the
+/// status; 1.
+int abortBeforeStart(ros::NodeHandle& nh, const std::string& reason, const std::string& status_file) {
+  ros::Publisher abort = nh.advertise<std_msgs::String>("/player/abort", 1, true);
+  std_msgs::String m;
+  m.data = reason;
+  abort.publish(m);
+  ROS_ERROR("player: the run stops before it started: %s", reason.c_str());
+  if (!status_file.empty()) std::ofstream(status_file) << "stopped: " << reason << "\n";
+  ros::WallDuration(1.0).sleep();  // the latched message reaches the subscribers already connected
+  return 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   cosmo::keepScanBuffersInProcess();
-  ros::init(argc, argv, "player");
+  ros_glue::initNode(argc, argv, "player");
   int code = 0;
   std::string status_file;
   const int failed = ros_glue::runNode("player", [&] {
     ros::NodeHandle nh, pnh("~");
     const Options options = readOptions(pnh);
     status_file = options.status_file;
-    ros_glue::PlayedSequence sequence = ros_glue::resolvePlayedSequence(options.sequence);
-    ROS_INFO("player: sequence %s, %zu robots, %.1f s, mode %s", sequence.config.name.c_str(),
-             sequence.config.trials.size(), sequence.seconds(), options.mode.c_str());
-    Player player(nh, options, std::move(sequence));
-    ros::AsyncSpinner spinner(1);
+    ros::AsyncSpinner spinner(1);  // robot-side playback: the robots' announcements arrive while resolving
     spinner.start();
+    std::unique_ptr<ros_glue::RobotPlayback> robot_playback;
+    const auto from_robots = [&](const pipeline::SequenceConfig& config) {
+      std::vector<char> robots;
+      for (const auto& t : config.trials) robots.push_back(t.robot);
+      robot_playback = std::make_unique<ros_glue::RobotPlayback>(
+          nh, robots, options.peers.connect_timeout, [&](char r) { return options.trialPlayerNode(r); });
+      return robot_playback->trials(config);
+    };
+    std::optional<ros_glue::PlayedSequence> resolved;
+    try {
+      resolved = options.robotPlayback() ? ros_glue::resolvePlayedSequence(options.sequence, from_robots)
+                                         : ros_glue::resolvePlayedSequence(options.sequence);
+    } catch (const ros_glue::RunStopped& stop) {  // a robot's trial player never came: nothing was played
+      code = abortBeforeStart(nh, stop.what(), options.status_file);
+      return;
+    }
+    ros_glue::PlayedSequence& sequence = *resolved;
+    ROS_INFO("player: sequence %s, %zu robots, %.1f s, mode %s, trials played %s", sequence.config.name.c_str(),
+             sequence.config.trials.size(), sequence.seconds(), options.mode.c_str(),
+             options.robotPlayback() ? "on the robots' machines" : "here");
+    Player player(nh, options, std::move(sequence), std::move(robot_playback));
     code = player.run();
   });
   if (failed && !status_file.empty()) std::ofstream(status_file) << "failed: see the player's log\n";

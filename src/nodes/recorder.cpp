@@ -49,6 +49,7 @@
 #include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/pipeline/sequence_noise_models.hpp"
 #include "cosmo/report/figures.hpp"
+#include "cosmo/ros/node_main.hpp"
 #include "cosmo/ros/peer_probe.hpp"
 #include "cosmo/ros/recorder_msgs.hpp"
 #include "cosmo/ros/resolved_sequence.hpp"
@@ -377,7 +378,7 @@ class RecorderNode {
 }  // namespace
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "recorder", ros::init_options::NoSigintHandler);
+  cosmo::ros_glue::initNode(argc, argv, "recorder", ros::init_options::NoSigintHandler);
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
   ros::NodeHandle nh, pnh("~");

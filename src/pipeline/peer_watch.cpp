@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "cosmo/pipeline/peer_address_hint.hpp"
+
 namespace cosmo::pipeline {
 
 namespace {
@@ -64,10 +66,11 @@ void PeerWatch::observe(const std::string& node, const PeerProbe& probe, double 
   }
 }
 
-void PeerWatch::setLinked(const std::string& node, bool linked) {
+void PeerWatch::setLinked(const std::string& node, bool linked, const std::string& hint) {
   const auto it = peers_.find(node);
   if (it == peers_.end()) return;
   it->second.linked = linked;
+  if (!hint.empty() || linked) it->second.link_hint = hint;
   if (linked && answers(it->second.state)) it->second.ever_connected = true;
 }
 
@@ -200,16 +203,19 @@ std::string PeerWatch::detail(const Peer& p) const {
   const std::string error = last.error.empty() ? "" : " (" + last.error + ")";
   switch (p.state) {
     case PeerState::Waiting:
+      if (!master_uri_.empty()) return neverRegisteredHint(master_uri_);
       return "not registered with the master (not started yet, or it cannot reach the master: check its "
              "ROS_MASTER_URI)";
     case PeerState::Unreachable:
-      return "registered at " + last.uri + ", but its XML-RPC server does not answer" + error +
-             ": on one host a node that died; across hosts a wrong ROS_IP / ROS_HOSTNAME on its side, or a firewall";
+      return "registered at " + last.uri + ", but its XML-RPC server does not answer" + error + ": " +
+             (last.hint.empty() ? "on one host a node that died; across hosts a wrong ROS_IP / ROS_HOSTNAME on its "
+                                  "side, or a firewall"
+                                : last.hint);
     case PeerState::Alive:
     case PeerState::Restarted:
       if (!p.linked)
-        return "alive (pid " + std::to_string(p.pid) + " at " + p.uri +
-               ") but its topics are not connected (across hosts: check ROS_IP / ROS_HOSTNAME on both sides)";
+        return "alive (pid " + std::to_string(p.pid) + " at " + p.uri + ") but its topics are not connected: " +
+               (p.link_hint.empty() ? "across hosts, check ROS_IP / ROS_HOSTNAME on both sides" : p.link_hint);
       return "alive, pid " + std::to_string(p.pid);
     case PeerState::Gone:
       if (!last.registered) return "pid " + std::to_string(p.pid) + " is no longer registered with the master";

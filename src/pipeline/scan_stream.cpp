@@ -19,12 +19,10 @@ void MergedScanStream::refill(char robot) {
   Scan scan;
   while (sources_[robot]->next(scan)) {
     scan.stamp = timing_.of(robot).toSequence(scan.stamp);
-    auto last = last_.find(robot);
-    if (last != last_.end() && scan.stamp <= last->second) {
+    if (!increasing_[robot].accept(scan.stamp)) {
       ++dropped_[robot];
       continue;
     }
-    last_[robot] = scan.stamp;
     pending_[robot] = std::move(scan);
     return;
   }

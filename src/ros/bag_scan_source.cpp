@@ -116,20 +116,28 @@ pipeline::TrialSpan readSweepEndSpan(const pipeline::TrialConfig& trial) {
   return span;
 }
 
+pipeline::TrialBasis readTrialBasis(const pipeline::TrialConfig& trial) {
+  pipeline::TrialBasis basis;
+  basis.body_reference = trials::readBodyReference(trial);
+  basis.span = pipeline::TrialCoverage(trial.name, basis.body_reference).clip(readSweepEndSpan(trial));
+  return basis;
+}
+
 pipeline::SequenceTiming synchronizeSequence(const pipeline::SequenceConfig& config) {
-  std::vector<pipeline::TrialSpan> spans;
-  for (const auto& t : config.trials) spans.push_back(trials::trialCoverage(t).clip(readSweepEndSpan(t)));
-  return pipeline::SequenceTiming::synchronize(spans, config.anchor, config.time_offset_sigma, config.seed);
+  std::map<char, pipeline::TrialBasis> basis;
+  for (const auto& t : config.trials) basis[t.robot] = readTrialBasis(t);
+  return pipeline::synchronizeTrials(config, basis);
+}
+
+std::unique_ptr<pipeline::ScanSource> openTrialSource(const pipeline::TrialConfig& trial) {
+  std::unique_ptr<trials::TrialScanSource> scans = openTrialScanSource(trial);
+  const bool caching = dynamic_cast<trials::CachingScanSource*>(scans.get()) != nullptr;  // complete the cache
+  return std::make_unique<pipeline::CoveredScanSource>(std::move(scans), trials::trialCoverage(trial), caching);
 }
 
 std::map<char, std::unique_ptr<pipeline::ScanSource>> openTrialSources(const pipeline::SequenceConfig& config) {
   std::map<char, std::unique_ptr<pipeline::ScanSource>> sources;
-  for (const auto& t : config.trials) {
-    std::unique_ptr<trials::TrialScanSource> scans = openTrialScanSource(t);
-    const bool caching = dynamic_cast<trials::CachingScanSource*>(scans.get()) != nullptr;  // complete the cache
-    sources[t.robot] =
-        std::make_unique<pipeline::CoveredScanSource>(std::move(scans), trials::trialCoverage(t), caching);
-  }
+  for (const auto& t : config.trials) sources[t.robot] = openTrialSource(t);
   return sources;
 }
 

@@ -2,9 +2,31 @@
 
 #include <ros/ros.h>
 
+#include <ros/master.h>
+#include <ros/xmlrpc_manager.h>
+
+#include <cstdlib>
 #include <exception>
 
+#include "cosmo/ros/loopback_alias.hpp"
+
 namespace cosmo::ros_glue {
+
+void initNode(int& argc, char** argv, const std::string& name, std::uint32_t options) {
+  const std::string note = serveTopicsWhereRegistered();
+  ros::init(argc, argv, name, options);
+  if (!note.empty()) ROS_WARN("%s: %s", name.c_str(), note.c_str());
+}
+
+std::string whereThisNodeIs() {
+  const char* ip = std::getenv("ROS_IP");
+  const char* host = std::getenv("ROS_HOSTNAME");
+  const std::string from = host ? std::string("ROS_HOSTNAME=") + host
+                           : ip ? std::string("ROS_IP=") + ip
+                                : "the host name: set ROS_IP to this machine's address as the base reaches it";
+  return "master " + ros::master::getURI() + ", this node " + ros::XMLRPCManager::instance()->getServerURI() + " (" +
+         from + "): the player must run on that master and reach this node there";
+}
 
 int runNode(const char* name, const std::function<void()>& body) {
   try {

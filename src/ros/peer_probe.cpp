@@ -1,5 +1,6 @@
 #include "cosmo/ros/peer_probe.hpp"
 
+#include <arpa/inet.h>
 #include <netdb.h>
 #include <poll.h>
 #include <sys/socket.h>
@@ -38,6 +39,8 @@ std::string tcpReachable(const std::string& host, std::uint32_t port, double tim
       rc = poll(&p, 1, static_cast<int>(timeout * 1000));
       if (rc == 0) {
         error = "no answer within " + std::to_string(timeout).substr(0, 3) + " s";
+        rc = -1;  // not connected
+        errno = 0;
       } else {
         int so_error = 0;
         socklen_t len = sizeof so_error;
@@ -90,7 +93,10 @@ pipeline::PeerProbe probePeer(const std::string& node, double timeout) {
     return probe;
   }
   probe.error = tcpReachable(host, port, timeout, probe.refused);
-  if (!probe.error.empty()) return probe;
+  if (!probe.error.empty()) {
+    probe.hint = pipeline::unreachableHint(peerAddress(probe));
+    return probe;
+  }
   BoundedXmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
   XmlRpc::XmlRpcValue pid_args, pid_result;
   pid_args[0] = ros::this_node::getName();
@@ -104,6 +110,58 @@ pipeline::PeerProbe probePeer(const std::string& node, double timeout) {
   return probe;
 }
 
+pipeline::PeerAddress peerAddress(const pipeline::PeerProbe& probe) {
+  pipeline::PeerAddress a;
+  a.uri = probe.uri;
+  std::uint32_t port = 0;
+  ros::network::splitURI(probe.uri, a.host, port);
+  a.refused = probe.refused;
+  a.resolved = probe.error.rfind("cannot resolve", 0) != 0;
+  a.timed_out = probe.error.rfind("no answer", 0) == 0 || probe.error == std::strerror(ENETUNREACH) ||
+                probe.error == std::strerror(EHOSTUNREACH);  // no way there from here
+  a.loopback = a.host == "localhost" || a.host == "::1" || a.host.rfind("127.", 0) == 0;
+  addrinfo hints{}, *found = nullptr;
+  hints.ai_socktype = SOCK_STREAM;
+  if (!a.loopback && a.resolved && getaddrinfo(a.host.c_str(), nullptr, &hints, &found) == 0) {
+    for (addrinfo* i = found; i; i = i->ai_next)
+      if (i->ai_family == AF_INET &&
+          (ntohl(reinterpret_cast<sockaddr_in*>(i->ai_addr)->sin_addr.s_addr) >> 24) == 127)
+        a.loopback = true;  // a host name this machine resolves to itself (Debian's 127.0.1.1)
+    freeaddrinfo(found);
+  }
+  return a;
+}
+
+std::string unlinkedReason(const std::string& peer_uri, const std::string& topic, double timeout) {
+  std::string host;
+  std::uint32_t port = 0;
+  if (!ros::network::splitURI(peer_uri, host, port)) return "";
+  BoundedXmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
+  XmlRpc::XmlRpcValue args, result, protocols, tcpros;
+  tcpros[0] = std::string("TCPROS");
+  protocols[0] = tcpros;
+  args[0] = ros::this_node::getName();
+  args[1] = topic;
+  args[2] = protocols;
+  if (!client.call("requestTopic", args, result, timeout) || result.getType() != XmlRpc::XmlRpcValue::TypeArray ||
+      result.size() < 3 || result[2].getType() != XmlRpc::XmlRpcValue::TypeArray || result[2].size() < 3 ||
+      result[2][1].getType() != XmlRpc::XmlRpcValue::TypeString || result[2][2].getType() != XmlRpc::XmlRpcValue::TypeInt)
+    return "it does not name a topic server for " + topic + " (does it publish it?)";
+  pipeline::PeerProbe server;
+  const std::string server_host = static_cast<std::string>(result[2][1]);
+  const std::string endpoint = server_host + ":" + std::to_string(static_cast<int>(result[2][2]));
+  server.uri = "http://" + endpoint + "/";
+  server.error = tcpReachable(server_host, static_cast<std::uint32_t>(static_cast<int>(result[2][2])), timeout,
+                              server.refused);
+  if (server.error.empty())
+    return "its topic server at " + endpoint + " answers from here, so it cannot reach this node's: " +
+           ros::this_node::getName() + " registered the address " + ros::network::getHost() +
+           ", which ROS_IP / ROS_HOSTNAME on this machine must make one the peer's machine reaches";
+  pipeline::PeerAddress a = peerAddress(server);
+  a.uri = endpoint;
+  return pipeline::unlinkedHint(a);
+}
+
 PeerMonitor::PeerMonitor(std::string owner, pipeline::PeerWatch watch, double period)
     : owner_(std::move(owner)), period_(period), watch_(std::move(watch)) {}
 
@@ -113,14 +171,16 @@ PeerMonitor::~PeerMonitor() {
   if (thread_.joinable()) thread_.join();
 }
 
-void PeerMonitor::setLinkCheck(const std::string& node, std::function<bool()> linked) {
+void PeerMonitor::setLinkCheck(const std::string& node, std::function<bool()> linked, const std::string& topic) {
   link_checks_[node] = std::move(linked);
+  if (!topic.empty()) link_topics_[node] = topic;
 }
 
 void PeerMonitor::start() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     watch_.start(wallSeconds());
+    watch_.setMaster(ros::master::getURI());
   }
   thread_ = std::thread([this] { loop(); });
 }
@@ -143,8 +203,19 @@ void PeerMonitor::probeOnce() {
     const pipeline::PeerProbe probe = probePeer(node);
     const auto check = link_checks_.find(node);
     const bool linked = check == link_checks_.end() || check->second();
+    std::string hint;  // alive, not linked for 5 s (connections take a moment): why, looked for every 5 s
+    const auto topic = link_topics_.find(node);
+    if (linked) {
+      link_hint_at_.erase(node);
+    } else if (probe.answered && topic != link_topics_.end()) {
+      const auto [at, first] = link_hint_at_.try_emplace(node, wallSeconds());
+      if (!first && wallSeconds() - at->second >= 5.0) {
+        at->second = wallSeconds();
+        hint = unlinkedReason(probe.uri, topic->second);
+      }
+    }
     std::lock_guard<std::mutex> lock(mutex_);
-    watch_.setLinked(node, linked);
+    watch_.setLinked(node, linked, hint);
     watch_.observe(node, probe, wallSeconds());
   }
   std::optional<std::string> stop;

@@ -13,7 +13,6 @@
 #include "cosmo/ros/resolved_sequence.hpp"
 #include "cosmo/ros/robot_list.hpp"
 #include "cosmo/ros/trial_probe.hpp"
-#include "cosmo/trials/trial_reference.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -42,19 +41,31 @@ std::vector<char> PlayedSequence::robots() const {
   return r;
 }
 
-PlayedSequence resolvePlayedSequence(const SequenceChoice& choice) {
-  const std::string path = sequencePath(choice);
+pipeline::SequenceConfig loadSequenceChoice(const SequenceChoice& choice) {
+  pipeline::SequenceConfig config = pipeline::SequenceConfig::load(sequencePath(choice), choice.data_root);
+  if (choice.seed >= 0) config.seed = static_cast<unsigned long long>(choice.seed);
+  return config;
+}
+
+std::map<char, pipeline::TrialBasis> readTrialBases(const pipeline::SequenceConfig& config) {
+  checkBeforePlaying(config);
+  std::map<char, pipeline::TrialBasis> basis;
+  for (const auto& t : config.trials) basis[t.robot] = readTrialBasis(t);
+  return basis;
+}
+
+PlayedSequence resolvePlayedSequence(const SequenceChoice& choice, const TrialBases& trial_bases) {
   PlayedSequence s;
-  s.config = pipeline::SequenceConfig::load(path, choice.data_root);
+  s.config = loadSequenceChoice(choice);
   publishTeamRobots(s.robots());
   ROS_INFO("player: noise models %s",
            pipeline::loadSequenceNoiseModels(s.config, choice.config_dir, choice.noise_models).describe().c_str());
-  if (choice.seed >= 0) s.config.seed = static_cast<unsigned long long>(choice.seed);
-  checkBeforePlaying(s.config);
-  s.timing = synchronizeSequence(s.config);
-  s.references = trials::loadSequenceReferences(s.config, s.timing);
-  if (!s.config.registration.empty()) ROS_INFO("player: the sequence's own registration keys apply (%s)", path.c_str());
-  publishResolvedSequence(std::filesystem::absolute(path).string(), s.config.seed,
+  const std::map<char, pipeline::TrialBasis> basis = trial_bases(s.config);
+  s.timing = pipeline::synchronizeTrials(s.config, basis);
+  s.references = pipeline::sensorReferences(s.config, basis, s.timing);
+  if (!s.config.registration.empty())
+    ROS_INFO("player: the sequence's own registration keys apply (%s)", s.config.path.c_str());
+  publishResolvedSequence(std::filesystem::absolute(s.config.path).string(), s.config.seed,
                           std::filesystem::absolute(s.config.data_root).string(), s.config.registration);
   s.end = choice.max_seconds > 0 ? std::min(s.timing.end(), s.timing.start() + toStampNs(choice.max_seconds))
                                  : s.timing.end();

@@ -1,6 +1,7 @@
 #include "cosmo/trials/trial_reference.hpp"
 
 #include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/pipeline/trial_basis.hpp"
 #include "cosmo/trials/reference_file.hpp"
 
 namespace cosmo::trials {
@@ -15,13 +16,9 @@ pipeline::TrialCoverage trialCoverage(const pipeline::TrialConfig& trial) {
 }
 
 Eigen::Vector3d sequenceReferenceOffset(const pipeline::SequenceConfig& config) {
-  using Mode = pipeline::ReferenceOffsetConfig::Mode;
-  switch (config.reference_offset.mode) {
-    case Mode::None: return Eigen::Vector3d::Zero();
-    case Mode::Fixed: return config.reference_offset.fixed;
-    case Mode::Anchor: break;
-  }
-  return pipeline::roundedFirstPosition(readBodyReference(config.trial(config.anchor)));
+  const bool by_anchor = config.reference_offset.mode == pipeline::ReferenceOffsetConfig::Mode::Anchor;
+  return pipeline::referenceOffset(config.reference_offset,
+                                   by_anchor ? readBodyReference(config.trial(config.anchor)) : Trajectory());
 }
 
 Trajectory loadSensorReference(const pipeline::TrialConfig& trial, const pipeline::TrialTiming& timing,

@@ -40,6 +40,7 @@ struct PeerProbe {
   int pid = 0;              ///< when answered
   bool refused = false;     ///< not answered: the connection was refused (nothing listens: a dead process)
   std::string error;        ///< not answered: why
+  std::string hint;         ///< not answered: the likely cause across machines (peer_address_hint.hpp)
 };
 
 struct PeerPolicyParams {
@@ -66,7 +67,9 @@ class PeerWatch {
   void observe(const std::string& node, const PeerProbe& probe, double now);
   /// The driver's own topic connections with `node` are made (a peer counts as connected when it is alive and
   /// linked; linked by default).
-  void setLinked(const std::string& node, bool linked);
+  void setLinked(const std::string& node, bool linked, const std::string& hint = "");
+  /// The master's URI, for the message about a peer that never registered.
+  void setMaster(const std::string& uri) { master_uri_ = uri; }
 
   /// The policy at `now`: the messages due, in the order of expect(); sets stopReason() when the run must stop.
   std::vector<PeerNotice> review(double now);
@@ -94,6 +97,7 @@ class PeerWatch {
     bool ever_alive = false;
     bool ever_connected = false;  ///< alive and linked at least once
     bool linked = true;
+    std::string link_hint;  ///< why its topics are not connected, when known
     bool given_up = false;        ///< realtime: never connected, the run went on without it
     double gone_since = 0.0;      ///< when it stopped answering (state Gone)
     double last_notice = -1e300;
@@ -114,6 +118,7 @@ class PeerWatch {
   std::map<std::string, Peer> peers_;
   std::vector<std::string> order_;
   std::optional<std::string> stop_;
+  std::string master_uri_;
 };
 
 }  // namespace cosmo::pipeline

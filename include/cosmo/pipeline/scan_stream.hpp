@@ -35,6 +35,23 @@ class VectorScanSource : public ScanSource {
   std::size_t pos_ = 0;
 };
 
+/// One robot's rule for bad input: a scan whose stamp does not increase is dropped. The merge applies it per
+/// robot; a robot-side trial player (pipeline/scan_read_ahead.hpp) applies it to its own trial before announcing.
+class IncreasingStamps {
+ public:
+  /// Whether a scan stamped `stamp` is kept (then it is the latest).
+  bool accept(StampNs stamp) {
+    if (any_ && stamp <= last_) return false;
+    any_ = true;
+    last_ = stamp;
+    return true;
+  }
+
+ private:
+  bool any_ = false;
+  StampNs last_ = 0;
+};
+
 class MergedScanStream {
  public:
   /// `sources`: robot -> its scans in recorded time; every robot needs a trial in `timing`.
@@ -54,7 +71,7 @@ class MergedScanStream {
   std::map<char, std::unique_ptr<ScanSource>> sources_;
   SequenceTiming timing_;
   std::map<char, Scan> pending_;  ///< the next scan of each robot that still has one (sequence time)
-  std::map<char, StampNs> last_;
+  std::map<char, IncreasingStamps> increasing_;
   std::map<char, std::size_t> dropped_;
   std::size_t delivered_ = 0;
 };

@@ -10,6 +10,7 @@
 #include "cosmo/pipeline/scan_stream.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/pipeline/sequence_timing.hpp"
+#include "cosmo/pipeline/trial_basis.hpp"
 #include "cosmo/ros/bag_io.hpp"
 #include "cosmo/trials/trial_scans.hpp"
 
@@ -42,12 +43,18 @@ pipeline::TrialSpan readTrialSpan(const pipeline::TrialConfig& trial);
 /// readTrialSpan as stamps of the sweep ends (the stamps of the decoded scans, whatever the trial's convention).
 pipeline::TrialSpan readSweepEndSpan(const pipeline::TrialConfig& trial);
 
-/// The synchronized timing of a sequence config (reads every trial's span, clipped to its reference's span:
-/// pipeline/trial_coverage.hpp).
+/// What the sequence's timing and references take from a trial (pipeline/trial_basis.hpp): its sweep-end span
+/// clipped to its reference's span (pipeline/trial_coverage.hpp) and its reference as read.
+pipeline::TrialBasis readTrialBasis(const pipeline::TrialConfig& trial);
+
+/// The synchronized timing of a sequence config (reads every trial's basis).
 pipeline::SequenceTiming synchronizeSequence(const pipeline::SequenceConfig& config);
 
-/// A reader of each trial's scans (robot -> source), in recorded time: only the scans its reference covers
+/// A reader of the trial's scans in recorded time: only the scans its reference covers
 /// (pipeline::CoveredScanSource).
+std::unique_ptr<pipeline::ScanSource> openTrialSource(const pipeline::TrialConfig& trial);
+
+/// openTrialSource for each trial (robot -> source).
 std::map<char, std::unique_ptr<pipeline::ScanSource>> openTrialSources(const pipeline::SequenceConfig& config);
 
 /// One merged stream over all trials of a sequence config, in sequence time.

@@ -1,11 +1,21 @@
 #pragma once
 // What every node's main does around its own steps: a fatal error ends the node with its message, and waits on
 // other nodes poll a condition on wall time (the callbacks that make it true run on a spinner thread).
+#include <cstdint>
 #include <functional>
+#include <string>
 
 #include <ros/time.h>
 
 namespace cosmo::ros_glue {
+
+/// ros::init(argc, argv, name, options), its topics served where the node registers (loopback_alias.hpp: a
+/// loopback-alias ROS_IP is logged and worked around).
+void initNode(int& argc, char** argv, const std::string& name, std::uint32_t options = 0);
+
+/// "master <ROS_MASTER_URI>, this node <its XML-RPC URI> (<where its address comes from>)": for a node that waits
+/// for others, what a user checks on a multi-machine team (README "A robot per machine").
+std::string whereThisNodeIs();
 
 /// Runs `body`: a std::exception it throws ends the node with ROS_FATAL "<name>: <what>"; returns the exit code.
 int runNode(const char* name, const std::function<void()>& body);

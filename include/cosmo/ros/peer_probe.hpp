@@ -16,6 +16,7 @@
 #include <string>
 #include <thread>
 
+#include "cosmo/pipeline/peer_address_hint.hpp"
 #include "cosmo/pipeline/peer_watch.hpp"
 
 namespace cosmo::ros_glue {
@@ -29,6 +30,15 @@ class RunStopped : public std::runtime_error {
 /// One probe of the node named `node` (a resolved name, e.g. "/b/frontend"), `timeout` s at most per step.
 pipeline::PeerProbe probePeer(const std::string& node, double timeout = 1.0);
 
+/// What this machine finds out about the address a probed peer registered, for the hints of
+/// pipeline/peer_address_hint.hpp (the probe's host resolution and connection, and whether it is a loopback one).
+pipeline::PeerAddress peerAddress(const pipeline::PeerProbe& probe);
+
+/// Why this node's topic connections with the peer at `peer_uri` (alive) are not made: its topic server for
+/// `topic` (one it publishes; XML-RPC requestTopic) does not accept a connection from here, or it does, and then the
+/// peer cannot reach this node. Each step bounded by `timeout` s.
+std::string unlinkedReason(const std::string& peer_uri, const std::string& topic, double timeout = 1.0);
+
 /// The wall time in seconds (the clock PeerMonitor passes to its watch).
 double wallSeconds();
 
@@ -41,7 +51,8 @@ class PeerMonitor {
   PeerMonitor& operator=(const PeerMonitor&) = delete;
 
   /// The owner's own topic check of `node` (called on the monitor's thread before each review); set before start().
-  void setLinkCheck(const std::string& node, std::function<bool()> linked);
+  /// `topic`: one the peer publishes and the owner subscribes to, to tell why the link is missing (unlinkedReason).
+  void setLinkCheck(const std::string& node, std::function<bool()> linked, const std::string& topic = "");
   /// Called once, on the monitor's thread, when the policy says the run must stop (instead of the monitor's own
   /// error message); set before start().
   void onStop(std::function<void(const std::string&)> callback) { on_stop_ = std::move(callback); }
@@ -64,6 +75,8 @@ class PeerMonitor {
   mutable std::mutex mutex_;
   pipeline::PeerWatch watch_;
   std::map<std::string, std::function<bool()>> link_checks_;
+  std::map<std::string, std::string> link_topics_;
+  std::map<std::string, double> link_hint_at_;  ///< since when a link is missing / its reason was last looked for
   std::function<void(const std::string&)> on_stop_;
   bool stop_reported_ = false;
   std::mutex wake_mutex_;

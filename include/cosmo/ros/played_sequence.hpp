@@ -2,7 +2,9 @@
 // The sequence the player replays, resolved and checked before anything is played: its config (the built-in
 // synthetic sequence when none is given), effective seed, time synchronization, references and the end of the
 // replay. Resolving announces the robots first (/player/robots: the launch starts their front-ends meanwhile)
-// and the resolved sequence's origin at the end (resolved_sequence.hpp).
+// and the resolved sequence's origin at the end (resolved_sequence.hpp). The trials are read here, or, with
+// robot-side playback, each on its robot's machine (robot_playback.hpp): the same timing and references either way.
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -10,6 +12,7 @@
 #include "cosmo/common/trajectory.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/pipeline/sequence_timing.hpp"
+#include "cosmo/pipeline/trial_basis.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -33,8 +36,18 @@ struct PlayedSequence {
   double seconds() const { return toSeconds(end - timing.start()); }
 };
 
-/// Loads, announces and checks the sequence (throws std::runtime_error when the pre-flight check fails: a run that
-/// cannot be labelled does not start).
-PlayedSequence resolvePlayedSequence(const SequenceChoice& choice);
+/// The config `choice` names (the built-in sequence is generated first, once: cached), with its seed override.
+pipeline::SequenceConfig loadSequenceChoice(const SequenceChoice& choice);
+
+/// What the timing and references take from each trial, however the trials are read.
+using TrialBases = std::function<std::map<char, pipeline::TrialBasis>(const pipeline::SequenceConfig&)>;
+
+/// The player reads every trial: the pre-flight check (throws std::runtime_error when it fails: a run that cannot
+/// be labelled does not start), then each trial's basis from its bag and reference.
+std::map<char, pipeline::TrialBasis> readTrialBases(const pipeline::SequenceConfig& config);
+
+/// Loads and announces the sequence, takes its trials' bases from `trial_bases` (readTrialBases, or the robots'
+/// announcements when each robot plays its own trial) and resolves the timing and references from them.
+PlayedSequence resolvePlayedSequence(const SequenceChoice& choice, const TrialBases& trial_bases = readTrialBases);
 
 }  // namespace cosmo::ros_glue

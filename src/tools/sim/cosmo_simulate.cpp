@@ -255,10 +255,13 @@ int main(int argc, char** argv) {
     if (!no_cache && !out.empty()) {  // link the cached files into --out
       fs::create_directories(out);
       for (const auto& e : fs::directory_iterator(final_dir)) {
+        // made beside and renamed over the old one: several processes may link the same sequence at once
         const fs::path link = fs::path(out) / e.path().filename();
+        const fs::path tmp_link = fs::path(out) / (e.path().filename().string() + ".link-" + std::to_string(::getpid()));
         std::error_code ec;
-        fs::remove(link, ec);
-        fs::create_symlink(fs::absolute(e.path()), link);
+        fs::remove(tmp_link, ec);
+        fs::create_symlink(fs::absolute(e.path()), tmp_link);
+        fs::rename(tmp_link, link);
       }
       seq_path = fs::path(out) / seq_name;
     }
