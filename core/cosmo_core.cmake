@@ -10,9 +10,12 @@ find_package(yaml-cpp REQUIRED)
 find_package(TBB REQUIRED)
 find_package(nanoflann QUIET)
 find_package(Ceres REQUIRED)   # the backend module only (pose-graph check of datasets)
-find_package(OpenSSL REQUIRED COMPONENTS Crypto)  # MD5 of ROS 1 message definitions (nebula)
+find_package(OpenSSL REQUIRED COMPONENTS Crypto)  # MD5 of ROS 1 message definitions (nebula), SHA-256 (suite)
 find_package(CLI11 REQUIRED)   # option parsing (header-only, Debian libcli11-dev)
 find_package(SQLite3 REQUIRED)  # ROS 2 bags (trials/ros2_bag.cpp)
+find_package(BZip2 REQUIRED)    # ROS 1 bag chunks (trials/ros1_chunk.cpp)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(LZ4 REQUIRED IMPORTED_TARGET liblz4)
 find_package(ZLIB REQUIRED)     # CRC-32 of the recorder's journal (dataset/measurement_journal.cpp)
 
 # One library per module. DEPS names other modules; USES the third-party targets its public headers need,
@@ -42,7 +45,9 @@ cosmo_module(backend DEPS common jrl PRIVATE Ceres::ceres nlohmann_json::nlohman
 cosmo_module(report DEPS common jrl)
 cosmo_module(pipeline DEPS common jrl sim odometry place_recognition registration comm dataset)
 cosmo_module(nebula DEPS common jrl dataset PRIVATE OpenSSL::Crypto)
-cosmo_module(trials DEPS common pipeline PRIVATE SQLite::SQLite3)
+cosmo_module(trials DEPS common pipeline PRIVATE SQLite::SQLite3 BZip2::BZip2 PkgConfig::LZ4)
+cosmo_module(suite DEPS common jrl comm registration backend pipeline trials
+             PRIVATE nlohmann_json::nlohmann_json OpenSSL::Crypto yaml-cpp)
 
 # cosmo_core: every core module, for users of the package (catkin exports it).
 add_library(cosmo_core ${COSMO_ROOT}/src/core_version.cpp)
@@ -81,6 +86,7 @@ cosmo_program(tools dataset/cosmo_noise_models LIBS cosmo_dataset)
 cosmo_program(tools jrl/cosmo_jrl LIBS cosmo_jrl cosmo_backend cosmo_report cosmo_dataset)
 cosmo_program(tools place_recognition/cosmo_scancontext LIBS cosmo_place_recognition)
 cosmo_program(tools registration/cosmo_register LIBS cosmo_registration)
+cosmo_program(tools suite/cosmo_suite LIBS cosmo_suite cosmo_dataset)
 cosmo_program(bench backend/bench_backend LIBS cosmo_backend cosmo_report)
 cosmo_program(bench comm/bench_comm LIBS cosmo_comm)
 cosmo_program(bench dataset/bench_closure_errors LIBS cosmo_dataset)
@@ -117,11 +123,12 @@ function(cosmo_gtest TARGET SRC)
 endfunction()
 
 # test/<module>/test_*.cpp link their module (all of the core where the folder is no module) and what they
-# include beyond it (COSMO_TEST_LIBS_<target>). The gtests in COSMO_ROS_GTESTS use the ROS glue:
-# ../CMakeLists.txt builds them.
-set(COSMO_ROS_GTESTS multihost/test_netns_team nebula/test_conversion nebula/test_message_definition
-    ros/test_loopback_alias ros/test_markers ros/test_point_cloud ros/test_team_sequence_msg sim/test_sim_bag tools/test_tools_on_fixtures trials/test_layouts_end_to_end
-    trials/test_trial_layouts workspace/test_commands_on_path)
+# include beyond it (COSMO_TEST_LIBS_<target>). The gtests in COSMO_ROS_GTESTS use the ROS glue,
+# or run programs that do (cosmo_generate, cosmo_simulate) or the devel space: ../CMakeLists.txt builds them.
+set(COSMO_ROS_GTESTS fuzz/test_fuzz_inputs multihost/test_netns_team nebula/test_conversion
+    nebula/test_message_definition ros/test_loopback_alias ros/test_markers ros/test_point_cloud
+    ros/test_team_sequence_msg sim/test_sim_bag tools/test_suite_end_to_end tools/test_tools_on_fixtures
+    trials/test_layouts_end_to_end trials/test_ros1_bag trials/test_trial_layouts workspace/test_commands_on_path)
 set(COSMO_TEST_LIBS_backend_test_pose_graph_solver Ceres::ceres)
 set(COSMO_TEST_LIBS_dataset_test_outlier_injection cosmo_backend)
 set(COSMO_TEST_LIBS_pipeline_test_lookalike_closures cosmo_dataset)

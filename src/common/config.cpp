@@ -1,4 +1,5 @@
 #include "cosmo/common/config.hpp"
+#include "cosmo/common/nearest_name.hpp"
 
 #include <algorithm>
 #include <cstddef>
@@ -39,7 +40,9 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
-std::string nearestKey(const std::string& key, const std::vector<std::string>& known) {
+}  // namespace
+
+std::string nearestName(const std::string& key, const std::vector<std::string>& known) {
   std::string best;
   std::size_t best_distance = key.size();
   for (const std::string& k : known) {
@@ -49,14 +52,12 @@ std::string nearestKey(const std::string& key, const std::vector<std::string>& k
   return best_distance <= std::max<std::size_t>(2, key.size() / 3) ? best : std::string();
 }
 
-}  // namespace
-
 void ConfigNode::rejectUnknownKeys(const std::vector<std::string>& known) const {
   if (!node || !node.IsMap()) return;
   for (const auto& entry : node) {
     const std::string key = entry.first.as<std::string>();
     if (std::find(known.begin(), known.end(), key) != known.end()) continue;
-    const std::string nearest = nearestKey(key, known);
+    const std::string nearest = nearestName(key, known);
     const bool root = where.empty() || where.back() == ' ';
     throw std::runtime_error(where + (root ? "" : ".") + key + ": unknown parameter" +
                              (nearest.empty() ? std::string() : " (did you mean '" + nearest + "'?)"));

@@ -84,14 +84,21 @@ NoiseModels loadRunNoiseModels(const std::string& explicit_path, const std::stri
   return loadSequenceNoiseModels(sequence, config_dir);
 }
 
+std::string estimatedNoiseModelsPath(const SequenceConfig& sequence, const std::string& out_dir) {
+  const std::string stem = sequence.environment.empty() ? sequence.name : sequence.environment;
+  return (std::filesystem::path(out_dir.empty() ? "." : out_dir) / (stem + ".noise_models.yaml")).string();
+}
+
 std::string howToMakeNoiseModels(const SequenceConfig& sequence, const std::string& path) {
   const std::string seq = sequence.path.empty() ? "SEQUENCE.yaml" : sequence.path;
   std::ostringstream out;
   out << "Make them as the paper does, from one trial of the environment run alone (spec section 6):\n"
-      << "  cosmo_generate " << seq << " --estimate-noise-models TRIAL --noise-models-out " << path << "\n"
+      << "  cosmo_generate " << seq << " --estimate-noise-models TRIAL [--out DIR]\n"
       << "    (TRIAL: " << trialChoices(sequence)
       << "; runs it alone through the front-end, keeps the loop closures within 0.5 m / 0.05 rad of the reference,\n"
-      << "    writes the sample covariances with the counts and thresholds, then generates this sequence with them)\n"
+      << "    writes the sample covariances with the counts and thresholds to "
+      << estimatedNoiseModelsPath(sequence, "DIR") << " (--noise-models-out FILE: elsewhere, e.g. " << path
+      << "),\n    then generates this sequence with them)\n"
       << "  or from the JRL of a single-trial run: cosmo_noise_models RUN.jrl " << path << " --environment NAME";
   return out.str();
 }

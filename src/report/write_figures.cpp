@@ -27,9 +27,11 @@ std::string shellQuoted(const std::string& s) {
 
 bool converterInstalled() { return std::system("command -v convert >/dev/null 2>&1") == 0; }
 
-/// PNG of an SVG with ImageMagick; false when the conversion fails (the SVG stays).
+/// PNG of an SVG with ImageMagick; false when the conversion fails (the SVG stays). Without the date and time chunks
+/// (ImageMagick writes the SVG's file times into them), so the same figure is the same bytes.
 bool convertToPng(const std::string& svg, const std::string& png) {
-  const std::string cmd = "convert -background white " + shellQuoted(svg) + " " + shellQuoted(png) + " >/dev/null 2>&1";
+  const std::string cmd = "convert -background white -define png:exclude-chunks=date,time " + shellQuoted(svg) + " " +
+                          shellQuoted(png) + " >/dev/null 2>&1";
   return std::system(cmd.c_str()) == 0 && fs::exists(png);
 }
 

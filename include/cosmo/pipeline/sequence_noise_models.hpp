@@ -40,6 +40,10 @@ NoiseModels loadSequenceNoiseModels(const SequenceConfig& sequence, const std::s
 NoiseModels loadRunNoiseModels(const std::string& explicit_path, const std::string& sequence_path,
                                const std::string& simulate_config, const std::string& config_dir);
 
+/// Where `cosmo_generate --estimate-noise-models` writes its estimate unless told otherwise: beside the outputs,
+/// <out_dir>/<environment>.noise_models.yaml (the sequence's name when it names no environment).
+std::string estimatedNoiseModelsPath(const SequenceConfig& sequence, const std::string& out_dir);
+
 /// How to make the missing models of `sequence` at `path` (the commands, one per line).
 std::string howToMakeNoiseModels(const SequenceConfig& sequence, const std::string& path);
 

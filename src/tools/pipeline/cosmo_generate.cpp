@@ -5,12 +5,13 @@
 //
 //   cosmo_generate SEQUENCE.yaml [--data-root DIR] [--comm wifi,proradio] [--seed N] [--out DIR] [--config-dir DIR]
 //                  [--noise-models FILE] [--outlier-rule fidelity|squared] [--reference-odometry]
-//                  [--registration-threads N] [--max-seconds S] [--no-check] [--quiet]
-//                  [--estimate-noise-models TRIAL [--noise-models-out FILE] [--good-translation M] [--good-rotation
-//                  RAD]]
+//                  [--registration-threads N] [--max-seconds S] [--gate-threshold X] [--no-check] [--quiet]
+//                  [--estimate-noise-models TRIAL [--noise-models-out FILE] [--estimate-only] [--good-translation M]
+//                  [--good-rotation RAD]]
 //
 // Noise models: the ones the sequence names (sequence_noise_models.hpp); none: the run stops and says how to make
-// them, or --estimate-noise-models makes them first from that trial run alone (trial_noise_models.hpp).
+// them, or --estimate-noise-models makes them first from that trial run alone (trial_noise_models.hpp) and writes
+// them beside the outputs (--noise-models-out elsewhere).
 //
 // Determinism: the same sequence, seed and parameters give a byte-identical JRL (the team's events in one order,
 // randomness from the seed only), whatever the threads: the robots' LOAM and keyframes run ahead on one thread per
@@ -33,6 +34,7 @@
 
 #include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/common/text_list.hpp"
+#include "cosmo/pipeline/gate_threshold.hpp"
 #include "cosmo/pipeline/kept_scan.hpp"
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/comm/radio_trace.hpp"
@@ -65,7 +67,7 @@ void usage() {
       << "usage: cosmo_generate SEQUENCE.yaml [--data-root DIR] [--comm wifi,proradio] [--seed N] [--out DIR]\n"
          "         [--config-dir DIR] [--noise-models FILE] [--outlier-rule fidelity|squared]\n"
          "         [--reference-odometry] [--serial-odometry] [--registration-threads N] [--max-seconds S] "
-         "[--no-check] [--quiet]\n"
+         "[--gate-threshold X] [--no-check] [--quiet]\n"
          "  --data-root DIR      the folder the trials' bags and references are below (default: the config's\n"
          "                       data_root key, else $COSMO_DATA_ROOT, else the config's folder)\n"
          "  --no-check           skip the pre-flight check (cosmo_check) that stops a run that would be unlabelled\n"
@@ -82,8 +84,9 @@ void usage() {
          "                       trial name) alone through the front-end, compare with its reference, keep the\n"
          "                       good loop closures, write the sample covariances, then generate the sequence\n"
          "                       with them\n"
-         "  --noise-models-out FILE  where the estimate goes (default: the sequence's noise-model file, when it\n"
-         "                       does not exist or says its models are unknown)\n"
+         "  --noise-models-out FILE  where the estimate goes (default: beside the outputs,\n"
+         "                       <out>/<environment, else the sequence's name>.noise_models.yaml)\n"
+         "  --estimate-only      with --estimate-noise-models: write the estimate and stop (no dataset)\n"
          "  --good-translation M, --good-rotation RAD  good loop closures for the estimate: errors under\n"
          "                       these (default 0.5 m, 0.05 rad)\n"
          "  --reference-odometry take odometry from the reference trajectories instead of LOAM\n"
@@ -94,7 +97,9 @@ void usage() {
          "                       on (0: on the team's thread; default: the machine's cores; 0 with "
          "--serial-odometry);\n"
          "                       the output is the same byte for byte\n"
-         "  --max-seconds S      stop after S seconds of sequence time (quick looks)\n";
+         "  --max-seconds S      stop after S seconds of sequence time (quick looks)\n"
+         "  --gate-threshold X   the registration gate's acceptance threshold (gate: strict, min_structure_overlap:\n"
+         "                       X in [0, 1], on top of the sequence's registration: keys; a sweep 0.40-0.70)\n";
 }
 
 RadioParams radioFor(const std::string& comm, const std::string& config_dir, std::string& label) {
@@ -137,25 +142,11 @@ void printSigmas(const char* what, const CovarianceEstimate& e) {
       std::sqrt(e.covariance(3, 3)), std::sqrt(e.covariance(4, 4)), std::sqrt(e.covariance(5, 5)));
 }
 
-/// --estimate-noise-models: the paper's step on one trial of the sequence, written to `out_path` (default: the
-/// sequence's own noise-model file, which must not hold known models), then read back.
+/// --estimate-noise-models: the paper's step on one trial of the sequence, written to `out_path` (default: beside
+/// the outputs, estimatedNoiseModelsPath), then read back.
 NoiseModels estimateFirst(const SequenceConfig& config, const std::string& which, const TeamRunParams& params,
-                          const NoiseModelEstimationParams& estimation, std::string out_path,
-                          const std::string& config_dir) {
+                          const NoiseModelEstimationParams& estimation, const std::string& out_path) {
   const TrialConfig& trial = findTrial(config, which);
-  if (out_path.empty()) {
-    out_path = sequenceNoiseModelsPath(config, config_dir);
-    if (fs::exists(out_path)) {
-      bool unknown = false;
-      try {
-        NoiseModels::load(out_path);
-      } catch (const NoiseModelsUnknown&) { unknown = true; }
-      if (!unknown)
-        throw std::runtime_error(out_path +
-                                 " already holds noise models: pass --noise-models-out FILE to write the "
-                                 "estimate elsewhere (or leave out --estimate-noise-models to use them)");
-    }
-  }
   SequenceConfig alone = config;
   alone.trials = {trial};
   alone.anchor = trial.robot;
@@ -181,8 +172,11 @@ NoiseModels estimateFirst(const SequenceConfig& config, const std::string& which
          << " left out: error >= " << estimation.max_translation_error << " m or >= " << estimation.max_rotation_error
          << " rad).\n"
          << "Q = (1/N) sum r r^T, r = Log(m^-1 * m*), rotation first.";
+  fs::create_directories(fs::absolute(out_path).parent_path());
   result.estimate.models.save(out_path, header.str());
-  std::printf("wrote %s\n", out_path.c_str());
+  std::printf("noise models: wrote the estimate to %s (this run uses it; other runs of the environment: "
+              "--noise-models %s)\n",
+              out_path.c_str(), out_path.c_str());
   return NoiseModels::load(out_path);
 }
 
@@ -192,8 +186,10 @@ struct Options {
   NoiseModelEstimationParams estimation;
   std::vector<std::string> comms{"wifi"};
   bool seed_given = false, reference_odometry = false, quiet = false, serial_odometry = false, skip_check = false;
+  bool estimate_only = false;
   unsigned long long seed = 0;
   double max_seconds = 0.0;
+  std::optional<double> gate_threshold;
   int registration_threads = -1;  // -1: the default
 };
 
@@ -220,6 +216,8 @@ bool readOption(const std::string& a, const std::function<std::string()>& value,
     o.estimate_trial = value();
   else if (a == "--noise-models-out")
     o.noise_out = value();
+  else if (a == "--estimate-only")
+    o.estimate_only = true;
   else if (a == "--good-translation")
     o.estimation.max_translation_error = std::stod(value());
   else if (a == "--good-rotation")
@@ -232,6 +230,8 @@ bool readOption(const std::string& a, const std::function<std::string()>& value,
     o.registration_threads = std::stoi(value());
   else if (a == "--max-seconds")
     o.max_seconds = std::stod(value());
+  else if (a == "--gate-threshold")
+    o.gate_threshold = std::stod(value());
   else if (a == "--quiet")
     o.quiet = true;
   else
@@ -280,12 +280,23 @@ std::optional<int> parseArgs(int argc, char** argv, Options& o) {
   return std::nullopt;
 }
 
+/// The options that change the sequence's config: --seed, --gate-threshold.
+void applyConfigOptions(const Options& o, SequenceConfig& config) {
+  if (o.seed_given) config.seed = o.seed;
+  if (!o.gate_threshold) return;
+  try {
+    applyGateThreshold(config, *o.gate_threshold);
+  } catch (const std::invalid_argument& e) { throw std::runtime_error(std::string("--gate-threshold: ") + e.what()); }
+}
+
 /// The options that need each other or a range.
 void checkOptions(const Options& o) {
   if (!(o.estimation.max_translation_error > 0) || !(o.estimation.max_rotation_error > 0))
     throw std::runtime_error("--good-translation / --good-rotation: expected positive numbers");
   if (!o.estimate_trial.empty() && !o.noise_path.empty())
     throw std::runtime_error("--estimate-noise-models and --noise-models: give one of them");
+  if (o.estimate_only && o.estimate_trial.empty())
+    throw std::runtime_error("--estimate-only: give the trial with --estimate-noise-models TRIAL");
 }
 
 /// The pre-flight check (cosmo_check): stop before hours of work that give no labels.
@@ -320,7 +331,8 @@ TeamRunParams teamRunParams(const SequenceConfig& config, const Options& o) {
   params.radio = radioFor(o.comms.front(), o.config_dir, first_label);
   params.noise = o.estimate_trial.empty()
                      ? loadSequenceNoiseModels(config, o.config_dir, o.noise_path)
-                     : estimateFirst(config, o.estimate_trial, params, o.estimation, o.noise_out, o.config_dir);
+                     : estimateFirst(config, o.estimate_trial, params, o.estimation,
+                                     o.noise_out.empty() ? estimatedNoiseModelsPath(config, o.out_dir) : o.noise_out);
   return params;
 }
 
@@ -551,8 +563,9 @@ int main(int argc, char** argv) {
     bench::Stopwatch total;
     Sequence seq;
     seq.config = SequenceConfig::load(o.sequence_path, o.data_root);
-    if (o.seed_given) seq.config.seed = o.seed;
+    applyConfigOptions(o, seq.config);
     const TeamRunParams params = teamRunParams(seq.config, o);
+    if (o.estimate_only) return 0;
     fs::create_directories(o.out_dir);
     seq.timing = ros_glue::synchronizeSequence(seq.config);
     printSequence(seq.config, seq.timing, params);
