@@ -113,7 +113,7 @@ class SuiteEndToEnd : public ::testing::Test {
   }
   /// The sequence config cosmo_simulate makes for the test's suite in `layout` (a cache hit after the suite's run).
   static fs::path sequence(const std::string& layout) {
-    const Outcome r = runTool("cosmo_simulate", {"--config", std::string(COSMO_SOURCE_DIR) + "/config/sim/suite_ci.yaml",
+    const Outcome r = runTool("cosmo_simulate", {"--config", std::string(COSMO_SOURCE_DIR) + "/test/suite/suite_light_sim.yaml",
                                               "--layout", layout});
     EXPECT_EQ(r.status, 0) << r.output;
     const auto end = r.output.find_last_not_of('\n');

@@ -1,6 +1,6 @@
 // cosmo_suite as a user runs it, on a light CI-shaped suite (test/suite/ci_short.yaml: config/suites/ci.yaml's
-// synthetic sequence in the MCD and CU-Multi layouts, both comm models, a noise-model estimate first; one seed, the
-// reference odometry): every dataset present, valid and byte for byte what cosmo_generate writes when run alone on
+// synthetic sequence at half the LiDAR columns in the MCD and CU-Multi layouts, both comm models, a noise-model
+// estimate first; one seed, the reference odometry): every dataset present, valid and byte for byte what cosmo_generate writes when run alone on
 // the same inputs; killed (SIGKILL) at a random moment and run again: the same bytes; a changed sequence file redoes
 // exactly its datasets; a bad suite file stops before anything runs, naming the file and the key; a second suite on
 // the same output folder is refused.
@@ -38,7 +38,7 @@ TEST_F(SuiteEndToEnd, EveryDatasetIsThereValidAndWhatCosmoGenerateWritesAlone) {
     const fs::path dir = a / g.id;
     ASSERT_TRUE(fs::exists(dir / suite::kRecordFile)) << g.id;
     for (const char* comm : {"wifi", "proradio"}) {
-      const fs::path jrl = dir / ("suite_ci_" + std::string(comm) + ".jrl");
+      const fs::path jrl = dir / ("suite_light_" + std::string(comm) + ".jrl");
       ASSERT_TRUE(fs::exists(jrl)) << jrl;
       const jrl::Dataset d = jrl::readJrl(jrl.string());
       EXPECT_TRUE(jrl::validate(d).empty()) << jrl;
@@ -117,7 +117,7 @@ TEST_F(SuiteEndToEnd, AChangedSequenceFileRedoesExactlyItsDatasets) {
   const fs::path a = runA();
   const fs::path seq = sequence("mcd");
   const std::string mcd = groups()[0].id, cu = groups()[1].id;
-  const std::string original = readFile(seq), jrl = readFile(a / mcd / "suite_ci_wifi.jrl");
+  const std::string original = readFile(seq), jrl = readFile(a / mcd / "suite_light_wifi.jrl");
   std::ofstream(seq, std::ios::app) << "# changed by the test\n";
   const Outcome r = runTool("cosmo_suite", {ciSuite(), "--out", a.string()});
   std::ofstream(seq, std::ios::trunc) << original;
@@ -128,7 +128,7 @@ TEST_F(SuiteEndToEnd, AChangedSequenceFileRedoesExactlyItsDatasets) {
     EXPECT_NE(r.output.find(id + ": current -> skipped"), std::string::npos) << id << "\n" << r.output;
   EXPECT_NE(r.output.find("4 datasets: 2 done, 2 skipped as current, 0 failed"), std::string::npos) << r.output;
   // a comment changes no output: the redone datasets are the same bytes
-  EXPECT_TRUE(readFile(a / mcd / "suite_ci_wifi.jrl") == jrl);
+  EXPECT_TRUE(readFile(a / mcd / "suite_light_wifi.jrl") == jrl);
 }
 
 TEST_F(SuiteEndToEnd, ABadSuiteFileStopsBeforeAnythingRunsNamingTheFileAndTheKey) {
@@ -170,7 +170,7 @@ TEST_F(SuiteEndToEnd, AnEstimateWithoutAModelFileIsWrittenBesideTheOutputsAndUse
   const fs::path cached = sequence("cu-multi");
   std::string yaml = readFile(cached);
   yaml = std::regex_replace(yaml, std::regex("\nenvironment: [a-z_]+\n"), "\n");
-  yaml = std::regex_replace(yaml, std::regex("\nname: suite_ci\n"), "\nname: no_models\ndata_root: " +
+  yaml = std::regex_replace(yaml, std::regex("\nname: suite_light\n"), "\nname: no_models\ndata_root: " +
                                                                            cached.parent_path().string() + "\n");
   ASSERT_EQ(yaml.find("environment"), std::string::npos);
   const fs::path seq = root() / "no_models.yaml", out = root() / "no_models_out";
@@ -207,7 +207,7 @@ TEST_F(SuiteEndToEnd, TheGateThresholdOptionIsTheSequencesOwnKeys) {
   const Outcome a = runTool("cosmo_generate", with_keys), b = runTool("cosmo_generate", with_option);
   ASSERT_EQ(a.status, 0) << a.output;
   ASSERT_EQ(b.status, 0) << b.output;
-  const std::string jrl = "suite_ci_wifi.jrl";
+  const std::string jrl = "suite_light_wifi.jrl";
   EXPECT_TRUE(readFile(root() / "gate_a" / jrl) == readFile(root() / "gate_b" / jrl));
   const Outcome bad = runTool("cosmo_generate", {cached.string(), "--gate-threshold", "1.5", "--out",
                                                  (root() / "gate_c").string()});
