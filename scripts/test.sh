@@ -1,5 +1,6 @@
 #!/bin/bash
-# Set up (scripts/setup.sh), build every test and run all gtest and rostest tests.
+# Set up (scripts/setup.sh), build every test and run all gtest and rostest tests, then each fuzz target briefly
+# (scripts/fuzz.sh; COSMO_SKIP_FUZZ=1 skips it, COSMO_CI_FUZZ_SECONDS sets its seconds per target, default 8).
 # Prints one line per failing test case and ends with "N passed, N failed"; exits non-zero on any failure,
 # crash, hang (ctest / rostest time limits) or when no test ran.
 set -eo pipefail
@@ -12,5 +13,11 @@ export ROS_HOSTNAME=localhost ROS_HOME=$PWD/$B/ros_home ROS_LOG_DIR=$PWD/$B/ros_
 set +e
 rm -rf "$B/test_results"
 (cd "$B" && ctest --output-on-failure -j"$J" --timeout 900); rc_ctest=$?
+# The fuzz targets (docs/fuzzing.md): built with clang into _build_fuzz, each run for a few seconds on its corpus;
+# an input that crashes a reader is kept in fuzz/regressions/<target>/ and counts as a failed case.
+rc_fuzz=0
+if [ -z "$COSMO_SKIP_FUZZ" ]; then
+  COSMO_FUZZ_JUNIT="$B/test_results/fuzz/fuzz.xml" scripts/fuzz.sh all "${COSMO_CI_FUZZ_SECONDS:-8}"; rc_fuzz=$?
+fi
 /usr/bin/python3 scripts/test_summary.py "$B/test_results"; rc_sum=$?
-[ $rc_ctest -eq 0 ] && [ $rc_sum -eq 0 ]
+[ $rc_ctest -eq 0 ] && [ $rc_sum -eq 0 ] && [ $rc_fuzz -eq 0 ]

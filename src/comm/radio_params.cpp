@@ -16,7 +16,7 @@ double RadioParams::phi(double d) const {
 
 void RadioParams::validate(const std::string& where) const {
   auto require = [&](bool ok, const char* field, const char* rule) {
-    if (!ok) throw std::invalid_argument(where + ": " + field + " must be " + rule);
+    if (!ok) throw std::runtime_error(where + ": " + field + " must be " + rule);
   };
   require(std::isfinite(bandwidth_kBps) && bandwidth_kBps > 0, "bandwidth_kBps", "> 0");
   require(std::isfinite(d_init) && d_init >= 0, "d_init", ">= 0");
@@ -48,7 +48,7 @@ RadioParams RadioParams::proRadio() {
 RadioParams RadioParams::byName(const std::string& name) {
   if (name == "wifi" || name == "wi-fi" || name == "WiFi") return wifi();
   if (name == "proradio" || name == "pro-radio" || name == "pro_radio" || name == "ProRadio") return proRadio();
-  throw std::invalid_argument("unknown communication model '" + name + "' (expected wifi or proradio)");
+  throw std::runtime_error("unknown communication model '" + name + "' (expected wifi or proradio)");
 }
 
 std::string toString(RadioParams::TimeoutMode mode) {
@@ -62,13 +62,13 @@ std::string toString(RadioParams::SizeModel model) {
 RadioParams::TimeoutMode timeoutModeFromString(const std::string& s, const std::string& where) {
   if (s == "no_progress") return RadioParams::TimeoutMode::NoProgress;
   if (s == "total_duration") return RadioParams::TimeoutMode::TotalDuration;
-  throw std::invalid_argument(where + ": unknown timeout mode '" + s + "' (expected no_progress or total_duration)");
+  throw std::runtime_error(where + ": unknown timeout mode '" + s + "' (expected no_progress or total_duration)");
 }
 
 RadioParams::SizeModel sizeModelFromString(const std::string& s, const std::string& where) {
   if (s == "paper") return RadioParams::SizeModel::PaperFactor;
   if (s == "real") return RadioParams::SizeModel::RealCompressed;
-  throw std::invalid_argument(where + ": unknown size model '" + s + "' (expected paper or real)");
+  throw std::runtime_error(where + ": unknown size model '" + s + "' (expected paper or real)");
 }
 
 RadioParams RadioParams::fromConfig(const ConfigNode& root) {
@@ -78,7 +78,7 @@ RadioParams RadioParams::fromConfig(const ConfigNode& root) {
   RadioParams p;
   try {
     p = byName(preset);
-  } catch (const std::invalid_argument& e) { throw std::invalid_argument(node["preset"].where + ": " + e.what()); }
+  } catch (const std::runtime_error& e) { throw std::runtime_error(node["preset"].where + ": " + e.what()); }
   readParams(node, p, {"preset", "timeout_mode", "size_model", "trace"});
   if (node.has("timeout_mode")) {
     std::string s;

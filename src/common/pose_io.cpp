@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cosmo/common/file_stamp.hpp"
+
 namespace cosmo {
 
 namespace {
@@ -95,7 +97,8 @@ Trajectory readTumTrajectory(const std::string& path) {
     const auto v = numbersOf(line);
     if (v.size() != 8)
       throw std::runtime_error(path + ":" + std::to_string(n) + ": expected 8 numbers (t x y z qx qy qz qw)");
-    poses.push_back({toStampNs(v[0]), makePose({v[1], v[2], v[3]}, Eigen::Quaterniond(v[7], v[4], v[5], v[6]))});
+    poses.push_back({fileStamp(v[0], path + ":" + std::to_string(n)),
+                     makePose({v[1], v[2], v[3]}, Eigen::Quaterniond(v[7], v[4], v[5], v[6]))});
   }
   return Trajectory(std::move(poses));
 }
@@ -116,7 +119,7 @@ Trajectory readMcdPoseCsv(const std::string& path) {
     if (std::abs(q.norm() - 1.0) > 1e-3)
       throw std::runtime_error(path + ":" + std::to_string(n) + ": quaternion is not unit (norm " +
                                std::to_string(q.norm()) + ")");
-    poses.push_back({toStampNs(v[1]), makePose({v[2], v[3], v[4]}, q)});
+    poses.push_back({fileStamp(v[1], path + ":" + std::to_string(n)), makePose({v[2], v[3], v[4]}, q)});
   }
   if (poses.empty()) throw std::runtime_error(path + ": no poses");
   return Trajectory(std::move(poses));

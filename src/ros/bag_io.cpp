@@ -18,7 +18,7 @@ void initTime() {
 }
 }  // namespace
 
-struct ScanBagReader::Impl {
+struct RosbagScanReader::Impl {
   rosbag::Bag bag;
   std::unique_ptr<rosbag::View> view;
   rosbag::View::iterator it;
@@ -48,6 +48,14 @@ std::string findTopic(rosbag::Bag& bag, const std::string& bag_path, const std::
 }  // namespace
 
 ScanBagReader::ScanBagReader(const std::string& bag_path, const std::string& topic, bool stamp_at_end)
+    : source_(std::make_unique<trials::Ros1ScanSource>(bag_path, topic, stamp_at_end)) {}
+ScanBagReader::~ScanBagReader() = default;
+std::size_t ScanBagReader::size() const { return source_->size(); }
+bool ScanBagReader::next(Scan& scan) { return source_->next(scan); }
+const trials::CloudLayout& ScanBagReader::lastLayout() const { return source_->lastLayout(); }
+trials::DecodeCounts ScanBagReader::lastCounts() const { return source_->lastCounts(); }
+
+RosbagScanReader::RosbagScanReader(const std::string& bag_path, const std::string& topic, bool stamp_at_end)
     : impl_(std::make_unique<Impl>()) {
   initTime();
   impl_->where = bag_path + " " + topic;
@@ -60,11 +68,11 @@ ScanBagReader::ScanBagReader(const std::string& bag_path, const std::string& top
   impl_->it = impl_->view->begin();
 }
 
-ScanBagReader::~ScanBagReader() = default;
+RosbagScanReader::~RosbagScanReader() = default;
 
-std::size_t ScanBagReader::size() const { return impl_->view->size(); }
+std::size_t RosbagScanReader::size() const { return impl_->view->size(); }
 
-bool ScanBagReader::next(Scan& scan) {
+bool RosbagScanReader::next(Scan& scan) {
   while (impl_->it != impl_->view->end()) {
     const rosbag::MessageInstance m = *impl_->it;  // a copy: the iterator's instance is reset by ++
     ++impl_->it;
@@ -109,8 +117,8 @@ bool ScanBagReader::next(Scan& scan) {
   return false;
 }
 
-const trials::CloudLayout& ScanBagReader::lastLayout() const { return impl_->layout; }
-trials::DecodeCounts ScanBagReader::lastCounts() const { return impl_->counts; }
+const trials::CloudLayout& RosbagScanReader::lastLayout() const { return impl_->layout; }
+trials::DecodeCounts RosbagScanReader::lastCounts() const { return impl_->counts; }
 
 ScanBagWriter::ScanBagWriter(const std::string& bag_path, BagCompression compression)
     : bag_(std::make_unique<rosbag::Bag>()), path_(bag_path) {

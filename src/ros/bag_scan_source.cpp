@@ -1,10 +1,5 @@
 #include "cosmo/ros/bag_scan_source.hpp"
 
-#include <ros/time.h>
-#include <rosbag/bag.h>
-#include <rosbag/view.h>
-#include <sensor_msgs/PointCloud2.h>
-
 #include <algorithm>
 #include <filesystem>
 #include <mutex>
@@ -17,49 +12,10 @@
 
 namespace cosmo::ros_glue {
 
-namespace {
-
-/// ROS 1: the first message and the messages received in the bag's last 5 s.
-pipeline::TrialSpan readRos1TrialSpan(const std::string& bag_path, const std::string& requested_topic, char robot) {
-  if (!ros::Time::isValid()) ros::Time::init();
-  rosbag::Bag bag;
-  try {
-    bag.open(bag_path, rosbag::bagmode::Read);
-  } catch (const std::exception& e) { throw std::runtime_error(bag_path + ": cannot open bag: " + e.what()); }
-  std::string topic = requested_topic;
-  {
-    rosbag::View any(bag);
-    for (const auto* c : any.getConnections())
-      if (c->topic == requested_topic || c->topic == "/" + requested_topic || "/" + c->topic == requested_topic)
-        topic = c->topic;
-  }
-  rosbag::View all(bag, rosbag::TopicQuery(topic));
-  if (all.size() == 0) throw std::runtime_error(bag_path + " " + topic + ": no messages on this topic");
-  auto stampOf = [&](const rosbag::MessageInstance& m) {
-    auto msg = m.instantiate<sensor_msgs::PointCloud2>();
-    if (!msg)
-      throw std::runtime_error(bag_path + " " + topic + ": message type " + m.getDataType() +
-                               " is not sensor_msgs/PointCloud2");
-    return static_cast<StampNs>(msg->header.stamp.toNSec());
-  };
-  pipeline::TrialSpan span;
-  span.robot = robot;
-  span.first = stampOf(*all.begin());
-  // The last header stamp: scan the messages received in the bag's last 5 s (header stamps may lag).
-  const ros::Time end = all.getEndTime();
-  const ros::Time from = end.toSec() > 5.0 ? end - ros::Duration(5.0) : ros::Time(0, 1);
-  rosbag::View tail(bag, rosbag::TopicQuery(topic), from, end + ros::Duration(1.0));
-  span.last = span.first;
-  for (const auto& m : tail) span.last = std::max(span.last, stampOf(m));
-  return span;
-}
-
-}  // namespace
-
 std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const pipeline::TrialConfig& trial) {
   if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1) {
     auto decode = [&]() -> std::unique_ptr<trials::TrialScanSource> {
-      return std::make_unique<BagScanSource>(trial.bag, trial.topic, trial.stamp_at_end);
+      return std::make_unique<trials::Ros1ScanSource>(trial.bag, trial.topic, trial.stamp_at_end);
     };
     // Compressed chunks (MCD: bz2) are decompressed once: later runs read the decoded scans.
     const std::string cache_dir = trials::scanCacheDir();
@@ -92,7 +48,7 @@ pipeline::TrialSpan readTrialSpan(const pipeline::TrialConfig& trial) {
     const std::string path = cached ? trials::scanSpanPath(cache_dir, trial.bag, trial.topic) : "";
     span.robot = trial.robot;
     if (!cached || !trials::readCachedSpan(path, span.first, span.last)) {
-      span = readRos1TrialSpan(trial.bag, trial.topic, trial.robot);
+      span = trials::readRos1TrialSpan(trial.bag, trial.topic, trial.robot);
       if (cached) trials::writeCachedSpan(path, span.first, span.last);
     }
   } else {

@@ -5,7 +5,6 @@
 #include <geometry_msgs/Quaternion.h>
 #include <ros/time.h>
 #include <rosbag/bag.h>
-#include <rosbag/view.h>
 #include <std_msgs/Header.h>
 
 #include <regex>
@@ -14,6 +13,8 @@
 
 #include "cosmo/nebula/message_definition.hpp"
 #include "cosmo/nebula/ros1_serialization.hpp"
+#include "cosmo/trials/ros1_bag.hpp"
+#include "cosmo/trials/ros1_message_stream.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -79,45 +80,36 @@ std::string poseGraphTopicRobot(const std::string& topic) {
 
 std::vector<PoseGraphTopicSummary> readPoseGraphBag(const std::string& bag_path, const std::string& source_name,
                                                     nebula::GraphBuilder& builder, nebula::CovarianceOrder order) {
-  initTime();
-  rosbag::Bag bag;
-  try {
-    bag.open(bag_path, rosbag::bagmode::Read);
-  } catch (const std::exception& e) { throw std::runtime_error(bag_path + ": cannot open bag: " + e.what()); }
+  auto bag = std::make_shared<const trials::Ros1Bag>(bag_path);  // throws naming the file, offset and record
   // 1. The pose-graph topics and their connections' type and md5sum.
   const std::string expected_md5 = nebula::poseGraphMd5();
   std::vector<PoseGraphTopicSummary> summaries;
-  std::vector<std::string> topics;
-  {
-    rosbag::View all(bag);
-    for (const rosbag::ConnectionInfo* c : all.getConnections()) {
-      const std::string robot = poseGraphTopicRobot(c->topic);
-      if (robot.empty()) continue;
-      if (c->datatype != nebula::kPoseGraphType)
-        throw std::runtime_error(bag_path + " " + c->topic + ": message type " + c->datatype + ", expected " +
-                                 nebula::kPoseGraphType);
-      bool known = false;
-      for (auto& s : summaries) known |= s.topic == c->topic && s.md5sum == c->md5sum;
-      if (known) continue;
-      summaries.push_back({source_name, c->topic, robot, c->md5sum, 0, c->md5sum == expected_md5});
-      topics.push_back(c->topic);
-    }
+  std::vector<std::uint32_t> ids;
+  for (const trials::Ros1Connection& c : bag->connections()) {
+    const std::string robot = poseGraphTopicRobot(c.topic);
+    if (robot.empty()) continue;
+    if (c.type != nebula::kPoseGraphType)
+      throw std::runtime_error(bag_path + " " + c.topic + ": message type " + c.type + ", expected " +
+                               nebula::kPoseGraphType);
+    ids.push_back(c.id);
+    bool known = false;
+    for (auto& s : summaries) known |= s.topic == c.topic && s.md5sum == c.md5sum;
+    if (!known) summaries.push_back({source_name, c.topic, robot, c.md5sum, 0, c.md5sum == expected_md5});
   }
-  if (topics.empty()) return summaries;
+  if (ids.empty()) return summaries;
   // 2. Every message, decoded from its raw bytes.
-  rosbag::View view(bag, rosbag::TopicQuery(topics));
-  std::vector<std::uint8_t> buffer;
-  for (const rosbag::MessageInstance& m : view) {
+  trials::Ros1MessageStream stream(bag, bag->messages(ids), 0);
+  trials::Ros1MessageRef m;
+  trials::Ros1Bag::Bytes bytes;
+  while (stream.next(m, bytes)) {
+    const trials::Ros1Connection& c = bag->connection(m.connection);
     PoseGraphTopicSummary* summary = nullptr;
     for (auto& s : summaries)
-      if (s.topic == m.getTopic() && s.md5sum == m.getMD5Sum()) summary = &s;
-    const std::string source = source_name + " " + m.getTopic() + " #" + std::to_string(summary->messages++);
-    buffer.resize(m.size());
-    ros::serialization::OStream out(buffer.data(), static_cast<uint32_t>(buffer.size()));
-    m.write(out);
+      if (s.topic == c.topic && s.md5sum == c.md5sum) summary = &s;
+    const std::string source = source_name + " " + c.topic + " #" + std::to_string(summary->messages++);
     nebula::PoseGraph graph;
     try {
-      graph = nebula::decodePoseGraph(buffer);
+      graph = nebula::decodePoseGraph(bytes.data, bytes.size);
     } catch (const nebula::DecodeError& e) {
       throw std::runtime_error(source + ": " + e.what() +
                                (summary->md5_matches ? std::string()

@@ -1,14 +1,11 @@
 #include "cosmo/ros/trial_probe.hpp"
 
-#include <ros/time.h>
-#include <rosbag/bag.h>
-#include <rosbag/view.h>
-
 #include <filesystem>
 #include <set>
 
 #include "cosmo/ros/bag_scan_source.hpp"
 #include "cosmo/trials/bag_format.hpp"
+#include "cosmo/trials/ros1_bag.hpp"
 #include "cosmo/trials/ros2_bag.hpp"
 #include "cosmo/trials/trial_reference.hpp"
 
@@ -24,13 +21,10 @@ std::vector<std::string> listTopics(const pipeline::TrialConfig& trial, bool& ha
     if (name == trial.topic || "/" + name == trial.topic || name == "/" + trial.topic) has = true;
   };
   if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1) {
-    if (!ros::Time::isValid()) ros::Time::init();
-    rosbag::Bag bag;
-    bag.open(trial.bag, rosbag::bagmode::Read);
-    rosbag::View all(bag);
-    for (const auto* c : all.getConnections()) {
-      out.insert(c->topic + " (" + c->datatype + ")");
-      match(c->topic);
+    const trials::Ros1Bag bag(trial.bag);
+    for (const auto& c : bag.connections()) {
+      out.insert(c.topic + " (" + c.type + ")");
+      match(c.topic);
     }
   } else {
     for (const auto& t : trials::listRos2Topics(trial.bag)) {

@@ -55,6 +55,7 @@ namespace {
 /// float made from it rounds as from the stored value), the datatype dispatched once per cloud, not per point.
 template <typename Store>
 void readColumn(const std::uint8_t* data, std::size_t n, std::size_t step, const PointField& f, Store store) {
+  if (n == 0) return;  // an empty cloud's data may be null: no pointer arithmetic on it
   auto loop = [&](auto zero) {
     using Stored = decltype(zero);
     const std::uint8_t* p = data + f.offset;
@@ -173,9 +174,10 @@ DecodeCounts decodeCloud(const CloudLayout& L, const std::uint8_t* data, std::si
     throw std::runtime_error(source + ": PointCloud2 has no x/y/z fields (has: " + describeFields(L) + ")");
   if (L.is_bigendian) throw std::runtime_error(source + ": big-endian PointCloud2 is not supported");
   const std::size_t n = L.points();
-  if (L.point_step == 0 || bytes < n * L.point_step)
+  if (L.point_step == 0 || n > bytes / L.point_step)  // a division: width * height * point_step may overflow
     throw std::runtime_error(source + ": PointCloud2 data holds " + std::to_string(bytes) + " bytes, expected " +
-                             std::to_string(n * L.point_step) + " (width*height*point_step)");
+                             std::to_string(L.width) + " x " + std::to_string(L.height) + " points of " +
+                             std::to_string(L.point_step) + " bytes (width*height*point_step)");
   const PointField *fi = L.field("intensity"), *fr = L.field("ring"), *frange = L.field("range");
   const PointField* ft = L.field("t") ? L.field("t") : L.field("time") ? L.field("time") : L.field("timestamp");
   for (const PointField* f : {fx, fy, fz, fi, fr, ft, frange}) checkInside(L, f, source);

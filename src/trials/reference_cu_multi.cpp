@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "cosmo/common/file_stamp.hpp"
 #include "cosmo/trials/reference_file.hpp"
 
 namespace cosmo::trials {
@@ -38,7 +39,9 @@ Trajectory readCuMultiGroundTruth(const std::string& path) {
     if (std::abs(q.norm() - 1.0) > 1e-3)
       throw std::runtime_error(path + ":" + std::to_string(n) + ": quaternion is not unit (norm " +
                                std::to_string(q.norm()) + ")");
-    const StampNs stamp = v[0] > 1e12 ? static_cast<StampNs>(std::llround(v[0])) : toStampNs(v[0]);
+    const std::string where = path + ":" + std::to_string(n);
+    StampNs stamp = fileStamp(v[0] > 1e12 ? v[0] * 1e-9 : v[0], where);  // checks the range
+    if (v[0] > 1e12) stamp = static_cast<StampNs>(std::llround(v[0]));      // nanoseconds as written
     poses.push_back({stamp, makePose({v[1], v[2], v[3]}, q.normalized())});
   }
   if (poses.empty()) throw std::runtime_error(path + ": no poses");

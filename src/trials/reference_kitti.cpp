@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "cosmo/common/file_stamp.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/trials/reference_file.hpp"
 
@@ -18,7 +19,9 @@ Trajectory readKittiReference(const std::string& path) {
                              " (one stamp in seconds per pose) does not exist");
   std::vector<StampedPose> stamped;
   double t = 0.0;
-  while (stamped.size() < poses.size() && in >> t) stamped.push_back({toStampNs(t), poses[stamped.size()]});
+  while (stamped.size() < poses.size() && in >> t)
+    stamped.push_back(
+        {fileStamp(t, times_path + ": stamp " + std::to_string(stamped.size() + 1)), poses[stamped.size()]});
   if (stamped.size() != poses.size())
     throw std::runtime_error(times_path + ": " + std::to_string(stamped.size()) + " stamps for " +
                              std::to_string(poses.size()) + " poses in " + path);

@@ -107,7 +107,15 @@ void writeCachedSpan(const std::string& path, StampNs first, StampNs last) {
   if (ec) fs::remove(tmp, ec);
 }
 
+std::uint64_t CachedScanSource::bytesLeft() {
+  const auto at = in_.tellg();
+  return at < 0 || static_cast<std::uint64_t>(at) > file_size_ ? 0 : file_size_ - static_cast<std::uint64_t>(at);
+}
+
 CachedScanSource::CachedScanSource(const std::string& path) : path_(path), in_(path, std::ios::binary) {
+  std::error_code ec;
+  file_size_ = fs::file_size(path, ec);
+  if (ec) file_size_ = 0;
   char magic[sizeof kMagic] = {};
   std::uint32_t version = 0;
   std::uint64_t count = 0;
@@ -131,6 +139,11 @@ bool CachedScanSource::next(Scan& scan) {
   if (!in_ || nfields > 1024)
     throw std::runtime_error(path_ + ": scan cache damaged at scan " + std::to_string(read_) +
                              " (delete it to rebuild it)");
+  // Every point holds at least its 12 bytes of xyz: a count the rest of the file cannot hold is damage, not an
+  // allocation to attempt.
+  if (static_cast<std::uint64_t>(n) * 12 > bytesLeft())
+    throw std::runtime_error(path_ + ": scan cache damaged at scan " + std::to_string(read_) + " (" +
+                             std::to_string(n) + " points; delete it to rebuild it)");
   layout_.fields.resize(nfields);
   for (auto& f : layout_.fields) {
     std::uint32_t len = 0;

@@ -4,11 +4,30 @@
 #include <stdexcept>
 
 #include "cosmo/trials/cdr_point_cloud.hpp"
+#include "cosmo/trials/ros1_point_cloud.hpp"
 
 namespace cosmo::trials {
 
 namespace {
 constexpr const char* kPointCloud2 = "sensor_msgs/msg/PointCloud2";
+constexpr const char* kRos1PointCloud2 = "sensor_msgs/PointCloud2";
+constexpr StampNs kSpanTail = 5000000000ULL;  ///< a trial's last stamp: from the messages of its last 5 s
+
+/// The messages of `topic` (with or without its leading slash) of a ROS 1 bag; throws naming the bag and topic.
+std::unique_ptr<Ros1MessageStream> openRos1Topic(const std::string& bag_path, const std::string& topic, int threads) {
+  auto bag = std::make_shared<const Ros1Bag>(bag_path);
+  const std::vector<std::uint32_t> ids = bag->topicConnections(topic);
+  if (ids.empty())
+    throw std::runtime_error(bag_path + ": no topic " + topic + " in this ROS 1 bag; it has: " + bag->describeTopics());
+  for (std::uint32_t id : ids)
+    if (bag->connection(id).type != kRos1PointCloud2)
+      throw std::runtime_error(bag_path + " " + topic + ": message type " + bag->connection(id).type + " is not " +
+                               kRos1PointCloud2);
+  std::vector<Ros1MessageRef> messages = bag->messages(ids);
+  if (messages.empty()) throw std::runtime_error(bag_path + " " + topic + ": no messages on this topic");
+  const unsigned workers = threads < 0 ? defaultChunkThreads(*bag) : static_cast<unsigned>(threads);
+  return std::make_unique<Ros1MessageStream>(std::move(bag), std::move(messages), workers);
+}
 
 void checkType(const Ros2BagReader& reader) {
   if (reader.topic().type != kPointCloud2)
@@ -28,6 +47,35 @@ bool Ros2ScanSource::next(Scan& scan) {
   layout_ = view.layout;
   counts_ = decodeCloud(view.layout, view.data, view.bytes, stamp_at_end_, reader_.where(), scan);
   return true;
+}
+
+Ros1ScanSource::Ros1ScanSource(const std::string& bag_path, const std::string& topic, bool stamp_at_end, int threads)
+    : stream_(openRos1Topic(bag_path, topic, threads)), where_(bag_path + " " + topic), stamp_at_end_(stamp_at_end) {}
+
+bool Ros1ScanSource::next(Scan& scan) {
+  Ros1MessageRef m;
+  Ros1Bag::Bytes bytes;
+  if (!stream_->next(m, bytes)) return false;
+  counts_ = decodeRos1PointCloud2(bytes.data, bytes.size, stamp_at_end_, where_, scan, layout_);
+  layout_.stamp = scan.stamp;
+  return true;
+}
+
+pipeline::TrialSpan readRos1TrialSpan(const std::string& bag_path, const std::string& topic, char robot) {
+  const std::unique_ptr<Ros1MessageStream> stream = openRos1Topic(bag_path, topic, 0);
+  const std::string where = bag_path + " " + topic;
+  Ros1MessageRef m;
+  Ros1Bag::Bytes bytes;
+  auto stampOf = [&]() { return parseRos1PointCloud2(bytes.data, bytes.size, where).layout.stamp; };
+  pipeline::TrialSpan span;
+  span.robot = robot;
+  stream->next(m, bytes);
+  span.first = span.last = stampOf();
+  // The messages received in the bag's last 5 s, as rosbag::View(start = end - 5 s) gives them.
+  const StampNs end = stream->lastReceived();
+  stream->seek(end > kSpanTail ? end - kSpanTail : 1);
+  while (stream->next(m, bytes)) span.last = std::max(span.last, stampOf());
+  return span;
 }
 
 pipeline::TrialSpan readRos2TrialSpan(const std::string& bag_path, const std::string& topic, char robot) {

@@ -310,7 +310,7 @@ TEST(RadioSimulator, BadInput) {
   EXPECT_THROW(RadioSimulator(RadioParams::wifi(), {}, 1), std::invalid_argument);
   RadioParams bad = RadioParams::wifi();
   bad.step = 0;
-  EXPECT_THROW(RadioSimulator(bad, {'a'}, 1), std::invalid_argument);
+  EXPECT_THROW(RadioSimulator(bad, {'a'}, 1), std::runtime_error);
   RadioSimulator sim(RadioParams::wifi(), {'a', 'b'}, 1);
   EXPECT_THROW(sim.setRobotState('z', {0, 0, 0}, true), std::invalid_argument);
   EXPECT_THROW(sim.offerKeyframe('z', 0, 10), std::invalid_argument);

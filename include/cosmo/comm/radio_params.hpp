@@ -51,7 +51,7 @@ struct RadioParams {
   /// Bandwidth in bytes per second.
   double bandwidthBps() const { return bandwidth_kBps * 1000.0; }
 
-  /// Throws std::invalid_argument naming the field when a value is out of range.
+  /// Throws std::runtime_error naming the field when a value is out of range.
   void validate(const std::string& where = "RadioParams") const;
 
   /// Reads a config/comm/*.yaml file (keys at the root or under `comm:`); a missing key keeps the Wi-Fi

@@ -1,8 +1,8 @@
 #pragma once
 // The trials of a sequence config read from their bags, whatever the container (the pipeline's drivers, the
 // `player` node, `cosmo_generate`, pre-flight checks): a trial's `bag:` may name a ROS 1 bag, a ROS 2 sqlite3
-// bag folder or its .db3, told apart by content (trials::detectBagFormat). ROS 1 bags are read here (rosbag is
-// ROS); ROS 2 bags by the ROS-free trials module. Errors throw std::runtime_error naming the bag and topic.
+// bag folder or its .db3, told apart by content (trials::detectBagFormat); both are read by the ROS-free trials
+// module (trials::Ros1ScanSource, trials::Ros2ScanSource). Errors throw std::runtime_error naming the bag and topic.
 #include <map>
 #include <memory>
 #include <string>
@@ -15,20 +15,6 @@
 #include "cosmo/trials/trial_scans.hpp"
 
 namespace cosmo::ros_glue {
-
-/// ScanBagReader (ROS 1 bag) as a trial scan source.
-class BagScanSource : public trials::TrialScanSource {
- public:
-  BagScanSource(const std::string& bag_path, const std::string& topic, bool stamp_at_end = true)
-      : reader_(bag_path, topic, stamp_at_end) {}
-  bool next(Scan& scan) override { return reader_.next(scan); }
-  std::size_t size() const override { return reader_.size(); }
-  const trials::CloudLayout& lastLayout() const override { return reader_.lastLayout(); }
-  trials::DecodeCounts lastCounts() const override { return reader_.lastCounts(); }
-
- private:
-  ScanBagReader reader_;
-};
 
 /// The scans of one trial (its bag, topic and stamp convention), from a ROS 1 or ROS 2 bag. A ROS 1 bag with
 /// compressed chunks is read through the scan cache (trials/scan_cache.hpp; COSMO_SCAN_CACHE=off disables it):

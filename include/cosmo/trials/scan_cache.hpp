@@ -47,8 +47,11 @@ class CachedScanSource : public TrialScanSource {
   DecodeCounts lastCounts() const override { return counts_; }
 
  private:
+  std::uint64_t bytesLeft();  ///< of the file, after the read position
+
   std::string path_;
   std::ifstream in_;
+  std::uint64_t file_size_ = 0;
   std::size_t size_ = 0, read_ = 0;
   CloudLayout layout_;  ///< stamp, height, width, point_step and fields of the last scan
   DecodeCounts counts_;
