@@ -73,7 +73,7 @@ TEST_F(SuiteEndToEnd, EveryDatasetIsThereValidAndWhatCosmoGenerateWritesAlone) {
   }
 }
 
-/// A random moment of a run: after the k-th job has started (k of 1..3) and a random delay of up to 1.5 s, which
+/// A random moment of a run: after the k-th job has started (k of 1..3) and a random delay of up to 1 s, which
 /// falls inside a job, between jobs, or while a finished job moves into place.
 TEST_F(SuiteEndToEnd, KilledAtARandomMomentAndRunAgainGivesTheSameBytes) {
   const ReferenceAside aside;  // the run goes into the reference's own output folder
@@ -82,7 +82,7 @@ TEST_F(SuiteEndToEnd, KilledAtARandomMomentAndRunAgainGivesTheSameBytes) {
   const unsigned seed = rd();
   std::mt19937 rng(seed);
   const int k = std::uniform_int_distribution<int>(1, 3)(rng);
-  const double delay = std::uniform_real_distribution<double>(0.0, 1.5)(rng);
+  const double delay = std::uniform_real_distribution<double>(0.0, 1.0)(rng);
   std::printf("SIGKILL %.2f s after the start of job %d of 3 (random seed %u)\n", delay, k, seed);
   const fs::path log = root() / "killed.log";
   const pid_t pid = suite::spawnChild(suiteCommand(b, {"--jobs", "1"}), log.string());
