@@ -145,7 +145,7 @@ std::string reportMarkdown(const ReportInput& input) {
   const auto rows = report_rows::rows(input);
   std::ostringstream out;
   out << "# Suite " << input.suite_name << "\n\n`" << input.suite_path << "` → `" << input.out_dir << "`. "
-      << input.note << " Paper values: the COSMO-Bench paper's Fig. 1 (config/suites/paper_fig1.yaml); the "
+      << input.note << " Paper values: the COSMO-Bench paper's Fig. 1 (config/paper/fig1.yaml); the "
       << "wall and CPU time and peak memory are those of the run that made a group (its comm models share one "
       << "odometry pass).\n\n## Datasets\n\n"
       << tableHeader();
@@ -175,7 +175,7 @@ std::string reportHtml(const ReportInput& input) {
          "margin:0.2em 0}</style></head><body>\n<h1>Suite "
       << escapeHtml(input.suite_name) << "</h1>\n<p><code>" << escapeHtml(input.suite_path) << "</code> → <code>"
       << escapeHtml(input.out_dir) << "</code>. " << escapeHtml(input.note)
-      << " Paper values: the COSMO-Bench paper's Fig. 1 (config/suites/paper_fig1.yaml).</p>\n<h2>Datasets</h2>\n";
+      << " Paper values: the COSMO-Bench paper's Fig. 1 (config/paper/fig1.yaml).</p>\n<h2>Datasets</h2>\n";
   std::string md = tableHeader();
   for (const auto& r : rows) md += tableRow(r);
   out << tableHtml(md) << "<h2>Figures</h2>\n<div class=\"grid\">\n";

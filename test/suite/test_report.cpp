@@ -13,7 +13,7 @@ using suite_test::Folder;
 
 namespace {
 
-PaperTable paper() { return PaperTable::load(std::string(COSMO_SOURCE_DIR) + "/config/suites/paper_fig1.yaml"); }
+PaperTable paper() { return PaperTable::load(std::string(COSMO_SOURCE_DIR) + "/config/paper/fig1.yaml"); }
 
 Job group(const std::string& id, const std::string& label) {
   Job j;

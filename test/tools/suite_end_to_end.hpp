@@ -1,6 +1,7 @@
 #pragma once
 // The fixture of the suite's end-to-end tests: a folder of the test's own with its own simulator and scan caches,
-// the tools found beside the test binary, and the CI suite run once (into "<root>/a") for every test to compare with.
+// the tools found beside the test binary, and the test's suite (test/suite/ci_short.yaml) run once (into "<root>/a")
+// for every test to compare with.
 #include <dirent.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -101,25 +102,24 @@ class SuiteEndToEnd : public ::testing::Test {
     delete root_;
   }
   static const fs::path& root() { return *root_; }
-  static std::string ciSuite() { return std::string(COSMO_SOURCE_DIR) + "/config/suites/ci.yaml"; }
+  static std::string ciSuite() { return std::string(COSMO_SOURCE_DIR) + "/test/suite/ci_short.yaml"; }
   static std::vector<Group> groups() {
-    return {{"ci_mcd_s1", "mcd", "1"}, {"ci_mcd_s2", "mcd", "2"}, {"ci_cu_s1", "cu-multi", "1"},
-            {"ci_cu_s2", "cu-multi", "2"}};
+    return {{"ci_mcd_s2_odom-reference", "mcd", "2"}, {"ci_cu_s2_odom-reference", "cu-multi", "2"}};
   }
   static std::vector<std::string> suiteCommand(const fs::path& out, const std::vector<std::string>& extra) {
     std::vector<std::string> argv{(binDir() / "cosmo_suite").string(), ciSuite(), "--out", out.string()};
     argv.insert(argv.end(), extra.begin(), extra.end());
     return argv;
   }
-  /// The sequence config cosmo_simulate makes for the CI suite in `layout` (a cache hit after the suite's run).
+  /// The sequence config cosmo_simulate makes for the test's suite in `layout` (a cache hit after the suite's run).
   static fs::path sequence(const std::string& layout) {
-    const Outcome r = runTool("cosmo_simulate", {"--config", std::string(COSMO_SOURCE_DIR) + "/config/sim/suite_ci.yaml",
+    const Outcome r = runTool("cosmo_simulate", {"--config", std::string(COSMO_SOURCE_DIR) + "/test/suite/suite_light_sim.yaml",
                                               "--layout", layout});
     EXPECT_EQ(r.status, 0) << r.output;
     const auto end = r.output.find_last_not_of('\n');
     return r.output.substr(r.output.rfind('\n', end) + 1, end - r.output.rfind('\n', end));
   }
-  /// The CI suite run whole into <root>/a, once.
+  /// The test's suite run whole into <root>/a, once.
   static fs::path runA() {
     const fs::path a = root() / "a";
     if (!ran_a_) {
@@ -130,7 +130,7 @@ class SuiteEndToEnd : public ::testing::Test {
       std::printf("%s", r.output.c_str());
       a_ok_ = r.status == 0;
     }
-    EXPECT_TRUE(a_ok_) << "the CI suite's run failed (its output is above)";
+    EXPECT_TRUE(a_ok_) << "the suite's run failed (its output is above)";
     return a;
   }
   static double runASeconds() { return a_seconds_; }

@@ -1,8 +1,9 @@
-// cosmo_suite as a user runs it, on the CI suite (config/suites/ci.yaml: a small synthetic sequence in the MCD and
-// CU-Multi layouts, both comm models, two seeds, a noise-model estimate first): every dataset present, valid and
-// byte for byte what cosmo_generate writes when run alone on the same inputs; killed (SIGKILL) at a random moment
-// and run again: the same bytes; a changed sequence file redoes exactly its datasets; a bad suite file stops
-// before anything runs, naming the file and the key; a second suite on the same output folder is refused.
+// cosmo_suite as a user runs it, on a light CI-shaped suite (test/suite/ci_short.yaml: config/suites/ci.yaml's
+// synthetic sequence at half the LiDAR columns in the MCD and CU-Multi layouts, both comm models, a noise-model
+// estimate first; one seed, the reference odometry): every dataset present, valid and byte for byte what cosmo_generate writes when run alone on
+// the same inputs; killed (SIGKILL) at a random moment and run again: the same bytes; a changed sequence file redoes
+// exactly its datasets; a bad suite file stops before anything runs, naming the file and the key; a second suite on
+// the same output folder is refused.
 // The simulator's and the scan cache are the test's own (COSMO_SIM_CACHE, COSMO_SCAN_CACHE), so that it can change a
 // sequence file without touching anyone else's.
 #include <gtest/gtest.h>
@@ -37,7 +38,7 @@ TEST_F(SuiteEndToEnd, EveryDatasetIsThereValidAndWhatCosmoGenerateWritesAlone) {
     const fs::path dir = a / g.id;
     ASSERT_TRUE(fs::exists(dir / suite::kRecordFile)) << g.id;
     for (const char* comm : {"wifi", "proradio"}) {
-      const fs::path jrl = dir / ("suite_ci_" + std::string(comm) + ".jrl");
+      const fs::path jrl = dir / ("suite_light_" + std::string(comm) + ".jrl");
       ASSERT_TRUE(fs::exists(jrl)) << jrl;
       const jrl::Dataset d = jrl::readJrl(jrl.string());
       EXPECT_TRUE(jrl::validate(d).empty()) << jrl;
@@ -52,7 +53,7 @@ TEST_F(SuiteEndToEnd, EveryDatasetIsThereValidAndWhatCosmoGenerateWritesAlone) {
   const std::string html = readFile(a / "report.html");
   EXPECT_NE(html.find("data:image/svg+xml;base64,"), std::string::npos);
   EXPECT_EQ(html.find("src=\"ci_"), std::string::npos) << "the report reads figures from beside it";
-  EXPECT_NE(readFile(a / "report.md").find("| ci_mcd_s1_wifi | done |"), std::string::npos);
+  EXPECT_NE(readFile(a / "report.md").find("| ci_mcd_s2_odom-reference_wifi | done |"), std::string::npos);
 
   // the estimate and each group, by cosmo_generate alone into a folder of its own
   const fs::path alone = root() / "alone";
@@ -62,10 +63,9 @@ TEST_F(SuiteEndToEnd, EveryDatasetIsThereValidAndWhatCosmoGenerateWritesAlone) {
   ASSERT_EQ(e.status, 0) << e.output;
   EXPECT_EQ(readFile(estimate), readFile(a / "noise_models/synthetic_cu/synthetic_cu.yaml"));
   for (const auto& g : groups()) {
-    if (g.seed != "2") continue;  // one group per layout (the others differ in --seed only)
     const fs::path out = alone / g.id;
-    std::vector<std::string> args{sequence(g.layout), "--comm", "wifi,proradio", "--seed", g.seed, "--out", out.string(),
-                                  "--quiet"};
+    std::vector<std::string> args{sequence(g.layout), "--comm", "wifi,proradio", "--seed", g.seed, "--reference-odometry",
+                                  "--out", out.string(), "--quiet"};
     if (g.layout == "cu-multi") args.insert(args.end(), {"--noise-models", (a / "noise_models/synthetic_cu/synthetic_cu.yaml").string()});
     const Outcome r = runTool("cosmo_generate", args);
     ASSERT_EQ(r.status, 0) << r.output;
@@ -73,17 +73,17 @@ TEST_F(SuiteEndToEnd, EveryDatasetIsThereValidAndWhatCosmoGenerateWritesAlone) {
   }
 }
 
-/// A random moment of a run: after the k-th job has started (k of 1..5) and a random delay of up to 2 s, which falls
-/// inside a job, between jobs, or while a finished job moves into place.
+/// A random moment of a run: after the k-th job has started (k of 1..3) and a random delay of up to 1 s, which
+/// falls inside a job, between jobs, or while a finished job moves into place.
 TEST_F(SuiteEndToEnd, KilledAtARandomMomentAndRunAgainGivesTheSameBytes) {
   const ReferenceAside aside;  // the run goes into the reference's own output folder
   const fs::path a = aside.ref, b = aside.a;
   std::random_device rd;
   const unsigned seed = rd();
   std::mt19937 rng(seed);
-  const int k = std::uniform_int_distribution<int>(1, 5)(rng);
-  const double delay = std::uniform_real_distribution<double>(0.0, 2.0)(rng);
-  std::printf("SIGKILL %.2f s after the start of job %d of 5 (random seed %u)\n", delay, k, seed);
+  const int k = std::uniform_int_distribution<int>(1, 3)(rng);
+  const double delay = std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+  std::printf("SIGKILL %.2f s after the start of job %d of 3 (random seed %u)\n", delay, k, seed);
   const fs::path log = root() / "killed.log";
   const pid_t pid = suite::spawnChild(suiteCommand(b, {"--jobs", "1"}), log.string());
   const auto started = [&] {
@@ -116,19 +116,19 @@ TEST_F(SuiteEndToEnd, KilledAtARandomMomentAndRunAgainGivesTheSameBytes) {
 TEST_F(SuiteEndToEnd, AChangedSequenceFileRedoesExactlyItsDatasets) {
   const fs::path a = runA();
   const fs::path seq = sequence("mcd");
-  const std::string original = readFile(seq), jrl = readFile(a / "ci_mcd_s1" / "suite_ci_wifi.jrl");
+  const std::string mcd = groups()[0].id, cu = groups()[1].id;
+  const std::string original = readFile(seq), jrl = readFile(a / mcd / "suite_light_wifi.jrl");
   std::ofstream(seq, std::ios::app) << "# changed by the test\n";
   const Outcome r = runTool("cosmo_suite", {ciSuite(), "--out", a.string()});
   std::ofstream(seq, std::ios::trunc) << original;
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("ci_mcd_s1: stale: input changed: sequence " + seq.string() + " -> to do"), std::string::npos)
+  EXPECT_NE(r.output.find(mcd + ": stale: input changed: sequence " + seq.string() + " -> to do"), std::string::npos)
       << r.output;
-  EXPECT_NE(r.output.find("ci_mcd_s2: stale: input changed: sequence"), std::string::npos) << r.output;
-  for (const char* id : {"noise_models/synthetic_cu", "ci_cu_s1", "ci_cu_s2"})
-    EXPECT_NE(r.output.find(std::string(id) + ": current -> skipped"), std::string::npos) << id << "\n" << r.output;
-  EXPECT_NE(r.output.find("8 datasets: 4 done, 4 skipped as current, 0 failed"), std::string::npos) << r.output;
+  for (const std::string id : {std::string("noise_models/synthetic_cu"), cu})
+    EXPECT_NE(r.output.find(id + ": current -> skipped"), std::string::npos) << id << "\n" << r.output;
+  EXPECT_NE(r.output.find("4 datasets: 2 done, 2 skipped as current, 0 failed"), std::string::npos) << r.output;
   // a comment changes no output: the redone datasets are the same bytes
-  EXPECT_TRUE(readFile(a / "ci_mcd_s1" / "suite_ci_wifi.jrl") == jrl);
+  EXPECT_TRUE(readFile(a / mcd / "suite_light_wifi.jrl") == jrl);
 }
 
 TEST_F(SuiteEndToEnd, ABadSuiteFileStopsBeforeAnythingRunsNamingTheFileAndTheKey) {
@@ -151,16 +151,16 @@ TEST_F(SuiteEndToEnd, OnASingleNodeSlurmClusterTheOutputsAreThoseOfTheLocalRun) 
   const Outcome r = runTool("cosmo_suite", {ciSuite(), "--out", c.string(), "--slurm", "--wait"});
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("submitted wave1: Slurm job"), std::string::npos) << r.output;  // after the estimate
-  EXPECT_NE(r.output.find("8 datasets: 8 done, 0 skipped as current, 0 failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("4 datasets: 4 done, 0 skipped as current, 0 failed"), std::string::npos) << r.output;
   for (const auto& g : groups()) expectSameFiles(c / g.id, a / g.id);
   expectSameFiles(c / "noise_models/synthetic_cu", a / "noise_models/synthetic_cu");
   EXPECT_TRUE(fs::exists(c / "report.html"));
   const Outcome st = runTool("cosmo_suite", {"status", "--out", c.string()});
-  EXPECT_NE(st.output.find("ci_cu_s2: done"), std::string::npos) << st.output;
+  EXPECT_NE(st.output.find(groups()[1].id + ": done"), std::string::npos) << st.output;
   // resumed under Slurm: everything current, nothing submitted
   const Outcome again = runTool("cosmo_suite", {ciSuite(), "--out", c.string(), "--slurm"});
   EXPECT_EQ(again.status, 0) << again.output;
-  EXPECT_NE(again.output.find("ci_cu_s2: current -> skipped"), std::string::npos) << again.output;
+  EXPECT_NE(again.output.find(groups()[1].id + ": current -> skipped"), std::string::npos) << again.output;
   EXPECT_EQ(again.output.find("submitted"), std::string::npos) << again.output;
 }
 
@@ -170,7 +170,7 @@ TEST_F(SuiteEndToEnd, AnEstimateWithoutAModelFileIsWrittenBesideTheOutputsAndUse
   const fs::path cached = sequence("cu-multi");
   std::string yaml = readFile(cached);
   yaml = std::regex_replace(yaml, std::regex("\nenvironment: [a-z_]+\n"), "\n");
-  yaml = std::regex_replace(yaml, std::regex("\nname: suite_ci\n"), "\nname: no_models\ndata_root: " +
+  yaml = std::regex_replace(yaml, std::regex("\nname: suite_light\n"), "\nname: no_models\ndata_root: " +
                                                                            cached.parent_path().string() + "\n");
   ASSERT_EQ(yaml.find("environment"), std::string::npos);
   const fs::path seq = root() / "no_models.yaml", out = root() / "no_models_out";
@@ -199,7 +199,7 @@ TEST_F(SuiteEndToEnd, TheGateThresholdOptionIsTheSequencesOwnKeys) {
   const fs::path keys_dir = root() / "gate_keys";
   fs::create_directories(keys_dir);
   std::ofstream(keys_dir / cached.filename()) << yaml;
-  const std::vector<std::string> common{"--comm", "wifi", "--max-seconds", "12", "--quiet"};
+  const std::vector<std::string> common{"--comm", "wifi", "--reference-odometry", "--max-seconds", "12", "--quiet"};
   std::vector<std::string> with_keys{(keys_dir / cached.filename()).string(), "--out", (root() / "gate_a").string()};
   std::vector<std::string> with_option{cached.string(), "--gate-threshold", "0.7", "--out", (root() / "gate_b").string()};
   with_keys.insert(with_keys.end(), common.begin(), common.end());
@@ -207,7 +207,7 @@ TEST_F(SuiteEndToEnd, TheGateThresholdOptionIsTheSequencesOwnKeys) {
   const Outcome a = runTool("cosmo_generate", with_keys), b = runTool("cosmo_generate", with_option);
   ASSERT_EQ(a.status, 0) << a.output;
   ASSERT_EQ(b.status, 0) << b.output;
-  const std::string jrl = "suite_ci_wifi.jrl";
+  const std::string jrl = "suite_light_wifi.jrl";
   EXPECT_TRUE(readFile(root() / "gate_a" / jrl) == readFile(root() / "gate_b" / jrl));
   const Outcome bad = runTool("cosmo_generate", {cached.string(), "--gate-threshold", "1.5", "--out",
                                                  (root() / "gate_c").string()});

@@ -1,5 +1,5 @@
 #pragma once
-// The paper's Fig. 1 values of its 12 sequences (config/suites/paper_fig1.yaml, which names its source), for the
+// The paper's Fig. 1 values of its 12 sequences (config/paper/fig1.yaml, which names its source), for the
 // report's "ours beside the paper's" columns.
 #include <map>
 #include <optional>

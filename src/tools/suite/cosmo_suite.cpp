@@ -57,7 +57,7 @@ std::string readText(const std::string& path) {
 }
 
 std::unique_ptr<PaperTable> paperTable() {
-  const fs::path p = fs::path(cosmo::pipeline::defaultConfigDir()) / "suites" / "paper_fig1.yaml";
+  const fs::path p = fs::path(cosmo::pipeline::defaultConfigDir()) / "paper" / "fig1.yaml";
   if (!fs::exists(p)) return nullptr;
   return std::make_unique<PaperTable>(PaperTable::load(p.string()));
 }
