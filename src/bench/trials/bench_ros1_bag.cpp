@@ -18,11 +18,11 @@
 #include <filesystem>
 #include <functional>
 #include <iostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/ros/bag_io.hpp"
 #include "cosmo/sim/scan_simulator.hpp"
 #include "cosmo/sim/sequence_planner.hpp"
@@ -136,35 +136,22 @@ Digest readOwn(const std::string& bag, int workers) {
   return d;
 }
 
-std::vector<int> intList(const std::string& text) {
-  std::vector<int> out;
-  std::stringstream ss(text);
-  std::string v;
-  while (std::getline(ss, v, ',')) out.push_back(std::stoi(v));
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   int scans = 40;
   std::vector<int> beam_counts{64}, workers{0, 1, 2, 4};
   fs::path dir = fs::temp_directory_path() / ("cosmo_bench_ros1_bag_" + std::to_string(::getpid()));
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--scans" && i + 1 < argc)
-      scans = std::stoi(argv[++i]);
-    else if (a == "--dir" && i + 1 < argc)
-      dir = argv[++i];
-    else if (a == "--beams" && i + 1 < argc)
-      beam_counts = intList(argv[++i]);
-    else if (a == "--workers" && i + 1 < argc)
-      workers = intList(argv[++i]);
-    else {
-      std::cerr << "usage: bench_ros1_bag [--scans N] [--beams 64] [--workers 0,1,2,4] [--dir DIR]\n";
-      return 2;
-    }
-  }
+  CommandLine app("bench_ros1_bag",
+                  "Reads simulated MCD-layout bags (chunks bz2, none, lz4) with librosbag, with a record check before "
+                  "librosbag, and with cosmo's own reader on N decompression workers: ms per scan, peak RSS.");
+  app.add_option("--scans", scans, "scans per bag")->capture_default_str()->check(Positive);
+  app.add_option("--beams", beam_counts, "LiDAR beams (64 or 128), comma separated")->delimiter(',')->capture_default_str();
+  app.add_option("--workers", workers, "decompression workers of the own reader, comma separated")
+      ->delimiter(',')
+      ->capture_default_str();
+  app.add_option("--dir", dir, "where the bags are written (default: a temporary folder, removed at the end)");
+  if (const auto code = app.parseOrExit(argc, argv)) return *code;
   fs::create_directories(dir);
   std::printf("%-12s %-6s %6s %-22s %9s %9s %8s  %s\n", "sweep", "chunks", "MB", "reader", "wall/scan", "CPU/scan",
               "peak MB", "scans = librosbag's");

@@ -6,9 +6,10 @@
 //
 //   cosmo_check SEQUENCE.yaml [--data-root DIR] [--config-dir DIR] [--noise-models FILE]
 #include <cstdio>
-#include <iostream>
+#include <optional>
 #include <string>
 
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/pipeline/sequence_config.hpp"
 #include "cosmo/pipeline/sequence_noise_models.hpp"
@@ -17,56 +18,38 @@
 using namespace cosmo;
 
 namespace {
-void usage() {
-  std::cerr << "usage: cosmo_check SEQUENCE.yaml [--data-root DIR] [--config-dir DIR] [--noise-models FILE]\n"
-               "  --data-root DIR      the folder the trials' bags and references are below (default: the config's\n"
-               "                       data_root key, else $COSMO_DATA_ROOT, else the config's folder)\n"
-               "  --config-dir DIR     where noise_models/<environment>.yaml is looked up (default: the source tree's "
-               "config/)\n"
-               "  --noise-models FILE  the noise-model file the run would be given\n"
-               "exit 0: the run can produce a labelled dataset; 1: it cannot (the reasons are printed)\n";
+
+struct Args {
+  std::string sequence, data_root, config_dir = pipeline::defaultConfigDir(), noise;
+};
+
+/// The command line; an exit code when the program ends here (help, a usage error).
+std::optional<int> parseArgs(int argc, char** argv, Args& args) {
+  CommandLine app("cosmo_check",
+                  "The pre-flight check of a sequence config: one line per trial, then the verdict. Exit 0: the run "
+                  "can produce a labelled dataset; 1: it cannot (the reasons are printed); 2: a usage error.");
+  app.add_option("SEQUENCE.yaml", args.sequence, "the sequence config")->required();
+  app.add_option("--data-root", args.data_root,
+                 "the folder the trials' bags and references are below (default: the config's data_root key, else "
+                 "$COSMO_DATA_ROOT, else the config's folder)")
+      ->type_name("DIR");
+  app.add_option("--config-dir", args.config_dir,
+                 "where noise_models/<environment>.yaml is looked up (default: the source tree's config/)")
+      ->type_name("DIR");
+  app.add_option("--noise-models", args.noise, "the noise-model file the run would be given")->type_name("FILE");
+  return app.parseOrExit(argc, argv);
 }
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string sequence, data_root, config_dir = pipeline::defaultConfigDir(), noise;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const bool has_value = i + 1 < argc;
-    if ((a == "--data-root" || a == "--config-dir" || a == "--noise-models") && !has_value) {
-      std::cerr << a << " needs a value\n";
-      usage();
-      return 2;
-    }
-    if (a == "--data-root")
-      data_root = argv[++i];
-    else if (a == "--config-dir")
-      config_dir = argv[++i];
-    else if (a == "--noise-models")
-      noise = argv[++i];
-    else if (a == "-h" || a == "--help") {
-      usage();
-      return 0;
-    } else if (!a.empty() && a[0] == '-') {
-      std::cerr << "unknown option " << a << "\n";
-      usage();
-      return 2;
-    } else if (sequence.empty())
-      sequence = a;
-    else {
-      std::cerr << "unexpected argument " << a << "\n";
-      usage();
-      return 2;
-    }
-  }
-  if (sequence.empty()) {
-    usage();
-    return 2;
-  }
+  Args args;
+  if (const auto code = parseArgs(argc, argv, args)) return *code;
   try {
-    const pipeline::SequenceConfig config = pipeline::SequenceConfig::load(sequence, data_root);
+    const pipeline::SequenceConfig config = pipeline::SequenceConfig::load(args.sequence, args.data_root);
     std::string text;
-    const bool ok = ros_glue::checkSequence(config, pipeline::chooseNoiseModels(config, config_dir, noise), text);
+    const bool ok =
+        ros_glue::checkSequence(config, pipeline::chooseNoiseModels(config, args.config_dir, args.noise), text);
     std::printf("%s", text.c_str());
     return ok ? 0 : 1;
   } catch (const std::exception& e) {

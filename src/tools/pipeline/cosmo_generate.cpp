@@ -23,7 +23,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <functional>
 #include <optional>
 #include <algorithm>
 #include <iostream>
@@ -33,6 +32,7 @@
 #include <vector>
 
 #include "cosmo/common/allocator_tuning.hpp"
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/common/text_list.hpp"
 #include "cosmo/pipeline/gate_threshold.hpp"
 #include "cosmo/pipeline/kept_scan.hpp"
@@ -61,46 +61,6 @@ using namespace cosmo;
 using namespace cosmo::pipeline;
 
 namespace {
-
-void usage() {
-  std::cerr
-      << "usage: cosmo_generate SEQUENCE.yaml [--data-root DIR] [--comm wifi,proradio] [--seed N] [--out DIR]\n"
-         "         [--config-dir DIR] [--noise-models FILE] [--outlier-rule fidelity|squared]\n"
-         "         [--reference-odometry] [--serial-odometry] [--registration-threads N] [--max-seconds S] "
-         "[--gate-threshold X] [--no-check] [--quiet]\n"
-         "  --data-root DIR      the folder the trials' bags and references are below (default: the config's\n"
-         "                       data_root key, else $COSMO_DATA_ROOT, else the config's folder)\n"
-         "  --no-check           skip the pre-flight check (cosmo_check) that stops a run that would be unlabelled\n"
-         "  --comm LIST          comm models, comma separated (wifi, proradio, a config/comm/*.yaml, or a radio\n"
-         "                       trace .csv replayed with Wi-Fi's phi(d) outside its windows); default wifi.\n"
-         "                       The robots' odometry and keyframes are computed once for all of them\n"
-         "  --seed N             overrides the sequence config's seed\n"
-         "  --out DIR            output folder (default: current folder)\n"
-         "  --config-dir DIR     frontend/odometry/place_recognition/registration/comm/noise_models configs\n"
-         "                       (default: the source tree's config/)\n"
-         "  --noise-models FILE  noise-model YAML (default: the sequence's noise_models, else\n"
-         "                       <config-dir>/noise_models/<environment>.yaml; none: the run stops)\n"
-         "  --estimate-noise-models TRIAL  first make the noise models as the paper does: run TRIAL (robot id or\n"
-         "                       trial name) alone through the front-end, compare with its reference, keep the\n"
-         "                       good loop closures, write the sample covariances, then generate the sequence\n"
-         "                       with them\n"
-         "  --noise-models-out FILE  where the estimate goes (default: beside the outputs,\n"
-         "                       <out>/<environment, else the sequence's name>.noise_models.yaml)\n"
-         "  --estimate-only      with --estimate-noise-models: write the estimate and stop (no dataset)\n"
-         "  --good-translation M, --good-rotation RAD  good loop closures for the estimate: errors under\n"
-         "                       these (default 0.5 m, 0.05 rad)\n"
-         "  --reference-odometry take odometry from the reference trajectories instead of LOAM\n"
-         "  --serial-odometry    everything in the main thread (default: one thread per robot reads its own bag and\n"
-         "                       runs its LOAM and keyframes ahead of the team; the output is the same byte\n"
-         "                       for byte)\n"
-         "  --registration-threads N  threads running the loop-closure registrations while the team's thread goes\n"
-         "                       on (0: on the team's thread; default: the machine's cores; 0 with "
-         "--serial-odometry);\n"
-         "                       the output is the same byte for byte\n"
-         "  --max-seconds S      stop after S seconds of sequence time (quick looks)\n"
-         "  --gate-threshold X   the registration gate's acceptance threshold (gate: strict, min_structure_overlap:\n"
-         "                       X in [0, 1], on top of the sequence's registration: keys; a sweep 0.40-0.70)\n";
-}
 
 RadioParams radioFor(const std::string& comm, const std::string& config_dir, std::string& label) {
   if (comm.size() > 5 && comm.substr(comm.size() - 5) == ".yaml") {
@@ -193,88 +153,70 @@ struct Options {
   int registration_threads = -1;  // -1: the default
 };
 
-/// Reads one option (and its value) at argv[i]; false when it is not one.
-bool readOption(const std::string& a, const std::function<std::string()>& value, Options& o) {
-  if (a == "--comm")
-    o.comms = splitList(value());
-  else if (a == "--seed") {
-    o.seed = std::stoull(value());
-    o.seed_given = true;
-  } else if (a == "--out")
-    o.out_dir = value();
-  else if (a == "--config-dir")
-    o.config_dir = value();
-  else if (a == "--data-root")
-    o.data_root = value();
-  else if (a == "--no-check")
-    o.skip_check = true;
-  else if (a == "--noise-models")
-    o.noise_path = value();
-  else if (a == "--outlier-rule")
-    o.rule_name = value();
-  else if (a == "--estimate-noise-models")
-    o.estimate_trial = value();
-  else if (a == "--noise-models-out")
-    o.noise_out = value();
-  else if (a == "--estimate-only")
-    o.estimate_only = true;
-  else if (a == "--good-translation")
-    o.estimation.max_translation_error = std::stod(value());
-  else if (a == "--good-rotation")
-    o.estimation.max_rotation_error = std::stod(value());
-  else if (a == "--reference-odometry")
-    o.reference_odometry = true;
-  else if (a == "--serial-odometry")
-    o.serial_odometry = true;
-  else if (a == "--registration-threads")
-    o.registration_threads = std::stoi(value());
-  else if (a == "--max-seconds")
-    o.max_seconds = std::stod(value());
-  else if (a == "--gate-threshold")
-    o.gate_threshold = std::stod(value());
-  else if (a == "--quiet")
-    o.quiet = true;
-  else
-    return false;
-  return true;
-}
-
 /// The command line; an exit code when the program ends here (help, a usage error).
 std::optional<int> parseArgs(int argc, char** argv, Options& o) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::cerr << a << " needs a value\n";
-        usage();
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    try {
-      if (readOption(a, value, o)) continue;
-      if (a == "-h" || a == "--help") {
-        usage();
-        return 0;
-      }
-      if (!a.empty() && a[0] == '-') {
-        std::cerr << "unknown option " << a << "\n";
-        usage();
-        return 2;
-      }
-      if (!o.sequence_path.empty()) {
-        std::cerr << "unexpected argument " << a << "\n";
-        usage();
-        return 2;
-      }
-      o.sequence_path = a;
-    } catch (const std::exception&) {
-      std::cerr << "bad value for " << a << "\n";
-      return 2;
-    }
-  }
-  if (o.sequence_path.empty() || o.comms.empty()) {
-    usage();
+  CommandLine app("cosmo_generate",
+                  "Runs a sequence's robots through the front-end and the radio and writes the team's dataset per "
+                  "comm model: <out>/<name>_<comm>.jrl with its stats, metadata, transfer log and figures.");
+  app.add_option("SEQUENCE.yaml", o.sequence_path, "the sequence config")->required();
+  app.add_option("--data-root", o.data_root,
+                 "the folder the trials' bags and references are below (default: the config's data_root key, else "
+                 "$COSMO_DATA_ROOT, else the config's folder)")
+      ->type_name("DIR");
+  app.add_flag("--no-check", o.skip_check,
+               "skip the pre-flight check (cosmo_check) that stops a run that would be unlabelled");
+  std::string comms = "wifi";
+  app.add_option("--comm", comms,
+                 "comm models, comma separated (wifi, proradio, a config/comm/*.yaml, or a radio trace .csv replayed "
+                 "with Wi-Fi's phi(d) outside its windows); the robots' odometry and keyframes are computed once for "
+                 "all of them")
+      ->capture_default_str()
+      ->type_name("LIST");
+  app.add_option("--seed", o.seed, "overrides the sequence config's seed");
+  app.add_option("--out", o.out_dir, "output folder")->capture_default_str()->type_name("DIR");
+  app.add_option("--config-dir", o.config_dir,
+                 "frontend/odometry/place_recognition/registration/comm/noise_models configs (default: the source "
+                 "tree's config/)")
+      ->type_name("DIR");
+  addNoiseModels(app, o.noise_path,
+                 "default: the sequence's noise_models, else <config-dir>/noise_models/<environment>.yaml; none: the "
+                 "run stops");
+  app.add_option("--outlier-rule", o.rule_name, "fidelity or squared")->capture_default_str();
+  app.add_option("--estimate-noise-models", o.estimate_trial,
+                 "first make the noise models as the paper does: run TRIAL (robot id or trial name) alone through "
+                 "the front-end, compare with its reference, keep the good loop closures, write the sample "
+                 "covariances, then generate the sequence with them")
+      ->type_name("TRIAL");
+  app.add_option("--noise-models-out", o.noise_out,
+                 "where the estimate goes (default: beside the outputs, <out>/<environment, else the sequence's "
+                 "name>.noise_models.yaml)")
+      ->type_name("FILE");
+  app.add_flag("--estimate-only", o.estimate_only, "with --estimate-noise-models: write the estimate and stop");
+  addClosureThresholds(app, "good", o.estimation.max_translation_error, o.estimation.max_rotation_error);
+  app.add_flag("--reference-odometry", o.reference_odometry,
+               "take odometry from the reference trajectories instead of LOAM");
+  app.add_flag("--serial-odometry", o.serial_odometry,
+               "everything in the main thread (default: one thread per robot reads its own bag and runs its LOAM "
+               "and keyframes ahead of the team; the output is the same byte for byte)");
+  app.add_option("--registration-threads", o.registration_threads,
+                 "threads running the loop-closure registrations while the team's thread goes on (0: on the team's "
+                 "thread; default: the machine's cores; 0 with --serial-odometry); the output is the same byte for "
+                 "byte")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--max-seconds", o.max_seconds, "stop after S seconds of sequence time (quick looks)")
+      ->type_name("S");
+  double gate = 0.0;
+  app.add_option("--gate-threshold", gate,
+                 "the registration gate's acceptance threshold (gate: strict, min_structure_overlap: X in [0, 1], on "
+                 "top of the sequence's registration: keys; a sweep 0.40-0.70)")
+      ->type_name("X");
+  app.add_flag("--quiet", o.quiet, "less output: the pre-flight report only when it fails, no progress line");
+  if (const auto code = app.parseOrExit(argc, argv)) return code;
+  o.comms = splitList(comms);
+  o.seed_given = app.count("--seed") > 0;
+  if (app.count("--gate-threshold")) o.gate_threshold = gate;
+  if (o.comms.empty()) {
+    std::cerr << "cosmo_generate: --comm: no comm model given\nRun with --help for more information.\n";
     return 2;
   }
   return std::nullopt;

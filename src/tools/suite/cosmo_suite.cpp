@@ -6,7 +6,6 @@
 //   cosmo_suite report --plan PLAN --run RUN                                   (the report of a Slurm run)
 //
 // The logic is in the suite module (cosmo/suite/); this file reads the options and prints.
-#include <CLI/CLI.hpp>
 #include <unistd.h>
 
 #include <cstdio>
@@ -17,6 +16,7 @@
 #include <sstream>
 #include <thread>
 
+#include "cosmo/common/command_line.hpp"
 #include "cosmo/dataset/atomic_file.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/suite/local_run.hpp"
@@ -183,8 +183,9 @@ int report(const Options& o) {
 
 int main(int argc, char** argv) {
   Options o;
-  CLI::App app{"cosmo_suite: the whole benchmark in one command, resumable, on one machine or a Slurm cluster "
-               "(docs/suite.md)"};
+  cosmo::CommandLine app("cosmo_suite",
+                         "The whole benchmark in one command, resumable, on one machine or a Slurm cluster "
+                         "(docs/suite.md).");
   app.add_option("suite", o.suite, "the suite file (config/suites/*.yaml)")->check(CLI::ExistingFile);
   app.add_option("--out", o.out, "the output folder (datasets, manifest.jsonl, report.md / .html)");
   app.add_option("--data-root", o.data_root, "the folder the suite's sequences read their trials below");
@@ -210,7 +211,7 @@ int main(int argc, char** argv) {
   rp->add_option("--plan", o.plan, "the plan file")->required();
   rp->add_option("--run", o.run, "the run's id")->required();
   app.require_subcommand(0, 1);
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = app.parseOrExit(argc, argv)) return *code;
   o.slurm_given = app.count("--slurm") > 0;
   try {
     if (st->parsed()) return status(o);
