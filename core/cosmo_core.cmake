@@ -1,7 +1,8 @@
 # The ROS-free core of cosmo: one library per module (include/cosmo/<module>, src/<module>), cosmo_core over all of
 # them, and the programs and gtests that need no ROS. Included by core/CMakeLists.txt (the core as a CMake project
 # of its own, no catkin) and by the catkin package's CMakeLists.txt, in the including directory's scope (the same
-# build folder, so both builds compile the same commands). COSMO_ROOT: the repository; COSMO_BUILD_TESTING: the gtests.
+# build folder, so both builds compile the same commands). COSMO_ROOT: the repository; COSMO_BUILD_TESTING: the
+# core's gtests.
 find_package(Eigen3 REQUIRED)
 find_package(PCL REQUIRED COMPONENTS common io kdtree search features)  # PCD files (common), FPFH (registration)
 find_package(nlohmann_json 3 REQUIRED)
@@ -102,10 +103,6 @@ cosmo_program(bench registration/bench_features LIBS cosmo_registration)
 cosmo_program(bench registration/bench_registration LIBS cosmo_registration)
 cosmo_program(bench sim/bench_sim LIBS cosmo_sim TBB::tbb)
 
-if(NOT COSMO_BUILD_TESTING)
-  return()
-endif()
-
 # A gtest: test/<module>/<name>.cpp, target <module>_<name>, linked with LIBS and gtest's main. Under catkin it
 # is catkin's gtest (results in test_results/, `make run_tests`); on its own, a ctest test writing the same XML.
 function(cosmo_gtest TARGET SRC)
@@ -129,6 +126,11 @@ set(COSMO_ROS_GTESTS fuzz/test_fuzz_inputs multihost/test_netns_team nebula/test
     nebula/test_message_definition ros/test_loopback_alias ros/test_markers ros/test_point_cloud
     ros/test_team_sequence_msg sim/test_sim_bag tools/test_suite_end_to_end tools/test_tools_on_fixtures
     trials/test_layouts_end_to_end trials/test_ros1_bag trials/test_trial_layouts workspace/test_commands_on_path)
+# The core's own gtests: only where COSMO_BUILD_TESTING is on (core/CMakeLists.txt; the catkin package leaves them
+# to it and builds the ones above).
+if(NOT COSMO_BUILD_TESTING)
+  return()
+endif()
 set(COSMO_TEST_LIBS_backend_test_pose_graph_solver Ceres::ceres)
 set(COSMO_TEST_LIBS_dataset_test_outlier_injection cosmo_backend)
 set(COSMO_TEST_LIBS_pipeline_test_lookalike_closures cosmo_dataset)

@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Print 'N passed, N failed' from catkin's test_results XML; exit 1 on any failure or when nothing ran.
+"""Print 'N passed, N failed' from the test_results XML of the folders given (default _build/test_results); exit 1
+on any failure or when nothing ran.
 
 Reads gtest-*.xml (plain gtest), rosunit-*.xml (gtest nodes under rostest), MISSING-*.xml (a crashed test
 binary) and rostest-*.xml (only its failures count: its passing entries wrap the rosunit cases).
@@ -9,9 +10,10 @@ import os
 import sys
 import xml.etree.ElementTree as ET
 
-root = sys.argv[1] if len(sys.argv) > 1 else "_build/test_results"
+roots = sys.argv[1:] or ["_build/test_results"]
+paths = [p for root in roots for p in sorted(glob.glob(os.path.join(root, "**", "*.xml"), recursive=True))]
 passed = failed = skipped = 0
-for path in sorted(glob.glob(os.path.join(root, "**", "*.xml"), recursive=True)):
+for path in paths:
     name = os.path.basename(path)
     try:
         cases = list(ET.parse(path).getroot().iter("testcase"))
