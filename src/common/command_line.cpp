@@ -41,6 +41,14 @@ void addClosureThresholds(CLI::App& app, const std::string& prefix, double& tran
       ->check(Positive);
 }
 
+void addSequence(CLI::App& app, std::string& sequence, std::string& data_root) {
+  app.add_option("SEQUENCE.yaml", sequence, "the sequence config")->required();
+  app.add_option("--data-root", data_root,
+                 "the folder the trials' bags and references are below (default: the config's data_root key, else "
+                 "$COSMO_DATA_ROOT, else the config's folder)")
+      ->type_name("DIR");
+}
+
 CLI::Option* addModuleConfig(CLI::App& app, std::string& file, const std::string& module) {
   return app.add_option("--config", file, module + " parameters, YAML (default: the built-in defaults)");
 }

@@ -24,6 +24,8 @@ extern const CLI::Validator Positive;
 CLI::Option* addNoiseModels(CLI::App& app, std::string& file, const std::string& what);
 /// --<prefix>-translation M, --<prefix>-rotation RAD: the errors under which a loop closure is good (positive).
 void addClosureThresholds(CLI::App& app, const std::string& prefix, double& translation, double& rotation);
+/// SEQUENCE.yaml (required) and --data-root DIR: a sequence config and where its trials' files are.
+void addSequence(CLI::App& app, std::string& sequence, std::string& data_root);
 /// --config FILE: a module's parameter YAML (default: the built-in defaults, which config/*.yaml repeat).
 CLI::Option* addModuleConfig(CLI::App& app, std::string& file, const std::string& module);
 

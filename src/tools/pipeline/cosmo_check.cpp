@@ -28,11 +28,7 @@ std::optional<int> parseArgs(int argc, char** argv, Args& args) {
   CommandLine app("cosmo_check",
                   "The pre-flight check of a sequence config: one line per trial, then the verdict. Exit 0: the run "
                   "can produce a labelled dataset; 1: it cannot (the reasons are printed); 2: a usage error.");
-  app.add_option("SEQUENCE.yaml", args.sequence, "the sequence config")->required();
-  app.add_option("--data-root", args.data_root,
-                 "the folder the trials' bags and references are below (default: the config's data_root key, else "
-                 "$COSMO_DATA_ROOT, else the config's folder)")
-      ->type_name("DIR");
+  addSequence(app, args.sequence, args.data_root);
   app.add_option("--config-dir", args.config_dir,
                  "where noise_models/<environment>.yaml is looked up (default: the source tree's config/)")
       ->type_name("DIR");

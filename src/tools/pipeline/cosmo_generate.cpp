@@ -158,11 +158,7 @@ std::optional<int> parseArgs(int argc, char** argv, Options& o) {
   CommandLine app("cosmo_generate",
                   "Runs a sequence's robots through the front-end and the radio and writes the team's dataset per "
                   "comm model: <out>/<name>_<comm>.jrl with its stats, metadata, transfer log and figures.");
-  app.add_option("SEQUENCE.yaml", o.sequence_path, "the sequence config")->required();
-  app.add_option("--data-root", o.data_root,
-                 "the folder the trials' bags and references are below (default: the config's data_root key, else "
-                 "$COSMO_DATA_ROOT, else the config's folder)")
-      ->type_name("DIR");
+  addSequence(app, o.sequence_path, o.data_root);
   app.add_flag("--no-check", o.skip_check,
                "skip the pre-flight check (cosmo_check) that stops a run that would be unlabelled");
   std::string comms = "wifi";
