@@ -354,7 +354,6 @@ class FrontendNode {
       recorder_.send(ros_glue::recorderLoopClosureMsg(a, o_.world_frame));
       ++loop_closures_published_;
     }
-    ++loop_closures_attempted_;
     ROS_DEBUG("frontend %c: loop closure %c%zu-%c%zu %s (%zu inliers, descriptor %.3f)", o_.robot, a.robot1, a.index1,
               a.robot2, a.index2, a.accepted ? "accepted" : a.reason.c_str(), a.inliers, a.descriptor_distance);
     map_.addClosure(a);
@@ -375,7 +374,8 @@ class FrontendNode {
     ack_pub_.publish(a);
     ROS_INFO_THROTTLE(5.0,
                       "frontend %c: %u scans, %u keyframes, %u loop closures accepted of %zu tried, %u scans received",
-                      o_.robot, a.scans, a.keyframes, a.loop_closures, loop_closures_attempted_, a.received);
+                      o_.robot, a.scans, a.keyframes, a.loop_closures,
+                      frontend_->loopClosuresAccepted() + frontend_->loopClosuresRejected(), a.received);
   }
 
   void publishMarkers(const ros::Time& stamp) {
@@ -394,7 +394,6 @@ class FrontendNode {
   bool registration_resolved_ = false;  // real time: the player's sequence's registration keys looked up
   std::size_t received_dropped_ = 0;
   std::size_t loop_closures_published_ = 0;  ///< counted in the ack (the player's end-of-run handshake)
-  std::size_t loop_closures_attempted_ = 0;  ///< and every one tried, for the progress line
   ros::Publisher offer_pub_, ack_pub_, marker_pub_;
   ros::Subscriber ref_sub_, recv_sub_, odom_sub_, trajectory_sub_;
   ros::WallTimer start_timer_, ack_timer_;
