@@ -7,8 +7,11 @@ set -eo pipefail
 cd "$(dirname "$0")/.."
 B=${COSMO_CORE_BUILD_DIR:-_build_core}
 J=${JOBS:-$(nproc)}
+# The locale stays: ccache hashes LANG and LC_* (the compiler's messages depend on them), and the catkin build, which
+# compiled every core source already, ran with them; without them not one of its objects would be reused.
 clean_env=(env -i PATH=/usr/bin:/bin HOME="$HOME" CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true
-           ${CCACHE_DIR:+CCACHE_DIR=$CCACHE_DIR})
+           ${CCACHE_DIR:+CCACHE_DIR=$CCACHE_DIR} ${LANG:+LANG=$LANG} ${LC_ALL:+LC_ALL=$LC_ALL}
+           ${LC_CTYPE:+LC_CTYPE=$LC_CTYPE} ${LC_MESSAGES:+LC_MESSAGES=$LC_MESSAGES})
 mkdir -p "$B"
 "${clean_env[@]}" cmake -S core -B "$B" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER_LAUNCHER=ccache \
   > "$B/cmake.log" 2>&1 || { cat "$B/cmake.log"; echo "[test_core] cmake failed"; exit 1; }
