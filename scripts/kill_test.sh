@@ -63,7 +63,7 @@ grep -a "recorder: wrote" "$OUT/launch.log" | tail -1 | sed 's/\x1b\[[0-9;]*m//g
 if [ "$mode" == lockstep ]; then
   sequence=$(ls "$OUT"/sequence/*.yaml | head -1)
   cosmo_generate "$sequence" --comm wifi --config-dir config --noise-models config/noise_models/synthetic.yaml \
-    --reference-odometry --max-seconds 40 --out "$OUT/offline" --quiet > "$OUT/offline.log" 2>&1
+    --odometry reference --max-seconds 40 --out "$OUT/offline" --quiet > "$OUT/offline.log" 2>&1
   if cmp "$OUT/rostest_r3_wifi.jrl" "$OUT/offline/$(basename "$sequence" .yaml)_wifi.jrl"; then
     echo "JRL byte-identical to the uninterrupted run (cosmo_generate)"
   else

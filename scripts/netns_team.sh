@@ -216,7 +216,7 @@ offline_jrl=""
 offline_pid=""
 if [ $compare = 1 ]; then
   args=(--comm "$comm" --out "$work/offline" --quiet)
-  [ "$odometry" = reference ] && args+=(--reference-odometry)
+  [ "$odometry" = reference ] && args+=(--odometry reference)
   [ "$max_seconds" != 0 ] && args+=(--max-seconds "$max_seconds")
   setsid "$lib/cosmo_generate" "$sequence" --data-root "$data_root" "${args[@]}" > "$work/offline.log" 2>&1 &
   offline_pid=$!

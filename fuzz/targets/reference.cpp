@@ -7,7 +7,7 @@
 
 #include "../fuzz_target.hpp"
 #include "../input_file.hpp"
-#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/sequence/sequence_references.hpp"
 #include "cosmo/trials/reference_file.hpp"
 
 using namespace cosmo;
@@ -24,10 +24,10 @@ COSMO_FUZZ_TARGET(reference) {
   }
   const Trajectory body = trials::readReference(path);
   if (body.empty()) return;
-  const Eigen::Vector3d offset = pipeline::roundedFirstPosition(body);
-  pipeline::TrialTiming timing;
+  const Eigen::Vector3d offset = sequence::roundedFirstPosition(body);
+  sequence::TrialTiming timing;
   timing.first = body.startStamp();
   timing.last = body.endStamp();
   timing.offset_ns = -static_cast<std::int64_t>(timing.first / 2);
-  pipeline::toSensorReference(body, Pose3::Identity(), timing, offset);
+  sequence::toSensorReference(body, Pose3::Identity(), timing, offset);
 }

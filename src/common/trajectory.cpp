@@ -26,6 +26,15 @@ std::optional<Pose3> Trajectory::at(StampNs stamp) const {
   return atClamped(stamp);
 }
 
+std::optional<Pose3> Trajectory::atWithin(StampNs stamp, StampNs tolerance) const {
+  if (empty()) return std::nullopt;
+  if (covers(stamp)) return atClamped(stamp);
+  const StampNs start = startStamp(), end = endStamp();
+  if ((stamp < start && start - stamp <= tolerance) || (stamp > end && stamp - end <= tolerance))
+    return atClamped(stamp);
+  return std::nullopt;
+}
+
 Pose3 Trajectory::atClamped(StampNs stamp) const {
   if (poses_.empty()) throw std::logic_error("Trajectory::atClamped on an empty trajectory");
   if (stamp <= poses_.front().stamp) return poses_.front().pose;

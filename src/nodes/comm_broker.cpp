@@ -1,32 +1,6 @@
-// comm_broker: the simulated radio between robots (cosmo::RadioSimulator, the paper's Algorithm 1) on ROS
-// time.
-//
-// Subscribes  /<r>/keyframe_scans  (cosmo/Keyframe)  keyframe scans robot r offers to its teammates
-//             /<r>/reference_pose  (geometry_msgs/PoseStamped, world frame)  r is "on" from its first pose;
-//                                  after its last pose it stays on at that position
-// Publishes   /<r>/received_scans  (cosmo/Keyframe, `sender` set) delivered scans; the cloud is the real
-//                                  decompressed xz payload (x y z only)
-//             /comm/links          (visualization_msgs/MarkerArray, frame `world`) active links, coloured by
-//                                  their mean throughput so far (red 0 .. green B)
-//             /comm/stats          (std_msgs/String, JSON, once per step batch) counters + active links
-//             /comm/offered        (std_msgs/String, JSON, latched) per robot 1 + the highest keyframe index it
-//                                  offered: a restarted front-end numbers its keyframes after it
-// Params      ~robots [a, b, c] (or "a,b,c"; absent: the player's sequence, /player/robots), ~comm wifi|proradio,
-//             ~config (a config/comm/*.yaml, wins over ~comm), ~trace (a radio trace CSV replayed inside its
-//             windows, phi(d) outside: comm/radio_trace.hpp), ~seed (int), ~size_model paper|real,
-//             ~timeout_mode no_progress|total_duration, ~log_file (CSV of every transfer + <name>.summary.json;
-//             written every 30 s of ROS time and on shutdown; empty = none), ~xz_preset (0..9, default 6),
-//             ~frame_id (default world), ~compress_payload (default true; false with size_model paper skips xz,
-//             about 0.25 s of CPU per 64 x 1024 scan, and forwards the x y z points as they came, which xz's
-//             losslessness makes identical; ignored, with a warning, under size_model real)
-// Steps: every delta of ROS time (/clock under use_sim_time) on the grid k * delta, catching up when time jumps.
-//   Each delivery carries its step time (Keyframe.received_at).
-// Lockstep (~lockstep true, sequence.launch mode:=lockstep): no timer; the player drives the radio through
-//   /comm/step_request (cosmo/RadioStepRequest) and the broker answers on /comm/step_done (cosmo/RadioStepDone)
-//   after publishing the deliveries. Grid, robot states and seed are the offline driver's (~seed is not used),
-//   from the player's latched /player/sequence (cosmo/TeamSequence) and /<r>/reference_trajectory
-//   (cosmo/ReferenceTrajectory): nothing is read from disk.
-// The radio, its payload store and both step modes are pipeline::RadioBroker; this node converts and wires.
+// comm_broker: the simulated radio between robots (RadioSimulator, the paper's Algorithm 1) on ROS time: keyframe
+// scans offered, carried by the radio model, delivered (lockstep: in the player's radio steps, pipeline::RadioBroker).
+// Topics, parameters and the lockstep protocol: docs/nodes.md.
 #include <geometry_msgs/PoseStamped.h>
 #include <ros/ros.h>
 #include <std_msgs/String.h>

@@ -1,42 +1,6 @@
-// player: replays the trials of a sequence config as one team (spec section 3 synchronization) on ROS topics.
-//
-// Publishes  /clock                  (rosgraph_msgs/Clock) sequence time
-//            /<r>/points             (sensor_msgs/PointCloud2, frame <r>/base_link = the LiDAR) each scan
-//            /<r>/reference_pose     (geometry_msgs/PoseStamped, frame world) the LiDAR's reference pose, about
-//                                    every 20 ms of the reference trajectory up to each scan
-//            TF world -> <r>/reference (the reference LiDAR pose)
-//            /player/sequence        (cosmo/TeamSequence, latched) the resolved sequence: robots, spans, seed
-//            /<r>/reference_trajectory (cosmo/ReferenceTrajectory, latched) each robot's whole reference, bit-exact
-//            /player/progress        (std_msgs/String) "t / total" once per second of wall time
-//            /player/done            (std_msgs/Empty, latched) when it is done; then it exits 0
-//            /player/abort           (std_msgs/String, latched) why the run stops (a peer died or never connected);
-//                                    the recorder then writes the dataset so far marked incomplete; the player exits 1
-//            params /player/robots (as soon as the config is read: the launch starts one front-end per robot),
-//            /player/resolved_sequence, /player/resolved_seed, /player/resolved_data_root
-// Lockstep (~mode lockstep, default): the offline driver's event order (pipeline::LockstepSchedule, which TeamRun
-//   runs too), so the JRL is byte-identical to cosmo_generate's. Before a scan it waits for every scan published
-//   so far to be acknowledged (/<r>/ack, cosmo/FrontendAck) when the schedule says so, and asks the comm_broker to
-//   step the radio through the scan's time (/comm/step_request, answered on /comm/step_done) and waits until the
-//   delivered scans are processed. At the end the radio runs through the sequence end and the player waits until
-//   the recorder's intake (/recorder/progress) holds everything the front-ends acknowledged. The lockstep nodes
-//   take the sequence from the latched topics (nothing from disk). The protocol's side here: ros_glue::LockstepLink.
-//   Real time (~mode realtime): scans at ~rate x wall speed, nothing waited for (results may depend on CPU speed).
-// Robot-side playback (~playback robot): the player reads no bag and no reference. Each robot's trial_player
-//   (robot.launch playback:=robot, on the robot's machine) announces its trial's span and reference and its
-//   read-ahead stamps; the player merges them into the same order and asks each robot for its scans
-//   (/<r>/play_scan) instead of publishing /<r>/points (ros_glue::RobotPlayback). The trial players are peers too
-//   (~trial_player_node, "{r}" replaced by the robot id). Everything else is unchanged.
-// Peers (pipeline::PeerWatch, probed by ros_glue::PeerMonitor): the front-ends (~frontend_node, "{r}" replaced by
-//   the robot id), ~broker_node and ~recorder_node (empty: not watched). A peer that never connects (within
-//   ~connect_timeout s wall, the recorder ~recorder_timeout) or dies (lockstep: for ~death_grace s; the recorder for
-//   ~recorder_timeout s) stops the run by the policy of docs/design.md; every wait names what it waits for every
-//   10 s and has no other limit. ~status_file (optional): "done" or "stopped: <reason>" written at the end.
-// Params: ~sequence (config path; empty: the built-in synthetic sequence, cosmo_simulate --config ~simulate_config
-//         --out ~simulate_out, cached), ~data_root (empty: the config's precedence), ~mode, ~rate, ~seed (-1: the
-//         config's), ~max_seconds (0: all), ~wait_for_broker (lockstep: a radio runs), ~end_linger (s wall after the
-//         last scan; default 3 realtime, 0 lockstep), ~world_frame, ~noise_models / ~config_dir (checked before
-//         anything is played: a run that cannot be labelled does not start), ~playback (base | robot), and the
-//         peers' above.
+// player: replays a sequence's trials as one team (trials::resolveSequence resolves it) in the offline driver's
+// event order (lockstep) or at wall speed (real time), watches its peers and ends the run (ros_glue::RunStop).
+// Topics, parameters, lockstep, robot-side playback and the peer policy: docs/nodes.md.
 #include <geometry_msgs/PoseStamped.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
@@ -54,9 +18,9 @@
 
 #include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
-#include "cosmo/pipeline/reference_stream.hpp"
+#include "cosmo/sequence/reference_stream.hpp"
 #include "cosmo/pipeline/team_drain.hpp"
-#include "cosmo/ros/bag_scan_source.hpp"
+#include "cosmo/trials/bag_scan_source.hpp"
 #include "cosmo/ros/lockstep_link.hpp"
 #include "cosmo/ros/lockstep_msgs.hpp"
 #include "cosmo/ros/node_main.hpp"
@@ -66,6 +30,7 @@
 #include "cosmo/ros/pose_msg.hpp"
 #include "cosmo/ros/recorder_msgs.hpp"
 #include "cosmo/ros/robot_playback.hpp"
+#include "cosmo/ros/run_stop.hpp"
 #include "cosmo/ros/team_sequence_msg.hpp"
 
 using namespace cosmo;
@@ -73,7 +38,7 @@ using namespace cosmo;
 namespace {
 
 struct Options {
-  ros_glue::SequenceChoice sequence;
+  trials::SequenceChoice sequence;
   std::string mode = "lockstep", world_frame = "world", status_file, playback = "base";
   std::string frontend_node = "/{r}/frontend", broker_node = "/comm_broker", recorder_node = "/recorder";
   std::string trial_player_node = "/{r}/trial_player";
@@ -90,16 +55,18 @@ struct Options {
   }
 };
 
-ros_glue::SequenceChoice readSequenceChoice(const ros::NodeHandle& pnh) {
-  ros_glue::SequenceChoice c;
+trials::SequenceChoice readSequenceChoice(const ros::NodeHandle& pnh) {
+  trials::SequenceChoice c;
+  int seed = -1;  // -1: the config's
   pnh.param("sequence", c.sequence, c.sequence);
   pnh.param("data_root", c.data_root, c.data_root);
-  pnh.param("seed", c.seed, c.seed);
+  pnh.param("seed", seed, seed);
+  if (seed >= 0) c.seed = static_cast<unsigned long long>(seed);
   pnh.param("max_seconds", c.max_seconds, c.max_seconds);
   pnh.param("simulate_config", c.simulate_config, c.simulate_config);
   pnh.param("simulate_out", c.simulate_out, c.simulate_out);
   pnh.param("noise_models", c.noise_models, c.noise_models);
-  pnh.param("config_dir", c.config_dir, pipeline::defaultConfigDir());
+  pnh.param("config_dir", c.config_dir, cosmo::defaultConfigDir());
   return c;
 }
 
@@ -125,6 +92,7 @@ Options readOptions(const ros::NodeHandle& pnh) {
   if (o.playback != "base" && o.playback != "robot")
     throw std::runtime_error("~playback must be base (this node reads the trials) or robot (each robot's "
                              "trial_player does), got '" + o.playback + "'");
+  o.sequence.check = !o.robotPlayback();  // the robots' trial players check their own trials
   if (!(o.rate > 0)) o.rate = 1.0;
   if (o.end_linger < 0) o.end_linger = o.lockstep() ? 0.0 : 3.0;
   return o;
@@ -153,9 +121,10 @@ pipeline::PeerWatch peerWatch(const Options& o, const std::vector<char>& robots)
 
 class Player {
  public:
-  Player(ros::NodeHandle& nh, Options options, ros_glue::PlayedSequence sequence,
-         std::unique_ptr<ros_glue::RobotPlayback> robot_playback)
+  Player(ros::NodeHandle& nh, Options options, trials::ResolvedSequence sequence,
+         std::unique_ptr<ros_glue::RobotPlayback> robot_playback, const ros_glue::RunStop& stop)
       : o_(std::move(options)),
+        stop_(stop),
         seq_(std::move(sequence)),
         robot_playback_(std::move(robot_playback)),
         peers_("player", peerWatch(o_, seq_.robots())) {
@@ -195,7 +164,6 @@ class Player {
       return 0;
     } catch (const ros_glue::RunStopped& stop) {
       stopRun(stop.what());
-      writeStatus(std::string("stopped: ") + stop.what());
       return 1;
     }
   }
@@ -225,11 +193,11 @@ class Player {
 
   /// Publishes every scan up to the end, in the team's order (lockstep) or at wall speed (real time).
   void play() {
-    pipeline::MergedScanStream stream =
-        robot_playback_ ? pipeline::MergedScanStream(robot_playback_->sources([this] {
+    sequence::MergedScanStream stream =
+        robot_playback_ ? sequence::MergedScanStream(robot_playback_->sources([this] {
           if (const auto stop = peers_.stopReason()) throw ros_glue::RunStopped(*stop);
         }), seq_.timing)
-                        : ros_glue::openSequenceStream(seq_.config, seq_.timing);
+                        : trials::openSequenceStream(seq_.config, seq_.timing);
     publishClock(seq_.timing.start());
     ros::WallDuration(0.5).sleep();
     wall_start_ = last_progress_ = ros::WallTime::now();
@@ -268,7 +236,7 @@ class Player {
     }
     ROS_INFO("player: done, %zu scans in %.1f s wall for %.1f s of sequence", published_,
              (ros::WallTime::now() - wall_start_).toSec(), seq_.seconds());
-    writeStatus("done");
+    stop_.done();
     done_pub_.publish(std_msgs::Empty());
     ros::WallDuration(0.5).sleep();
   }
@@ -289,10 +257,7 @@ class Player {
 
   /// Tells the recorder why the run stops (/player/abort) and waits for it to write the dataset so far.
   void stopRun(const std::string& reason) {
-    std_msgs::String m;
-    m.data = reason;
-    abort_pub_.publish(m);
-    ROS_ERROR("player: the run stops: %s", reason.c_str());
+    stop_.stopped(reason);
     const auto written = [this] {
       std::lock_guard<std::mutex> lock(recorder_mutex_);
       return recorder_ && !recorder_->incomplete.empty();
@@ -307,18 +272,10 @@ class Player {
     }
   }
 
-  void writeStatus(const std::string& status) const {
-    if (o_.status_file.empty()) return;
-    std::ofstream out(o_.status_file);
-    out << status << "\n";
-    if (!out) ROS_ERROR("player: cannot write ~status_file %s", o_.status_file.c_str());
-  }
-
   void advertise(ros::NodeHandle& nh) {
     clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
     progress_pub_ = nh.advertise<std_msgs::String>("/player/progress", 10);
     done_pub_ = nh.advertise<std_msgs::Empty>("/player/done", 1, true);
-    abort_pub_ = nh.advertise<std_msgs::String>("/player/abort", 1, true);
     sequence_pub_ = nh.advertise<cosmo::TeamSequence>(ros_glue::kTeamSequenceTopic, 1, true);
     for (char r : seq_.robots()) {
       const std::string ns = std::string("/") + r;
@@ -392,18 +349,19 @@ class Player {
   }
 
   Options o_;
-  ros_glue::PlayedSequence seq_;
+  const ros_glue::RunStop& stop_;  ///< the status file and /player/abort
+  trials::ResolvedSequence seq_;
   std::unique_ptr<ros_glue::RobotPlayback> robot_playback_;  ///< robot-side playback: the robots read the trials
   std::string run_id_ = randomRunId();  ///< the recorder's journal belongs to this run
   std::optional<ros_glue::LockstepLink> lockstep_;  ///< lockstep mode: the team's event order through the nodes
   std::atomic<std::uint64_t> broker_delivered_{0};  ///< /comm/stats, for the progress line
   std::size_t published_ = 0;
-  pipeline::ReferenceStream reference_stream_;  ///< the reference poses sent beside the scans
+  sequence::ReferenceStream reference_stream_;  ///< the reference poses sent beside the scans
   ros::WallTime wall_start_, last_progress_;
   std::mutex recorder_mutex_;                        ///< guards recorder_ and drain_
   std::optional<cosmo::RecorderProgress> recorder_;  ///< the recorder's latest /recorder/progress
   pipeline::TeamDrain drain_;  ///< real time: whether each front-end is done with what it was given
-  ros::Publisher clock_pub_, progress_pub_, done_pub_, abort_pub_, sequence_pub_;
+  ros::Publisher clock_pub_, progress_pub_, done_pub_, sequence_pub_;
   std::map<char, ros::Publisher> points_pub_, pose_pub_, trajectory_pub_;
   ros::Subscriber stats_sub_, recorder_sub_;
   std::vector<ros::Subscriber> ack_subs_;
@@ -411,55 +369,44 @@ class Player {
   ros_glue::PeerMonitor peers_;  ///< last: its thread (link checks use the publishers) ends first
 };
 
-/// The run stops before anything was played: /player/abort for the nodes that wait (the trial players exit), the
-/// status; 1.
-int abortBeforeStart(ros::NodeHandle& nh, const std::string& reason, const std::string& status_file) {
-  ros::Publisher abort = nh.advertise<std_msgs::String>("/player/abort", 1, true);
-  std_msgs::String m;
-  m.data = reason;
-  abort.publish(m);
-  ROS_ERROR("player: the run stops before it started: %s", reason.c_str());
-  if (!status_file.empty()) std::ofstream(status_file) << "stopped: " << reason << "\n";
-  ros::WallDuration(1.0).sleep();  // the latched message reaches the subscribers already connected
-  return 1;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   cosmo::keepScanBuffersInProcess();
   ros_glue::initNode(argc, argv, "player");
   int code = 0;
-  std::string status_file;
+  std::optional<ros_glue::RunStop> stop;
   const int failed = ros_glue::runNode("player", [&] {
     ros::NodeHandle nh, pnh("~");
     const Options options = readOptions(pnh);
-    status_file = options.status_file;
+    stop.emplace(nh, options.status_file);
     ros::AsyncSpinner spinner(1);  // robot-side playback: the robots' announcements arrive while resolving
     spinner.start();
     std::unique_ptr<ros_glue::RobotPlayback> robot_playback;
-    const auto from_robots = [&](const pipeline::SequenceConfig& config) {
+    const auto from_robots = [&](const sequence::SequenceConfig& config) {
       std::vector<char> robots;
       for (const auto& t : config.trials) robots.push_back(t.robot);
       robot_playback = std::make_unique<ros_glue::RobotPlayback>(
           nh, robots, options.peers.connect_timeout, [&](char r) { return options.trialPlayerNode(r); });
       return robot_playback->trials(config);
     };
-    std::optional<ros_glue::PlayedSequence> resolved;
+    std::optional<trials::ResolvedSequence> resolved;
     try {
       resolved = options.robotPlayback() ? ros_glue::resolvePlayedSequence(options.sequence, from_robots)
                                          : ros_glue::resolvePlayedSequence(options.sequence);
-    } catch (const ros_glue::RunStopped& stop) {  // a robot's trial player never came: nothing was played
-      code = abortBeforeStart(nh, stop.what(), options.status_file);
+    } catch (const ros_glue::RunStopped& why) {  // a robot's trial player never came: nothing was played
+      stop->stopped(why.what());
+      ros::WallDuration(1.0).sleep();  // the latched message reaches the subscribers already connected
+      code = 1;
       return;
     }
-    ros_glue::PlayedSequence& sequence = *resolved;
+    trials::ResolvedSequence& sequence = *resolved;
     ROS_INFO("player: sequence %s, %zu robots, %.1f s, mode %s, trials played %s", sequence.config.name.c_str(),
              sequence.config.trials.size(), sequence.seconds(), options.mode.c_str(),
              options.robotPlayback() ? "on the robots' machines" : "here");
-    Player player(nh, options, std::move(sequence), std::move(robot_playback));
+    Player player(nh, options, std::move(sequence), std::move(robot_playback), *stop);
     code = player.run();
   });
-  if (failed && !status_file.empty()) std::ofstream(status_file) << "failed: see the player's log\n";
+  if (failed && stop) stop->failed();
   return failed ? failed : code;
 }

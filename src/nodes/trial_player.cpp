@@ -1,20 +1,5 @@
-// trial_player: plays one robot's trial on that robot's own machine (robot-side playback: robot.launch
-// playback:=robot; sequence.launch playback:=robot starts one per robot), so that its raw scans never cross the
-// network: only what the front-end makes of them (keyframe scans for the radio, measurements, acks) does. The base's
-// player decides the order (ros_glue::RobotPlayback); this node reads ahead and plays what it is asked for.
-//
-// Publishes  /<r>/played_trial (cosmo/PlayedTrial, latched) the trial's span and reference as read, and the
-//                              pre-flight check of the trial
-//            /<r>/scans_ahead  (cosmo/ScansAhead, latched) the stamps of the scans read and not played yet
-//            /<r>/points       (sensor_msgs/PointCloud2) each scan the base's player asks for, stamped in sequence
-//                              time, as the player publishes it
-// Subscribes /<r>/play_scan    (cosmo/PlayScan) the base's requests, in the team's order
-//            /player/done      (std_msgs/Empty, latched) the run is over: the node exits
-//            /player/abort     (std_msgs/String, latched) the run stops: the node exits 1
-// Params     ~robot (default: the namespace); ~sequence, ~data_root, ~simulate_config, ~simulate_out: the sequence
-//            config, as the base's player is given it (empty ~sequence: the built-in one, generated here too);
-//            only this robot's trial is read. ~read_ahead (scans held, >= 2; default 4), ~lockstep (the points'
-//            time encoding, as the player's: true in lockstep).
+// trial_player: one robot's trial read on the robot's machine (robot-side playback): announces its span and
+// reference, plays the scans the base's player asks for. Topics and parameters: docs/nodes.md.
 #include <ros/ros.h>
 #include <std_msgs/Empty.h>
 #include <std_msgs/String.h>
@@ -24,13 +9,14 @@
 #include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/pipeline/scan_read_ahead.hpp"
-#include "cosmo/pipeline/sequence_noise_models.hpp"
-#include "cosmo/ros/bag_scan_source.hpp"
+#include "cosmo/sequence/sequence_noise_models.hpp"
+#include "cosmo/trials/bag_scan_source.hpp"
 #include "cosmo/ros/node_main.hpp"
 #include "cosmo/ros/played_sequence.hpp"
 #include "cosmo/ros/point_cloud.hpp"
+#include "cosmo/ros/robot_list.hpp"
 #include "cosmo/ros/robot_playback.hpp"
-#include "cosmo/ros/trial_probe.hpp"
+#include "cosmo/trials/trial_probe.hpp"
 
 using namespace cosmo;
 
@@ -38,19 +24,14 @@ namespace {
 
 struct Options {
   char robot = 'a';
-  ros_glue::SequenceChoice sequence;
+  trials::SequenceChoice sequence;
   int read_ahead = 4;
   bool lockstep = true;
 };
 
 Options readOptions(const ros::NodeHandle& pnh) {
   Options o;
-  std::string ns = ros::this_node::getNamespace(), robot;
-  while (!ns.empty() && ns.front() == '/') ns.erase(0, 1);
-  pnh.param<std::string>("robot", robot, ns);
-  if (robot.size() != 1 || robot[0] < 'a' || robot[0] > 'z')
-    throw std::runtime_error("~robot must be one lower-case letter (or run in namespace /<r>), got '" + robot + "'");
-  o.robot = robot[0];
+  o.robot = ros_glue::nodeRobot(pnh);
   pnh.param("sequence", o.sequence.sequence, o.sequence.sequence);
   pnh.param("data_root", o.sequence.data_root, o.sequence.data_root);
   pnh.param("simulate_config", o.sequence.simulate_config, o.sequence.simulate_config);
@@ -62,15 +43,15 @@ Options readOptions(const ros::NodeHandle& pnh) {
 }
 
 /// The pre-flight check of this robot's trial alone, as the player checks every trial.
-bool checkTrial(const pipeline::SequenceConfig& config, const pipeline::TrialConfig& trial, std::string& text) {
-  pipeline::SequenceConfig alone = config;
+bool checkTrial(const sequence::SequenceConfig& config, const sequence::TrialConfig& trial, std::string& text) {
+  sequence::SequenceConfig alone = config;
   alone.trials = {trial};
-  return ros_glue::checkSequence(alone, pipeline::chooseNoiseModels(config, pipeline::defaultConfigDir()), text);
+  return trials::checkSequence(alone, sequence::chooseNoiseModels(config, cosmo::defaultConfigDir()), text);
 }
 
 class TrialPlayer {
  public:
-  TrialPlayer(ros::NodeHandle& nh, const Options& o, std::unique_ptr<pipeline::ScanSource> source)
+  TrialPlayer(ros::NodeHandle& nh, const Options& o, std::unique_ptr<sequence::ScanSource> source)
       : robot_(o.robot),
         frame_(std::string(1, o.robot) + "/base_link"),
         encoding_(o.lockstep ? ros_glue::PointTimeEncoding::RelativeSeconds : ros_glue::PointTimeEncoding::OusterNs),
@@ -134,7 +115,7 @@ class TrialPlayer {
   char robot_;
   std::string frame_;
   ros_glue::PointTimeEncoding encoding_;
-  std::unique_ptr<pipeline::ScanSource> source_;
+  std::unique_ptr<sequence::ScanSource> source_;
   pipeline::ScanReadAhead ahead_;
   std::string error_;  ///< the trial cannot go on (announced: the base's player stops with it)
   std::size_t played_ = 0;
@@ -150,13 +131,13 @@ int main(int argc, char** argv) {
   return ros_glue::runNode("trial_player", [] {
     ros::NodeHandle nh, pnh("~");
     const Options o = readOptions(pnh);
-    const pipeline::SequenceConfig config = ros_glue::loadSequenceChoice(o.sequence);
-    const pipeline::TrialConfig& trial = config.trial(o.robot);
+    const sequence::SequenceConfig config = trials::loadSequence(o.sequence);
+    const sequence::TrialConfig& trial = config.trial(o.robot);
     std::string check;
     const bool ok = checkTrial(config, trial, check);
     ROS_INFO("trial_player %c: pre-flight check of trial %s:\n%s", o.robot, trial.name.c_str(), check.c_str());
-    pipeline::TrialBasis basis;
-    if (ok) basis = ros_glue::readTrialBasis(trial);
+    sequence::TrialBasis basis;
+    if (ok) basis = trials::readTrialBasis(trial);
     ros::Publisher trial_pub = nh.advertise<cosmo::PlayedTrial>(ros_glue::playedTrialTopic(o.robot), 1, true);
     trial_pub.publish(ros_glue::playedTrialMsg(config.name, trial, basis, ok, check));
     std::unique_ptr<TrialPlayer> player;
@@ -173,7 +154,7 @@ int main(int argc, char** argv) {
           ros::shutdown();
         }));
     if (ok) {
-      player = std::make_unique<TrialPlayer>(nh, o, ros_glue::openTrialSource(trial));
+      player = std::make_unique<TrialPlayer>(nh, o, trials::openTrialSource(trial));
       player->readAhead();
       ROS_INFO("trial_player %c: trial %s of sequence %s, read ahead; playing what the base's player asks for",
                o.robot, trial.name.c_str(), config.name.c_str());

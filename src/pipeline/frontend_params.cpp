@@ -29,12 +29,4 @@ FrontendParams FrontendParams::loadDir(const std::string& dir) {
   return p;
 }
 
-std::string defaultConfigDir() {
-#ifdef COSMO_SOURCE_DIR
-  return std::string(COSMO_SOURCE_DIR) + "/config";
-#else
-  return "config";
-#endif
-}
-
 }  // namespace cosmo::pipeline

@@ -6,15 +6,15 @@
 
 namespace cosmo::pipeline {
 
-OdometryRunAhead::OdometryRunAhead(std::map<char, std::unique_ptr<ScanSource>> sources, const SequenceTiming& timing,
+OdometryRunAhead::OdometryRunAhead(std::map<char, std::unique_ptr<sequence::ScanSource>> sources, const sequence::SequenceTiming& timing,
                                    const FrontendParams& params, const std::map<char, Trajectory>& references,
                                    unsigned cores)
     : cores_(cores > 0 ? cores : std::max(1u, std::thread::hardware_concurrency())) {
   for (auto& [robot, source] : sources) {
-    std::map<char, std::unique_ptr<ScanSource>> one;
+    std::map<char, std::unique_ptr<sequence::ScanSource>> one;
     one[robot] = std::move(source);
     auto ref = references.find(robot);
-    workers_[robot] = std::make_unique<Worker>(robot, MergedScanStream(std::move(one), timing), params,
+    workers_[robot] = std::make_unique<Worker>(robot, sequence::MergedScanStream(std::move(one), timing), params,
                                                ref == references.end() ? Trajectory{} : ref->second);
   }
   for (auto& [robot, w] : workers_) {

@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "cosmo/comm/radio_status.hpp"
-#include "cosmo/pipeline/seed_streams.hpp"
+#include "cosmo/sequence/seed_streams.hpp"
 #include "cosmo/pipeline/team_radio.hpp"
 
 namespace cosmo::pipeline {
@@ -59,7 +59,7 @@ bool RadioBroker::readyToStart() const {
 std::uint64_t RadioBroker::start() {
   if (!readyToStart()) throw std::logic_error("radio broker: started before the sequence and references arrived");
   origin_ = radioGridOrigin(sequence_->first, radio_->params().step);
-  const std::uint64_t seed = deriveSeed(sequence_->second, "radio");
+  const std::uint64_t seed = sequence::deriveSeed(sequence_->second, "radio");
   radio_ = std::make_unique<RadioSimulator>(radio_->params(), radio_->robots(), seed);
   radio_->setTimeOrigin(origin_);
   for (const EarlyOffer& o : early_offers_) radio_->offerKeyframe(o.robot, o.index, o.sizes.payload, o.sizes.raw);

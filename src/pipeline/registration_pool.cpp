@@ -18,9 +18,8 @@ double threadCpuSeconds() {
 }  // namespace
 
 RegistrationPool::RegistrationPool(unsigned threads) {
-  const unsigned n = std::max(1u, threads);
-  cpu_.assign(n, 0.0);
-  for (unsigned i = 0; i < n; ++i) threads_.emplace_back([this, i] { run(i); });
+  cpu_.assign(threads, 0.0);
+  for (unsigned i = 0; i < threads; ++i) threads_.emplace_back([this, i] { run(i); });
 }
 
 RegistrationPool::~RegistrationPool() {
@@ -35,6 +34,14 @@ RegistrationPool::~RegistrationPool() {
 std::shared_future<RegistrationResult> RegistrationPool::submit(Job job) {
   Queued q{std::move(job), {}};
   std::shared_future<RegistrationResult> f = q.result.get_future().share();
+  if (threads_.empty()) {  // zero threads: inline
+    try {
+      q.result.set_value(q.job());
+    } catch (...) { q.result.set_exception(std::current_exception()); }
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++done_;
+    return f;
+  }
   {
     std::lock_guard<std::mutex> lock(mutex_);
     queue_.push_back(std::move(q));

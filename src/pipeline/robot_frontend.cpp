@@ -6,85 +6,120 @@
 
 namespace cosmo::pipeline {
 
-RobotFrontend::RobotFrontend(char robot, const FrontendParams& params, Trajectory reference)
+RobotFrontend::RobotFrontend(char robot, FrontendSetup setup)
     : robot_(robot),
-      params_(params),
-      reference_(std::move(reference)),
-      odometry_(params.loam),
-      taker_(params),
-      recognizer_(robot, params.place),
-      registration_(params.registration),
-      spill_(params.spill_keyframes ? std::make_shared<SpillFile>(params.spill_dir) : nullptr),
-      feature_cache_(std::make_shared<FeatureCache>(spill_)) {}
+      params_(std::move(setup.params)),
+      reference_(std::move(setup.reference)),
+      odometry_source_(params_.odometry, setup.reference_arrival, toStampNs(params_.reference_tolerance_s)),
+      odometry_(params_.loam),
+      taker_(params_),
+      recognizer_(robot, params_.place),
+      registration_(params_.registration),
+      spill_(params_.spill_keyframes ? std::make_shared<SpillFile>(params_.spill_dir) : nullptr),
+      feature_cache_(setup.features ? std::move(setup.features) : std::make_shared<FeatureCache>(spill_)),
+      pool_(setup.pool ? std::move(setup.pool) : std::make_shared<RegistrationPool>(0)),
+      first_index_(setup.first_index) {}
+
+RobotFrontend::RobotFrontend(char robot, const FrontendParams& params, Trajectory reference)
+    : RobotFrontend(robot, FrontendSetup{params, std::move(reference)}) {}
 
 std::optional<Pose3> RobotFrontend::referenceAt(StampNs stamp) const {
-  if (reference_.empty()) return std::nullopt;
-  if (auto p = reference_.at(stamp)) return p;
-  const StampNs tol = toStampNs(params_.reference_tolerance_s);
-  const StampNs start = reference_.startStamp(), end = reference_.endStamp();
-  if ((stamp < start && start - stamp <= tol) || (stamp > end && stamp - end <= tol))
-    return reference_.atClamped(stamp);
-  return std::nullopt;
+  return reference_.atWithin(stamp, toStampNs(params_.reference_tolerance_s));
 }
 
-void RobotFrontend::appendReference(StampNs stamp, const Pose3& sensor_in_world) {
-  if (!sensor_in_world.matrix().allFinite()) return;
-  if (!reference_.empty() && stamp <= reference_.endStamp()) return;
-  reference_.append(stamp, sensor_in_world);
+Step RobotFrontend::add(const ReferencePose& pose) {
+  Step step;
+  if (!pose.sensor_in_world.matrix().allFinite()) {
+    step.notices.push_back("reference pose at " + std::to_string(pose.stamp) + " is not finite; ignored");
+  } else if (!reference_.empty() && pose.stamp <= reference_.endStamp()) {
+    step.notices.push_back("reference pose at " + std::to_string(pose.stamp) + " is not after the last; ignored");
+  } else {
+    reference_.append(pose.stamp, pose.sensor_in_world);
+  }
+  return step;
 }
 
-ScanOutcome RobotFrontend::processScan(const Scan& scan) { return afterOdometry(scan, odometry_.update(scan)); }
-
-ScanOutcome RobotFrontend::processScan(const Scan& scan, const OdometryResult& loam_result) {
-  return afterOdometry(scan, loam_result);
+Step RobotFrontend::add(const OdometryPose& pose) {
+  odometry_source_.addExternalPose(pose.stamp, pose.sensor_in_odometry);
+  return {};
 }
 
-ScanOutcome RobotFrontend::processScan(const Scan& scan, const Pose3& external_odom_pose) {
+std::optional<OdometryResult> RobotFrontend::odometryOf(const OwnScan& scan, Step& step) {
+  const OdometryChoice choice = odometry_source_.choose(scan.stamp, reference_);
+  if (!choice.notice.empty()) step.notices.push_back(choice.notice);
+  switch (choice.use) {
+    case OdometryChoice::Use::Drop: return std::nullopt;
+    case OdometryChoice::Use::Loam: {
+      if (scan.loam) return *scan.loam;
+      OdometryResult r = odometry_.update(*scan.points);
+      if (!r.ok) step.notices.push_back("odometry: " + r.warning);
+      return r;
+    }
+    case OdometryChoice::Use::Pose: break;
+  }
+  if (!scan.points)
+    throw std::logic_error(std::string("robot ") + robot_ + ": a prepared scan carries LOAM odometry, but this " +
+                           "front-end takes its odometry from " + odometryKindName(odometry_source_.kind()));
   OdometryResult r;
-  r.pose = external_odom_pose;
-  r.delta = scans_ == 0 ? Pose3::Identity() : last_pose_.inverse() * external_odom_pose;
+  r.pose = choice.pose;
+  r.delta = scans_ == 0 ? Pose3::Identity() : last_pose_.inverse() * choice.pose;
   r.initial_guess = "external";
-  r.num_points = scan.size();
-  if (!external_odom_pose.matrix().allFinite()) {
+  r.num_points = scan.points->size();
+  if (!choice.pose.matrix().allFinite()) {
     r.ok = false;
     r.warning = "external odometry pose is not finite; previous pose kept";
     r.pose = last_pose_;
     r.delta = Pose3::Identity();
   }
-  return afterOdometry(scan, r);
+  return r;
 }
 
-ScanOutcome RobotFrontend::processPrepared(StampNs stamp, const OdometryResult& loam_result,
-                                           std::shared_ptr<const Scan> keyframe_scan) {
+Step RobotFrontend::add(const OwnScan& scan) {
+  Step step;
+  if (!scan.points && !scan.loam)
+    throw std::invalid_argument(std::string("robot ") + robot_ + ": a scan with neither points nor odometry");
+  if (scans_ > 0 && scan.stamp <= last_stamp_) {
+    step.dropped = true;
+    step.notices.push_back("stamp not increasing, scan dropped");
+    return step;
+  }
+  std::optional<OdometryResult> odometry = odometryOf(scan, step);
+  if (!odometry) {
+    step.dropped = true;
+    return step;
+  }
+  if (scan.points) {
+    afterOdometry(scan.stamp, std::move(*odometry),
+                  [&]() { return std::make_shared<const Scan>(taker_.keyframeScan(*scan.points, reference_)); }, step);
+    return step;
+  }
   bool taken = false;
-  ScanOutcome out = afterOdometry(stamp, loam_result, [&]() {
-    if (!keyframe_scan)
-      throw std::logic_error(std::string("robot ") + robot_ + ": keyframe " + std::to_string(keyframes_.size() - 1) +
-                             " at stamp " + std::to_string(stamp) + " was not prepared");
-    taken = true;
-    return std::move(keyframe_scan);
-  });
-  if (keyframe_scan && !taken)
+  afterOdometry(
+      scan.stamp, std::move(*odometry),
+      [&]() {
+        if (!scan.keyframe_scan)
+          throw std::logic_error(std::string("robot ") + robot_ + ": keyframe " +
+                                 std::to_string(keyframes_.size() - 1) + " at stamp " + std::to_string(scan.stamp) +
+                                 " was not prepared");
+        taken = true;
+        return scan.keyframe_scan;
+      },
+      step);
+  if (scan.keyframe_scan && !taken)
     throw std::logic_error(std::string("robot ") + robot_ + ": a keyframe was prepared for stamp " +
-                           std::to_string(stamp) + ", which is none");
-  return out;
+                           std::to_string(scan.stamp) + ", which is none");
+  return step;
 }
 
-ScanOutcome RobotFrontend::afterOdometry(const Scan& scan, OdometryResult odometry) {
-  return afterOdometry(scan.stamp, std::move(odometry),
-                       [&]() { return std::make_shared<const Scan>(taker_.keyframeScan(scan, reference_)); });
-}
-
-ScanOutcome RobotFrontend::afterOdometry(StampNs stamp, OdometryResult odometry,
-                                         const std::function<std::shared_ptr<const Scan>()>& take_keyframe) {
-  ScanOutcome out;
+void RobotFrontend::afterOdometry(StampNs stamp, OdometryResult odometry,
+                                  const std::function<std::shared_ptr<const Scan>()>& take_keyframe, Step& step) {
   ++scans_;
   last_pose_ = odometry.pose;
   last_stamp_ = stamp;
-  out.odometry = odometry;
+  step.odometry = odometry;
 
   const KeyframeDecision kd = taker_.update(stamp, odometry.pose);
-  if (!kd.is_keyframe) return out;
+  if (!kd.is_keyframe) return;
 
   KeyframeRecord kf;
   kf.robot = robot_;
@@ -94,59 +129,33 @@ ScanOutcome RobotFrontend::afterOdometry(StampNs stamp, OdometryResult odometry,
   kf.relative = kd.index == 0 ? Pose3::Identity() : kd.relative;
   kf.reference = referenceAt(stamp);
   keyframes_.push_back(kf);
-  out.keyframe = kf;
+  step.keyframe = kf;
 
   std::shared_ptr<const Scan> kf_scan = take_keyframe();
   const std::vector<LoopCandidate> candidates = recognizer_.addOwnKeyframe(kf.index, *kf_scan);
   own_scans_[kf.index] = std::make_shared<const KeptScan>(kf_scan, spill_);
   latest_scan_ = std::move(kf_scan);
-  for (const auto& c : candidates) {
-    PendingLoopClosure p = registerPair(c, stamp);
-    if (pool_) {
-      out.pending_loop_closures.push_back(std::move(p));
-    } else {
-      out.loop_closures.push_back(completeLoopClosure(p));
-    }
-  }
-  return out;
+  for (const auto& c : candidates) step.closures.push_back(registerPair(c, stamp));
 }
 
-std::vector<LoopClosureAttempt> RobotFrontend::receiveTeammateScan(char teammate, std::size_t index, const Scan& scan,
-                                                                   StampNs received_at) {
+TeammateScan TeammateScan::decoded(char robot, std::size_t index, const Scan& scan, StampNs received_at) {
   auto kept = std::make_shared<Scan>();
   kept->stamp = scan.stamp;
   kept->points = removeInvalidPoints(scan).points;
-  return receiveTeammateScan(teammate, index, std::shared_ptr<const Scan>(std::move(kept)), received_at);
+  return shared(robot, index, std::shared_ptr<const Scan>(std::move(kept)), received_at);
 }
 
-std::vector<LoopClosureAttempt> RobotFrontend::receiveTeammateScan(char teammate, std::size_t index,
-                                                                   std::shared_ptr<const Scan> scan,
-                                                                   StampNs received_at) {
-  std::vector<LoopClosureAttempt> out;
-  for (const auto& p : receiveTeammateScanPending(teammate, index, std::move(scan), received_at))
-    out.push_back(completeLoopClosure(p));
-  return out;
-}
-
-std::vector<PendingLoopClosure> RobotFrontend::receiveTeammateScanPending(char teammate, std::size_t index,
-                                                                          std::shared_ptr<const Scan> scan,
-                                                                          StampNs received_at) {
-  if (!scan) throw std::invalid_argument(std::string("robot ") + robot_ + ": received a null scan");
-  auto kept = std::make_shared<const KeptScan>(scan, spill_);  // `scan` stays in use meanwhile: not read back
-  return receiveTeammateScanPending(teammate, index, std::move(kept), received_at);
-}
-
-std::vector<PendingLoopClosure> RobotFrontend::receiveTeammateScanPending(char teammate, std::size_t index,
-                                                                          std::shared_ptr<const KeptScan> scan,
-                                                                          StampNs received_at) {
-  if (teammate == robot_) throw std::invalid_argument(std::string("robot ") + robot_ + ": received its own scan");
-  if (!scan) throw std::invalid_argument(std::string("robot ") + robot_ + ": received a null scan");
+Step RobotFrontend::add(const TeammateScan& in) {
+  if (in.robot == robot_) throw std::invalid_argument(std::string("robot ") + robot_ + ": received its own scan");
+  if (!in.kept && !in.scan) throw std::invalid_argument(std::string("robot ") + robot_ + ": received a null scan");
+  // `in.scan` stays in use meanwhile: not read back
+  std::shared_ptr<const KeptScan> kept = in.kept ? in.kept : std::make_shared<const KeptScan>(in.scan, spill_);
   ++received_;
-  const std::vector<LoopCandidate> candidates = recognizer_.addTeammateScan(teammate, index, *scan->get());
-  teammate_scans_[teammate][index] = std::move(scan);
-  std::vector<PendingLoopClosure> out;
-  for (const auto& c : candidates) out.push_back(registerPair(c, received_at));
-  return out;
+  const std::vector<LoopCandidate> candidates = recognizer_.addTeammateScan(in.robot, in.index, *kept->get());
+  teammate_scans_[in.robot][in.index] = std::move(kept);
+  Step step;
+  for (const auto& c : candidates) step.closures.push_back(registerPair(c, in.received_at));
+  return step;
 }
 
 std::shared_ptr<const Scan> RobotFrontend::keyframeScan(std::size_t index) const {
@@ -165,11 +174,6 @@ std::shared_ptr<const KeptScan> RobotFrontend::storedScan(char robot, std::size_
   if (t == teammate_scans_.end()) return nullptr;
   auto it = t->second.find(index);
   return it == t->second.end() ? nullptr : it->second;
-}
-
-void RobotFrontend::shareFeatureCache(std::shared_ptr<FeatureCache> cache) {
-  if (!cache) throw std::invalid_argument("robot frontend: null feature cache");
-  feature_cache_ = std::move(cache);
 }
 
 bool PendingLoopClosure::ready() const {
@@ -208,17 +212,11 @@ PendingLoopClosure RobotFrontend::registerPair(const LoopCandidate& c, StampNs c
     const std::shared_ptr<const FeatureCloud> source_features = cache->get(source, prepare);
     return registration.align(*source_features, *target_features);
   };
-  if (pool_) {
-    p.result = pool_->submit(std::move(job));
-  } else {
-    std::promise<RegistrationResult> done;
-    done.set_value(job());
-    p.result = done.get_future().share();
-  }
+  p.result = pool_->submit(std::move(job));
   return p;
 }
 
-LoopClosureAttempt RobotFrontend::completeLoopClosure(const PendingLoopClosure& pending) {
+LoopClosureAttempt RobotFrontend::complete(const PendingLoopClosure& pending) {
   if (pending.attempt.owner != robot_)
     throw std::invalid_argument(std::string("robot ") + robot_ + ": completing another robot's loop closure");
   const RegistrationResult& r = pending.result.get();

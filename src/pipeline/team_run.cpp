@@ -33,9 +33,12 @@ TeamRun::TeamRun(std::string dataset_name, std::map<char, Trajectory> references
       params.frontend.spill_keyframes ? std::make_shared<SpillFile>(params.frontend.spill_dir) : nullptr);
   if (params.registration_threads > 0) pool_ = std::make_shared<RegistrationPool>(params.registration_threads);
   for (auto& [robot, ref] : references) {
-    frontends_[robot] = std::make_unique<RobotFrontend>(robot, params.frontend, std::move(ref));
-    frontends_[robot]->shareFeatureCache(features);
-    frontends_[robot]->setRegistrationPool(pool_);
+    FrontendSetup setup;
+    setup.params = params.frontend;
+    setup.reference = std::move(ref);
+    setup.features = features;
+    setup.pool = pool_;
+    frontends_[robot] = std::make_unique<RobotFrontend>(robot, std::move(setup));
   }
 }
 
@@ -84,21 +87,17 @@ void TeamRun::advanceRadioTo(StampNs t) {
     }
     ++counts_.transfers_delivered;
     RobotFrontend& receiver = *frontends_.at(tr.receiver);
-    std::vector<PendingLoopClosure> pending;
+    Step step;
     if (payloads_.compresses()) {  // the real size model: the decompressed payload
       const std::shared_ptr<const Scan> scan = payloads_.deliver(tr.sender, tr.keyframe);
       if (!scan) return;
-      pending = receiver.receiveTeammateScanPending(tr.sender, tr.keyframe, scan, step_stamp);
+      step = receiver.add(TeammateScan::shared(tr.sender, tr.keyframe, scan, step_stamp));
     } else {  // the paper's: the sender's own kept scan (one copy, on disk, its features shared)
       std::shared_ptr<const KeptScan> kept = frontends_.at(tr.sender)->keptScan(tr.keyframe);
       if (!kept) return;
-      pending = receiver.receiveTeammateScanPending(tr.sender, tr.keyframe, std::move(kept), step_stamp);
+      step = receiver.add(TeammateScan::keptBySender(tr.sender, tr.keyframe, std::move(kept), step_stamp));
     }
-    for (auto& p : pending) {
-      pending_.push_back(PendingRecord{std::nullopt, std::move(p)});
-      ++pending_loop_closures_;
-    }
-    flush(false);
+    take(receiver, std::move(step));
   };
   advanceRadio(radio_, origin_, t, state, deliver);
   schedule_.radioStepped(nextRadioStepStamp(radio_, origin_), {});
@@ -108,41 +107,21 @@ void TeamRun::beforeScan(char robot, StampNs stamp) {
   if (schedule_.beforeScan(robot, stamp).step_radio) advanceRadioTo(stamp);
 }
 
-void TeamRun::addScan(char robot, const Scan& scan) { addScan(robot, scan, nullptr); }
-
-void TeamRun::addScan(char robot, const Scan& scan, const OdometryResult& loam_result) {
-  addScan(robot, scan, &loam_result);
-}
-
 RobotFrontend& TeamRun::frontendFor(char robot) {
   return const_cast<RobotFrontend&>(frontend(robot));  // the front-ends themselves are not const
 }
 
-void TeamRun::addScan(char robot, const Scan& scan, const OdometryResult* loam_result) {
+void TeamRun::add(char robot, const OwnScan& scan) {
   RobotFrontend& fe = frontendFor(robot);
   beforeScan(robot, scan.stamp);
   ++counts_.scans;
-  const ScanOutcome out = params_.reference_odometry && fe.hasReference()
-                              ? fe.processScan(scan, fe.reference().atClamped(scan.stamp))
-                          : loam_result ? fe.processScan(scan, *loam_result)
-                                        : fe.processScan(scan);
-  take(fe, out);
+  take(fe, fe.add(scan));
 }
 
-void TeamRun::addPrepared(char robot, StampNs stamp, const OdometryResult& loam_result,
-                          std::shared_ptr<const Scan> keyframe_scan) {
-  RobotFrontend& fe = frontendFor(robot);
-  if (params_.reference_odometry && fe.hasReference())
-    throw std::logic_error("team run: prepared scans carry LOAM odometry, but the run uses the reference odometry");
-  beforeScan(robot, stamp);
-  ++counts_.scans;
-  take(fe, fe.processPrepared(stamp, loam_result, std::move(keyframe_scan)));
-}
-
-void TeamRun::take(const RobotFrontend& fe, const ScanOutcome& out) {
+void TeamRun::take(const RobotFrontend& fe, Step step) {
   const char robot = fe.robot();
-  if (out.keyframe) {
-    const KeyframeRecord& kf = *out.keyframe;
+  if (step.keyframe) {
+    const KeyframeRecord& kf = *step.keyframe;
     ++counts_.keyframes;
     pending_.push_back(PendingRecord{kf, {}});
     const std::shared_ptr<const Scan> kf_scan = fe.keyframeScan(kf.index);
@@ -150,13 +129,8 @@ void TeamRun::take(const RobotFrontend& fe, const ScanOutcome& out) {
     if (payloads_.compresses()) sizes = payloads_.offer(robot, kf.index, kf_scan);
     radio_.offerKeyframe(robot, kf.index, sizes.payload, sizes.raw);
   }
-  for (const auto& a : out.loop_closures) {  // registered inline: ready
-    PendingRecord r;
-    r.loop_closure.attempt = a;
-    pending_.push_back(std::move(r));
-  }
-  for (const auto& p : out.pending_loop_closures) {
-    pending_.push_back(PendingRecord{std::nullopt, p});
+  for (auto& p : step.closures) {
+    pending_.push_back(PendingRecord{std::nullopt, std::move(p)});
     ++pending_loop_closures_;
   }
   flush(false);
@@ -176,11 +150,9 @@ void TeamRun::flush(bool wait) {
     PendingRecord& front = pending_.front();
     if (front.keyframe) {
       recordKeyframe(*front.keyframe);
-    } else if (!front.loop_closure.result.valid()) {  // an attempt registered inline
-      record(front.loop_closure.attempt);
     } else {
       if (!wait && pending_loop_closures_ <= kMaxPending && !front.loop_closure.ready()) return;
-      record(frontendFor(front.loop_closure.attempt.owner).completeLoopClosure(front.loop_closure));
+      record(frontendFor(front.loop_closure.attempt.owner).complete(front.loop_closure));
       --pending_loop_closures_;
     }
     pending_.pop_front();

@@ -6,7 +6,7 @@ namespace cosmo::pipeline {
 namespace {
 
 /// The single-trial run: the robot's scans through its front-end, everything recorded.
-jrl::Dataset runAlone(char robot, MergedScanStream& stream, const Trajectory& reference, const TeamRunParams& params,
+jrl::Dataset runAlone(char robot, sequence::MergedScanStream& stream, const Trajectory& reference, const TeamRunParams& params,
                       std::uint64_t radio_seed, const std::string& name) {
   TeamRun run(name, {{robot, reference}}, params, radio_seed, stream.timing().start());
   char r;
@@ -17,7 +17,7 @@ jrl::Dataset runAlone(char robot, MergedScanStream& stream, const Trajectory& re
       throw std::runtime_error("estimateTrialNoiseModels: the stream has scans of robot " + std::string(1, r) +
                                ", expected only " + std::string(1, robot));
     last = scan.stamp;
-    run.addScan(r, scan);
+    run.add(r, OwnScan::of(scan));
   }
   run.finish(last);
   return run.recorder().build();
@@ -36,7 +36,7 @@ NoiseModelRecord recordOf(const NoiseModelEstimate& e, const NoiseModelEstimatio
 
 }  // namespace
 
-TrialNoiseModels estimateTrialNoiseModels(char robot, MergedScanStream& stream, const Trajectory& reference,
+TrialNoiseModels estimateTrialNoiseModels(char robot, sequence::MergedScanStream& stream, const Trajectory& reference,
                                           const TeamRunParams& params, std::uint64_t radio_seed,
                                           const NoiseModelEstimationParams& estimation, const std::string& trial_label,
                                           const std::string& environment) {
@@ -55,7 +55,7 @@ TrialNoiseModels estimateTrialNoiseModels(char robot, MergedScanStream& stream, 
   m.estimated_from = recordOf(out.estimate, estimation, trial_label);
   std::ostringstream provenance;
   provenance << "estimated from trial " << trial_label << " run alone through the front-end ("
-             << (params.reference_odometry ? "reference" : "LOAM") << " odometry), spec section 6";
+             << (params.frontend.odometry == OdometryKind::Reference ? "reference" : "LOAM") << " odometry), spec section 6";
   m.provenance = provenance.str();
   return out;
 }

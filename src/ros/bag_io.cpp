@@ -47,14 +47,6 @@ std::string findTopic(rosbag::Bag& bag, const std::string& bag_path, const std::
 }
 }  // namespace
 
-ScanBagReader::ScanBagReader(const std::string& bag_path, const std::string& topic, bool stamp_at_end)
-    : source_(std::make_unique<trials::Ros1ScanSource>(bag_path, topic, stamp_at_end)) {}
-ScanBagReader::~ScanBagReader() = default;
-std::size_t ScanBagReader::size() const { return source_->size(); }
-bool ScanBagReader::next(Scan& scan) { return source_->next(scan); }
-const trials::CloudLayout& ScanBagReader::lastLayout() const { return source_->lastLayout(); }
-trials::DecodeCounts ScanBagReader::lastCounts() const { return source_->lastCounts(); }
-
 RosbagScanReader::RosbagScanReader(const std::string& bag_path, const std::string& topic, bool stamp_at_end)
     : impl_(std::make_unique<Impl>()) {
   initTime();

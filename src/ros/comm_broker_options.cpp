@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "cosmo/comm/comm_model.hpp"
 #include "cosmo/comm/radio_trace.hpp"
 #include "cosmo/common/config.hpp"
 #include "cosmo/ros/robot_list.hpp"
@@ -14,7 +15,7 @@ RadioParams readRadioParams(const ros::NodeHandle& pnh) {
   std::string comm = "wifi", config, size_model, timeout_mode;
   pnh.param<std::string>("comm", comm, comm);
   pnh.param<std::string>("config", config, "");
-  RadioParams params = config.empty() ? RadioParams::byName(comm) : RadioParams::fromConfig(ConfigNode::load(config));
+  RadioParams params = resolveCommModel(config.empty() ? comm : config, "").params;
   if (pnh.getParam("size_model", size_model)) params.size_model = sizeModelFromString(size_model, "~size_model");
   if (pnh.getParam("timeout_mode", timeout_mode))
     params.timeout_mode = timeoutModeFromString(timeout_mode, "~timeout_mode");

@@ -63,4 +63,13 @@ std::vector<char> readTeamRobots(const ros::NodeHandle& pnh) {
   throw std::runtime_error(std::string("shut down before the player set ") + kTeamRobotsParam);
 }
 
+char nodeRobot(const ros::NodeHandle& pnh) {
+  std::string ns = ros::this_node::getNamespace(), robot;
+  while (!ns.empty() && ns.front() == '/') ns.erase(0, 1);
+  pnh.param<std::string>("robot", robot, ns);
+  if (robot.size() != 1 || robot[0] < 'a' || robot[0] > 'z')
+    throw std::runtime_error("~robot must be one lower-case letter (or run in namespace /<r>), got '" + robot + "'");
+  return robot[0];
+}
+
 }  // namespace cosmo::ros_glue

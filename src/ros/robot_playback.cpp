@@ -26,8 +26,8 @@ std::string playedTrialTopic(char robot) { return std::string("/") + robot + "/p
 std::string scansAheadTopic(char robot) { return std::string("/") + robot + "/scans_ahead"; }
 std::string playScanTopic(char robot) { return std::string("/") + robot + "/play_scan"; }
 
-cosmo::PlayedTrial playedTrialMsg(const std::string& sequence, const pipeline::TrialConfig& trial,
-                                  const pipeline::TrialBasis& basis, bool check_ok, const std::string& check) {
+cosmo::PlayedTrial playedTrialMsg(const std::string& sequence, const sequence::TrialConfig& trial,
+                                  const sequence::TrialBasis& basis, bool check_ok, const std::string& check) {
   cosmo::PlayedTrial m;
   m.sequence = sequence;
   m.robot = std::string(1, trial.robot);
@@ -40,20 +40,20 @@ cosmo::PlayedTrial playedTrialMsg(const std::string& sequence, const pipeline::T
   return m;
 }
 
-pipeline::TrialBasis trialBasisFromMsg(const cosmo::PlayedTrial& m) {
+sequence::TrialBasis trialBasisFromMsg(const cosmo::PlayedTrial& m) {
   const std::string topic = m.robot.size() == 1 ? playedTrialTopic(m.robot[0]) : "played_trial";
   if (m.robot.size() != 1) throw std::runtime_error(topic + ": robot '" + m.robot + "' is not one character");
   if (m.first > m.last)
     throw std::runtime_error(topic + ": first " + std::to_string(m.first) + " ns is after last " +
                              std::to_string(m.last) + " ns");
-  pipeline::TrialBasis basis;
+  sequence::TrialBasis basis;
   basis.span = {m.robot[0], static_cast<StampNs>(m.first), static_cast<StampNs>(m.last)};
   basis.body_reference = trajectoryFromMsg(m.body_reference, topic + " body_reference");
   return basis;
 }
 
 /// The merge's source of one robot: its announced stamps.
-class RobotPlayback::Source : public pipeline::ScanSource {
+class RobotPlayback::Source : public sequence::ScanSource {
  public:
   Source(RobotPlayback& playback, char robot) : p_(playback), robot_(robot) {}
 
@@ -138,7 +138,7 @@ std::string RobotPlayback::describe(char robot, bool& alive) const {
          pipeline::neverRegisteredHint(ros::master::getURI());
 }
 
-std::map<char, pipeline::TrialBasis> RobotPlayback::trials(const pipeline::SequenceConfig& config) {
+std::map<char, sequence::TrialBasis> RobotPlayback::trials(const sequence::SequenceConfig& config) {
   const Clock::time_point start = Clock::now();
   Clock::time_point noted = start;
   bool late_seen = false;
@@ -169,7 +169,7 @@ std::map<char, pipeline::TrialBasis> RobotPlayback::trials(const pipeline::Seque
              list(missing).c_str(), what.c_str());
   }
   std::unique_lock<std::mutex> lock(mutex_);
-  std::map<char, pipeline::TrialBasis> basis;
+  std::map<char, sequence::TrialBasis> basis;
   std::string checks;
   bool ok = true;
   for (const auto& t : config.trials) {
@@ -189,9 +189,9 @@ std::map<char, pipeline::TrialBasis> RobotPlayback::trials(const pipeline::Seque
 
 bool RobotPlayback::listening(char robot) const { return play_pubs_.at(robot).getNumSubscribers() > 0; }
 
-std::map<char, std::unique_ptr<pipeline::ScanSource>> RobotPlayback::sources(std::function<void()> check) {
+std::map<char, std::unique_ptr<sequence::ScanSource>> RobotPlayback::sources(std::function<void()> check) {
   check_ = std::move(check);
-  std::map<char, std::unique_ptr<pipeline::ScanSource>> s;
+  std::map<char, std::unique_ptr<sequence::ScanSource>> s;
   for (char r : robots_) s[r] = std::make_unique<Source>(*this, r);
   return s;
 }

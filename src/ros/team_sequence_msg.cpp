@@ -8,14 +8,14 @@ namespace cosmo::ros_glue {
 
 std::string referenceTrajectoryTopic(char robot) { return std::string("/") + robot + "/reference_trajectory"; }
 
-cosmo::TeamSequence teamSequenceToMsg(const pipeline::SequenceConfig& config, const pipeline::SequenceTiming& timing) {
+cosmo::TeamSequence teamSequenceToMsg(const sequence::SequenceConfig& config, const sequence::SequenceTiming& timing) {
   cosmo::TeamSequence m;
   m.name = config.name;
   m.seed = config.seed;
   m.start = stampToRos(timing.start());
   m.end = stampToRos(timing.end());
   for (const auto& trial : config.trials) {
-    const pipeline::TrialTiming& t = timing.of(trial.robot);
+    const sequence::TrialTiming& t = timing.of(trial.robot);
     m.robots.push_back(trial.robot);
     m.trials.push_back(trial.name);
     m.first.push_back(stampToRos(t.start()));

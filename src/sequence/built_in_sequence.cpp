@@ -1,14 +1,14 @@
-#include "cosmo/pipeline/built_in_sequence.hpp"
+#include "cosmo/sequence/built_in_sequence.hpp"
 
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
 
-#include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/common/config_dir.hpp"
 #include "cosmo/sim/simulation_params.hpp"
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 BuiltInSequence builtInSequence(const std::string& simulate_config, const std::string& out,
                                 const std::string& tools_dir) {
@@ -32,4 +32,4 @@ std::string programDir() {
   return ec || self.empty() ? "." : self.parent_path().string();
 }
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

@@ -1,10 +1,10 @@
-#include "cosmo/pipeline/gate_threshold.hpp"
+#include "cosmo/sequence/gate_threshold.hpp"
 
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 std::map<std::string, std::string> gateThresholdKeys(double threshold) {
   if (!std::isfinite(threshold) || threshold < kGateThresholdMin || threshold > kGateThresholdMax)
@@ -20,4 +20,4 @@ void applyGateThreshold(SequenceConfig& config, double threshold) {
   for (const auto& [key, value] : gateThresholdKeys(threshold)) config.registration[key] = value;
 }
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

@@ -1,8 +1,8 @@
-#include "cosmo/pipeline/reference_stream.hpp"
+#include "cosmo/sequence/reference_stream.hpp"
 
 #include <algorithm>
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 std::vector<StampNs> ReferenceStream::beforeScan(char robot, const Trajectory& reference, StampNs stamp) {
   if (reference.empty()) return {};
@@ -17,4 +17,4 @@ std::vector<StampNs> ReferenceStream::beforeScan(char robot, const Trajectory& r
   return stamps;
 }
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

@@ -1,9 +1,9 @@
-#include "cosmo/pipeline/scan_stream.hpp"
+#include "cosmo/sequence/scan_stream.hpp"
 
 #include <stdexcept>
 #include <string>
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 MergedScanStream::MergedScanStream(std::map<char, std::unique_ptr<ScanSource>> sources, SequenceTiming timing)
     : sources_(std::move(sources)), timing_(std::move(timing)) {
@@ -51,4 +51,4 @@ bool MergedScanStream::next(char& robot, Scan& scan) {
   return true;
 }
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

@@ -1,4 +1,4 @@
-#include "cosmo/pipeline/sequence_config.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -9,7 +9,7 @@
 #include "cosmo/common/config.hpp"
 #include "cosmo/common/pose_io.hpp"
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 std::string resolvePath(const std::string& base_dir, const std::string& path) {
   if (path.empty()) return path;
@@ -180,4 +180,4 @@ const TrialConfig& SequenceConfig::trial(char robot) const {
                            std::string(1, robot) + "'");
 }
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

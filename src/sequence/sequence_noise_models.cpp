@@ -1,11 +1,11 @@
-#include "cosmo/pipeline/sequence_noise_models.hpp"
+#include "cosmo/sequence/sequence_noise_models.hpp"
 
 #include <filesystem>
 #include <sstream>
 
 #include "cosmo/sim/simulation_params.hpp"
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 namespace {
 
 std::string sequenceLabel(const SequenceConfig& s) { return s.path.empty() ? "sequence " + s.name : s.path; }
@@ -110,4 +110,4 @@ const TrialConfig& findTrial(const SequenceConfig& sequence, const std::string& 
                            "' (robot id or trial name: " + trialChoices(sequence) + ")");
 }
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

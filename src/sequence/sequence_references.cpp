@@ -1,8 +1,8 @@
-#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/sequence/sequence_references.hpp"
 
 #include <cmath>
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 Trajectory toSensorReference(const Trajectory& body_in_world, const Pose3& extrinsic, const TrialTiming& timing,
                              const Eigen::Vector3d& offset) {
@@ -22,4 +22,4 @@ Eigen::Vector3d roundedFirstPosition(const Trajectory& anchor_reference) {
   return Eigen::Vector3d(std::round(first.x()), std::round(first.y()), std::round(first.z()));
 }
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

@@ -1,13 +1,13 @@
-#include "cosmo/pipeline/sequence_timing.hpp"
+#include "cosmo/sequence/sequence_timing.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "cosmo/pipeline/seed_streams.hpp"
+#include "cosmo/sequence/seed_streams.hpp"
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 StampNs TrialTiming::toSequence(StampNs recorded) const {
   const std::int64_t s = static_cast<std::int64_t>(recorded) + offset_ns;
@@ -67,4 +67,4 @@ const TrialTiming& SequenceTiming::of(char robot) const {
   throw std::runtime_error(std::string("sequence timing: unknown robot '") + robot + "'");
 }
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

@@ -1,11 +1,11 @@
-#include "cosmo/pipeline/trial_basis.hpp"
+#include "cosmo/sequence/trial_basis.hpp"
 
 #include <stdexcept>
 #include <string>
 
-#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/sequence/sequence_references.hpp"
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 namespace {
 
@@ -50,4 +50,4 @@ std::map<char, Trajectory> sensorReferences(const SequenceConfig& config, const 
   return refs;
 }
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

@@ -1,13 +1,13 @@
-#include "cosmo/pipeline/trial_check.hpp"
+#include "cosmo/sequence/trial_check.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
-#include "cosmo/pipeline/trial_coverage.hpp"
+#include "cosmo/sequence/trial_coverage.hpp"
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 namespace {
 
@@ -119,4 +119,4 @@ bool formatChecks(const std::vector<TrialCheck>& checks, std::string& text) {
   return errors.empty();
 }
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

@@ -1,4 +1,4 @@
-#include "cosmo/pipeline/trial_coverage.hpp"
+#include "cosmo/sequence/trial_coverage.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 std::string formatStamp(StampNs stamp) {
   char buf[48];
@@ -92,4 +92,4 @@ bool CoveredScanSource::next(Scan& scan) {
   return false;
 }
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "cosmo/common/nearest_name.hpp"
-#include "cosmo/pipeline/sequence_noise_models.hpp"
+#include "cosmo/sequence/sequence_noise_models.hpp"
 #include "cosmo/suite/file_identity.hpp"
 #include "cosmo/suite/plan_inputs.hpp"
 
@@ -18,7 +18,7 @@ namespace {
 /// A sequence entry with its config read.
 struct Resolved {
   SequenceEntry entry;
-  pipeline::SequenceConfig config;
+  sequence::SequenceConfig config;
   std::string data_root;  ///< what the jobs pass as --data-root ("" = none)
 };
 
@@ -39,7 +39,7 @@ Resolved resolve(const SequenceEntry& e, const PlanOptions& o) {
     while (r.data_root.size() > 1 && r.data_root.back() == '/') r.data_root.pop_back();
   }
   try {
-    r.config = pipeline::SequenceConfig::load(r.entry.sequence, r.data_root);
+    r.config = sequence::SequenceConfig::load(r.entry.sequence, r.data_root);
   } catch (const std::exception& ex) { throw std::runtime_error(e.where + ": " + ex.what()); }
   if (r.entry.label.empty()) r.entry.label = nameSafe(r.config.name) + layoutPart(e.layout);
   return r;
@@ -148,7 +148,7 @@ Job estimateJob(const EstimateEntry& e, const Resolved& seq, const SuiteFile& su
   job.id = "noise_models/" + e.name;
   job.label = seq.entry.label;
   try {
-    pipeline::findTrial(seq.config, e.trial);
+    sequence::findTrial(seq.config, e.trial);
   } catch (const std::exception& ex) { throw std::runtime_error(e.where + ".trial: " + ex.what()); }
   job.args = {seq.entry.sequence, "--estimate-noise-models", e.trial, "--estimate-only"};
   if (!seq.data_root.empty()) job.args.insert(job.args.end(), {"--data-root", seq.data_root});

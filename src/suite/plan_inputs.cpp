@@ -6,7 +6,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "cosmo/pipeline/sequence_noise_models.hpp"
+#include "cosmo/comm/comm_model.hpp"
+#include "cosmo/sequence/sequence_noise_models.hpp"
 #include "cosmo/trials/bag_format.hpp"
 #include "cosmo/trials/reference_file.hpp"
 #include "cosmo/trials/scan_cache.hpp"
@@ -33,7 +34,7 @@ void addProgram(const Plan& plan, Job& job, const std::string& name) {
       job.inputs.push_back({"library " + fs::path(l).filename().string(), l, true});
 }
 
-void addTrial(Job& job, const pipeline::TrialConfig& t) {
+void addTrial(Job& job, const sequence::TrialConfig& t) {
   job.inputs.push_back({std::string("bag ") + t.robot, t.bag});
   if (!t.reference.empty()) job.inputs.push_back({std::string("reference ") + t.robot, t.reference});
 }
@@ -45,11 +46,11 @@ void addFrontendConfig(const Plan& plan, Job& job) {
 }
 
 /// The noise-model file of a group that uses no estimate; stops when the sequence has no usable models.
-std::string sequenceNoiseModels(const Plan& plan, const pipeline::SequenceConfig& config) {
+std::string sequenceNoiseModels(const Plan& plan, const sequence::SequenceConfig& config) {
   try {
-    pipeline::loadSequenceNoiseModels(config, plan.config_dir);
-    return pipeline::sequenceNoiseModelsPath(config, plan.config_dir);
-  } catch (const pipeline::NoiseModelsMissing& e) {
+    sequence::loadSequenceNoiseModels(config, plan.config_dir);
+    return sequence::sequenceNoiseModelsPath(config, plan.config_dir);
+  } catch (const sequence::NoiseModelsMissing& e) {
     throw std::runtime_error(plan.suite_path + ": " + e.what() +
                              "\nOr let the suite estimate them first: a `noise_models:` entry (config/suites/"
                              "cosmo_bench.yaml has one for cu_boulder).");
@@ -58,7 +59,7 @@ std::string sequenceNoiseModels(const Plan& plan, const pipeline::SequenceConfig
 
 }  // namespace
 
-void addGroupInputs(const Plan& plan, Job& job, const pipeline::SequenceConfig& config,
+void addGroupInputs(const Plan& plan, Job& job, const sequence::SequenceConfig& config,
                     const std::string& estimate_file) {
   job.sequence = config.path;
   job.sequence_name = config.name;
@@ -70,8 +71,8 @@ void addGroupInputs(const Plan& plan, Job& job, const pipeline::SequenceConfig& 
   for (const auto& t : config.trials) addTrial(job, t);
   addFrontendConfig(plan, job);
   for (const auto& c : job.comms) {
-    const fs::path file = fs::path(plan.config_dir) / "comm" / (c + ".yaml");
-    if (fs::exists(file)) job.inputs.push_back({"config comm/" + c + ".yaml", file.string()});
+    const CommModel model = resolveCommModel(c, plan.config_dir);
+    if (!model.file.empty()) job.inputs.push_back({"config comm/" + c + ".yaml", model.file});
   }
   job.inputs.push_back(
       {"noise models", estimate_file.empty() ? sequenceNoiseModels(plan, config) : estimate_file});
@@ -80,21 +81,21 @@ void addGroupInputs(const Plan& plan, Job& job, const pipeline::SequenceConfig& 
   if (plan.max_seconds > 0) job.seconds = std::min(job.seconds, plan.max_seconds);
 }
 
-void addEstimateInputs(const Plan& plan, Job& job, const pipeline::SequenceConfig& config, const std::string& trial) {
+void addEstimateInputs(const Plan& plan, Job& job, const sequence::SequenceConfig& config, const std::string& trial) {
   job.sequence = config.path;
   job.sequence_name = config.name;
   addProgram(plan, job, "cosmo_generate");
   job.inputs.push_back({"sequence", config.path});
-  const pipeline::TrialConfig& t = pipeline::findTrial(config, trial);
+  const sequence::TrialConfig& t = sequence::findTrial(config, trial);
   addTrial(job, t);
   addFrontendConfig(plan, job);
   job.robots = 1;
-  pipeline::SequenceConfig alone = config;
+  sequence::SequenceConfig alone = config;
   alone.trials = {t};
   job.seconds = estimatedSequenceSeconds(alone);
 }
 
-std::vector<std::string> coldCompressedBags(const pipeline::SequenceConfig& config) {
+std::vector<std::string> coldCompressedBags(const sequence::SequenceConfig& config) {
   std::vector<std::string> cold;
   const std::string dir = trials::scanCacheDir();
   if (dir.empty()) return cold;  // no cache: every run decompresses
@@ -143,7 +144,7 @@ void checkInputsExist(const Plan& plan) {
                            "Give the folder of the downloads with --data-root (docs/suite.md).");
 }
 
-double estimatedSequenceSeconds(const pipeline::SequenceConfig& config) {
+double estimatedSequenceSeconds(const sequence::SequenceConfig& config) {
   double longest = 0.0;
   for (const auto& t : config.trials) {
     if (t.reference.empty() || !fs::exists(t.reference)) continue;

@@ -7,7 +7,7 @@
 #include "cosmo/comm/radio_params.hpp"
 #include "cosmo/common/nearest_name.hpp"
 #include "cosmo/common/param_list.hpp"
-#include "cosmo/pipeline/gate_threshold.hpp"
+#include "cosmo/sequence/gate_threshold.hpp"
 #include "cosmo/registration/registration_params.hpp"
 
 namespace cosmo::suite {
@@ -74,7 +74,7 @@ VariantKey odometryKey() {
           },
           [](const std::string&, const VariantValue& v) { return "odom-" + v.scalar; },
           [](const std::string&, const VariantValue& v, VariantEffect& e) {
-            if (v.scalar == "reference") e.generate_args.push_back("--reference-odometry");
+            e.generate_args.insert(e.generate_args.end(), {"--odometry", v.scalar});
           }};
 }
 
@@ -119,7 +119,7 @@ VariantKey gateThresholdKey() {
       std::size_t used = 0;
       const double x = std::stod(v.scalar, &used);
       if (used != v.scalar.size()) throw std::invalid_argument("trailing text");
-      pipeline::gateThresholdKeys(x);
+      sequence::gateThresholdKeys(x);
     } catch (const std::exception&) { fail(v, "expected a threshold in [0, 1], got '" + v.scalar + "'"); }
   };
   return {"gate_threshold", "the strict gate's min_structure_overlap, on top of the sequence's keys (sweep 0.40-0.70)",

@@ -1,18 +1,18 @@
-#include "cosmo/ros/bag_scan_source.hpp"
+#include "cosmo/trials/bag_scan_source.hpp"
 
 #include <algorithm>
 #include <filesystem>
 #include <mutex>
 #include <stdexcept>
 
-#include "cosmo/pipeline/trial_coverage.hpp"
+#include "cosmo/sequence/trial_coverage.hpp"
 #include "cosmo/trials/bag_format.hpp"
 #include "cosmo/trials/scan_cache.hpp"
 #include "cosmo/trials/trial_reference.hpp"
 
-namespace cosmo::ros_glue {
+namespace cosmo::trials {
 
-std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const pipeline::TrialConfig& trial) {
+std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const sequence::TrialConfig& trial) {
   if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1) {
     auto decode = [&]() -> std::unique_ptr<trials::TrialScanSource> {
       return std::make_unique<trials::Ros1ScanSource>(trial.bag, trial.topic, trial.stamp_at_end);
@@ -27,7 +27,7 @@ std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const pipeline::Tri
   return std::make_unique<trials::Ros2ScanSource>(trial.bag, trial.topic, trial.stamp_at_end);
 }
 
-pipeline::TrialSpan readTrialSpan(const pipeline::TrialConfig& trial) {
+sequence::TrialSpan readTrialSpan(const sequence::TrialConfig& trial) {
   // A run asks for each trial's span more than once (the pre-flight check, the synchronization): it is read once
   // per process, and for a ROS 1 bag with compressed chunks kept beside its scan cache, so that a later run
   // decompresses none of it.
@@ -41,7 +41,7 @@ pipeline::TrialSpan readTrialSpan(const pipeline::TrialConfig& trial) {
     std::lock_guard<std::mutex> lock(mutex);
     if (auto it = known.find(key); it != known.end()) return {trial.robot, it->second.first, it->second.second};
   }
-  pipeline::TrialSpan span;
+  sequence::TrialSpan span;
   if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1) {
     const std::string cache_dir = trials::scanCacheDir();
     const bool cached = !cache_dir.empty() && trials::ros1ChunksCompressed(trial.bag);
@@ -59,8 +59,8 @@ pipeline::TrialSpan readTrialSpan(const pipeline::TrialConfig& trial) {
   return span;
 }
 
-pipeline::TrialSpan readSweepEndSpan(const pipeline::TrialConfig& trial) {
-  pipeline::TrialSpan span = readTrialSpan(trial);
+sequence::TrialSpan readSweepEndSpan(const sequence::TrialConfig& trial) {
+  sequence::TrialSpan span = readTrialSpan(trial);
   if (trial.stamp_at_end) return span;
   // Header stamps at the sweep start: the decoded scans are stamped at its end; every sweep lasts as the first.
   Scan first;
@@ -72,34 +72,34 @@ pipeline::TrialSpan readSweepEndSpan(const pipeline::TrialConfig& trial) {
   return span;
 }
 
-pipeline::TrialBasis readTrialBasis(const pipeline::TrialConfig& trial) {
-  pipeline::TrialBasis basis;
+sequence::TrialBasis readTrialBasis(const sequence::TrialConfig& trial) {
+  sequence::TrialBasis basis;
   basis.body_reference = trials::readBodyReference(trial);
-  basis.span = pipeline::TrialCoverage(trial.name, basis.body_reference).clip(readSweepEndSpan(trial));
+  basis.span = sequence::TrialCoverage(trial.name, basis.body_reference).clip(readSweepEndSpan(trial));
   return basis;
 }
 
-pipeline::SequenceTiming synchronizeSequence(const pipeline::SequenceConfig& config) {
-  std::map<char, pipeline::TrialBasis> basis;
+sequence::SequenceTiming synchronizeSequence(const sequence::SequenceConfig& config) {
+  std::map<char, sequence::TrialBasis> basis;
   for (const auto& t : config.trials) basis[t.robot] = readTrialBasis(t);
-  return pipeline::synchronizeTrials(config, basis);
+  return sequence::synchronizeTrials(config, basis);
 }
 
-std::unique_ptr<pipeline::ScanSource> openTrialSource(const pipeline::TrialConfig& trial) {
+std::unique_ptr<sequence::ScanSource> openTrialSource(const sequence::TrialConfig& trial) {
   std::unique_ptr<trials::TrialScanSource> scans = openTrialScanSource(trial);
   const bool caching = dynamic_cast<trials::CachingScanSource*>(scans.get()) != nullptr;  // complete the cache
-  return std::make_unique<pipeline::CoveredScanSource>(std::move(scans), trials::trialCoverage(trial), caching);
+  return std::make_unique<sequence::CoveredScanSource>(std::move(scans), trials::trialCoverage(trial), caching);
 }
 
-std::map<char, std::unique_ptr<pipeline::ScanSource>> openTrialSources(const pipeline::SequenceConfig& config) {
-  std::map<char, std::unique_ptr<pipeline::ScanSource>> sources;
+std::map<char, std::unique_ptr<sequence::ScanSource>> openTrialSources(const sequence::SequenceConfig& config) {
+  std::map<char, std::unique_ptr<sequence::ScanSource>> sources;
   for (const auto& t : config.trials) sources[t.robot] = openTrialSource(t);
   return sources;
 }
 
-pipeline::MergedScanStream openSequenceStream(const pipeline::SequenceConfig& config,
-                                              const pipeline::SequenceTiming& timing) {
-  return pipeline::MergedScanStream(openTrialSources(config), timing);
+sequence::MergedScanStream openSequenceStream(const sequence::SequenceConfig& config,
+                                              const sequence::SequenceTiming& timing) {
+  return sequence::MergedScanStream(openTrialSources(config), timing);
 }
 
-}  // namespace cosmo::ros_glue
+}  // namespace cosmo::trials

@@ -7,7 +7,7 @@
 
 namespace cosmo::trials {
 
-std::vector<std::pair<std::string, std::string>> sequenceMetadata(const pipeline::SequenceConfig& config) {
+std::vector<std::pair<std::string, std::string>> sequenceMetadata(const sequence::SequenceConfig& config) {
   const Eigen::Vector3d o = sequenceReferenceOffset(config);
   char offset[160];
   std::snprintf(offset, sizeof offset, "[%.3f, %.3f, %.3f]  # m, subtracted from every reference position", o.x(),

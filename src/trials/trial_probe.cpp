@@ -1,20 +1,20 @@
-#include "cosmo/ros/trial_probe.hpp"
+#include "cosmo/trials/trial_probe.hpp"
 
 #include <filesystem>
 #include <set>
 
-#include "cosmo/ros/bag_scan_source.hpp"
+#include "cosmo/trials/bag_scan_source.hpp"
 #include "cosmo/trials/bag_format.hpp"
 #include "cosmo/trials/ros1_bag.hpp"
 #include "cosmo/trials/ros2_bag.hpp"
 #include "cosmo/trials/trial_reference.hpp"
 
-namespace cosmo::ros_glue {
+namespace cosmo::trials {
 
 namespace {
 
 /// "name (type)" of every topic of the bag; `has` = whether `topic` is one of them (with or without its slash).
-std::vector<std::string> listTopics(const pipeline::TrialConfig& trial, bool& has) {
+std::vector<std::string> listTopics(const sequence::TrialConfig& trial, bool& has) {
   std::set<std::string> out;
   has = false;
   auto match = [&](const std::string& name) {
@@ -37,8 +37,8 @@ std::vector<std::string> listTopics(const pipeline::TrialConfig& trial, bool& ha
 
 }  // namespace
 
-pipeline::TrialProbe probeTrial(const pipeline::TrialConfig& trial, std::size_t scans) {
-  pipeline::TrialProbe probe;
+sequence::TrialProbe probeTrial(const sequence::TrialConfig& trial, std::size_t scans) {
+  sequence::TrialProbe probe;
   if (!std::filesystem::exists(trial.bag)) {
     probe.error = "bag not found: " + trial.bag;
     return probe;
@@ -67,8 +67,8 @@ pipeline::TrialProbe probeTrial(const pipeline::TrialConfig& trial, std::size_t 
   return probe;
 }
 
-bool checkSequence(const pipeline::SequenceConfig& config, const std::string& noise_models, std::string& text) {
-  std::vector<pipeline::TrialCheck> checks;
+bool checkSequence(const sequence::SequenceConfig& config, const std::string& noise_models, std::string& text) {
+  std::vector<sequence::TrialCheck> checks;
   for (const auto& t : config.trials) {
     Trajectory reference;
     std::string reference_error;
@@ -78,9 +78,9 @@ bool checkSequence(const pipeline::SequenceConfig& config, const std::string& no
       else
         reference = trials::readBodyReference(t);
     } catch (const std::exception& e) { reference_error = t.name + ": " + e.what(); }
-    checks.push_back(pipeline::checkTrial(t, probeTrial(t), reference, reference_error, noise_models));
+    checks.push_back(sequence::checkTrial(t, probeTrial(t), reference, reference_error, noise_models));
   }
-  const bool ok = pipeline::formatChecks(checks, text);
+  const bool ok = sequence::formatChecks(checks, text);
   std::string hint;
   for (const auto& c : checks)
     if (!ok && config.data_root_from == "config folder" && c.line.find("NOT FOUND") != std::string::npos)
@@ -92,4 +92,4 @@ bool checkSequence(const pipeline::SequenceConfig& config, const std::string& no
   return ok;
 }
 
-}  // namespace cosmo::ros_glue
+}  // namespace cosmo::trials

@@ -61,13 +61,13 @@ bool Ros1ScanSource::next(Scan& scan) {
   return true;
 }
 
-pipeline::TrialSpan readRos1TrialSpan(const std::string& bag_path, const std::string& topic, char robot) {
+sequence::TrialSpan readRos1TrialSpan(const std::string& bag_path, const std::string& topic, char robot) {
   const std::unique_ptr<Ros1MessageStream> stream = openRos1Topic(bag_path, topic, 0);
   const std::string where = bag_path + " " + topic;
   Ros1MessageRef m;
   Ros1Bag::Bytes bytes;
   auto stampOf = [&]() { return parseRos1PointCloud2(bytes.data, bytes.size, where).layout.stamp; };
-  pipeline::TrialSpan span;
+  sequence::TrialSpan span;
   span.robot = robot;
   stream->next(m, bytes);
   span.first = span.last = stampOf();
@@ -78,13 +78,13 @@ pipeline::TrialSpan readRos1TrialSpan(const std::string& bag_path, const std::st
   return span;
 }
 
-pipeline::TrialSpan readRos2TrialSpan(const std::string& bag_path, const std::string& topic, char robot) {
+sequence::TrialSpan readRos2TrialSpan(const std::string& bag_path, const std::string& topic, char robot) {
   Ros2BagReader reader(bag_path, topic);
   checkType(reader);
   auto stampOf = [&](const Ros2BagReader::Message& m) {
     return parseCdrPointCloud2(m.data, m.size, reader.where()).layout.stamp;
   };
-  pipeline::TrialSpan span;
+  sequence::TrialSpan span;
   span.robot = robot;
   Ros2BagReader::Message m;
   if (!reader.next(m)) throw std::runtime_error(reader.where() + ": no messages on this topic");

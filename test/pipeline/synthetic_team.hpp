@@ -7,7 +7,7 @@
 
 #include "cosmo/common/scan.hpp"
 #include "cosmo/common/trajectory.hpp"
-#include "cosmo/pipeline/sequence_timing.hpp"
+#include "cosmo/sequence/sequence_timing.hpp"
 #include "cosmo/sim/scan_simulator.hpp"
 #include "cosmo/sim/sequence_planner.hpp"
 #include "cosmo/sim/simulation_params.hpp"

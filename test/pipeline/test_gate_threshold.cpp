@@ -3,10 +3,11 @@
 #include <gtest/gtest.h>
 
 #include "cosmo/pipeline/frontend_params.hpp"
-#include "cosmo/pipeline/gate_threshold.hpp"
+#include "cosmo/sequence/gate_threshold.hpp"
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
+using namespace cosmo::sequence;
 
 TEST(GateThreshold, SetsTheStrictGatesStructureOverlapOnTopOfTheSequencesKeys) {
   SequenceConfig demo;  // the demo's registration: KISS-Matcher alone, the paper's gate

@@ -13,9 +13,9 @@
 #include "cosmo/pipeline/feature_cache.hpp"
 #include "cosmo/pipeline/kept_scan.hpp"
 #include "cosmo/pipeline/robot_frontend.hpp"
-#include "cosmo/pipeline/scan_stream.hpp"
-#include "cosmo/pipeline/seed_streams.hpp"
-#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/sequence/scan_stream.hpp"
+#include "cosmo/sequence/seed_streams.hpp"
+#include "cosmo/sequence/sequence_references.hpp"
 #include "cosmo/pipeline/spill_file.hpp"
 #include "cosmo/pipeline/team_run.hpp"
 #include "cosmo/registration/global_registration.hpp"
@@ -23,6 +23,7 @@
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
+using namespace cosmo::sequence;
 
 namespace {
 
@@ -133,25 +134,26 @@ TEST(RobotFrontend, KeepsOnlyTheLatestKeyframeScanInMemoryWithTheSameClosures) {
   const auto& b = team()[1];
   FrontendParams spilled = FrontendParams::loadDir(defaultConfigDir());
   spilled.place.exclude_recent = 5;
+  spilled.odometry = OdometryKind::Reference;
   FrontendParams in_memory = spilled;
   in_memory.spill_keyframes = false;
   RobotFrontend fa('a', spilled, sensorReference(a)), fb('b', spilled, sensorReference(b));
   RobotFrontend ma('a', in_memory, sensorReference(a)), mb('b', in_memory, sensorReference(b));
   std::size_t largest = 0;
   for (std::size_t i = 0; i < a.scans.size(); ++i) {
-    for (RobotFrontend* f : {&fa, &ma}) f->processScan(a.scans[i], f->reference().atClamped(a.scans[i].stamp));
-    for (RobotFrontend* f : {&fb, &mb}) f->processScan(b.scans[i], f->reference().atClamped(b.scans[i].stamp));
+    for (RobotFrontend* f : {&fa, &ma}) f->add(OwnScan::of(a.scans[i]));
+    for (RobotFrontend* f : {&fb, &mb}) f->add(OwnScan::of(b.scans[i]));
   }
   ASSERT_GE(fa.keyframes().size(), 4u);
   for (std::size_t k = 0; k < fa.keyframes().size(); ++k) largest = std::max(largest, fa.keptScan(k)->bytes());
   // b receives every keyframe of a: the same attempts, bit for bit, from the spilled and the in-memory stores
   std::size_t attempts = 0;
   for (std::size_t k = 0; k < fa.keyframes().size(); ++k) {
-    const auto s = fb.receiveTeammateScanPending('a', k, fa.keptScan(k), 1000 + k);
-    const auto m = mb.receiveTeammateScanPending('a', k, ma.keptScan(k), 1000 + k);
+    const auto s = fb.add(TeammateScan::keptBySender('a', k, fa.keptScan(k), 1000 + k)).closures;
+    const auto m = mb.add(TeammateScan::keptBySender('a', k, ma.keptScan(k), 1000 + k)).closures;
     ASSERT_EQ(s.size(), m.size());
     for (std::size_t i = 0; i < s.size(); ++i) {
-      const LoopClosureAttempt x = fb.completeLoopClosure(s[i]), y = mb.completeLoopClosure(m[i]);
+      const LoopClosureAttempt x = fb.complete(s[i]), y = mb.complete(m[i]);
       EXPECT_EQ(x.accepted, y.accepted);
       EXPECT_EQ(x.inliers, y.inliers);
       EXPECT_TRUE(x.measurement.matrix() == y.measurement.matrix());
@@ -187,7 +189,7 @@ std::string teamJrl(bool spill, unsigned registration_threads) {
   TeamRunParams params;
   params.frontend = FrontendParams::loadDir(defaultConfigDir());
   params.frontend.spill_keyframes = spill;
-  params.reference_odometry = true;
+  params.frontend.odometry = OdometryKind::Reference;
   params.registration_threads = registration_threads;
   TeamRun run("test_team", refs, params, deriveSeed(5, "radio"), timing.start());
   std::map<char, std::unique_ptr<ScanSource>> sources;
@@ -195,7 +197,7 @@ std::string teamJrl(bool spill, unsigned registration_threads) {
   MergedScanStream stream(std::move(sources), timing);
   char robot;
   Scan scan;
-  while (stream.next(robot, scan)) run.addScan(robot, scan);
+  while (stream.next(robot, scan)) run.add(robot, OwnScan::of(scan));
   run.finish(timing.end());
   EXPECT_GT(run.counts().inter_accepted + run.counts().intra_accepted, 0u);
   const auto path = (std::filesystem::temp_directory_path() /

@@ -10,13 +10,14 @@
 #include "cosmo/dataset/noise_model_estimation.hpp"
 #include "cosmo/dataset/outlier_rule.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
-#include "cosmo/pipeline/scan_stream.hpp"
-#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/sequence/scan_stream.hpp"
+#include "cosmo/sequence/sequence_references.hpp"
 #include "cosmo/pipeline/team_run.hpp"
 #include "synthetic_team.hpp"
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
+using namespace cosmo::sequence;
 
 namespace {
 
@@ -61,7 +62,7 @@ TEST(LookalikeClosures, ATerracedStreetYieldsAcceptedWrongPlaceClosuresLabelledO
   MergedScanStream stream(std::move(sources), timing);
   char robot;
   Scan scan;
-  while (stream.next(robot, scan)) run.addScan(robot, scan);
+  while (stream.next(robot, scan)) run.add(robot, OwnScan::of(scan));
   run.finish(timing.end());
 
   // The street is driven once: every loop closure the gate accepted is a place a block or more away.

@@ -11,11 +11,12 @@
 #include "cosmo/comm/scan_compression.hpp"
 #include "cosmo/comm/transfer_log.hpp"
 #include "cosmo/pipeline/radio_broker.hpp"
-#include "cosmo/pipeline/seed_streams.hpp"
+#include "cosmo/sequence/seed_streams.hpp"
 #include "cosmo/pipeline/team_radio.hpp"
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
+using namespace cosmo::sequence;
 
 namespace {
 

@@ -16,6 +16,7 @@
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
+using namespace cosmo::sequence;
 
 namespace {
 
@@ -66,7 +67,7 @@ TEST(RegistrationPool, ResultsAreTheInlineResultsBitForBitAndErrorsReachTheCalle
   for (std::size_t i = 0; i < 4; ++i) pairs.emplace_back(scanOf('a', i), scanOf('b', 3 - i));
   std::vector<RegistrationResult> inline_results;
   for (const auto& [s, t] : pairs) inline_results.push_back(registration.align(*s->get(), *t->get()));
-  for (unsigned threads : {1u, 2u, 3u}) {
+  for (unsigned threads : {0u, 1u, 2u, 3u}) {  // 0: inline in submit()
     auto cache = std::make_shared<FeatureCache>();
     RegistrationPool pool(threads);
     EXPECT_EQ(pool.threads(), threads);

@@ -9,12 +9,13 @@
 #include <random>
 
 #include "cosmo/pipeline/scan_read_ahead.hpp"
-#include "cosmo/pipeline/scan_stream.hpp"
-#include "cosmo/pipeline/sequence_references.hpp"
-#include "cosmo/pipeline/trial_basis.hpp"
+#include "cosmo/sequence/scan_stream.hpp"
+#include "cosmo/sequence/sequence_references.hpp"
+#include "cosmo/sequence/trial_basis.hpp"
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
+using namespace cosmo::sequence;
 
 namespace {
 

@@ -11,13 +11,14 @@
 
 #include "cosmo/dataset/outlier_rule.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
-#include "cosmo/pipeline/sequence_noise_models.hpp"
-#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/sequence/sequence_noise_models.hpp"
+#include "cosmo/sequence/sequence_references.hpp"
 #include "cosmo/pipeline/trial_noise_models.hpp"
 #include "synthetic_team.hpp"
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
+using namespace cosmo::sequence;
 
 namespace {
 

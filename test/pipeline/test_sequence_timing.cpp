@@ -6,13 +6,14 @@
 #include <fstream>
 
 #include "cosmo/pipeline/frontend_params.hpp"
-#include "cosmo/pipeline/sequence_config.hpp"
-#include "cosmo/pipeline/sequence_timing.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
+#include "cosmo/sequence/sequence_timing.hpp"
 #include "cosmo/sim/sequence_planner.hpp"
 #include "cosmo/sim/simulation_params.hpp"
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
+using namespace cosmo::sequence;
 
 namespace {
 

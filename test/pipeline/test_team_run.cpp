@@ -9,15 +9,16 @@
 #include <sstream>
 
 #include "cosmo/comm/radio_trace.hpp"
-#include "cosmo/pipeline/scan_stream.hpp"
-#include "cosmo/pipeline/seed_streams.hpp"
-#include "cosmo/pipeline/sequence_references.hpp"
+#include "cosmo/sequence/scan_stream.hpp"
+#include "cosmo/sequence/seed_streams.hpp"
+#include "cosmo/sequence/sequence_references.hpp"
 #include "cosmo/pipeline/team_run.hpp"
 #include "cosmo/pipeline/odometry_run_ahead.hpp"
 #include "synthetic_team.hpp"
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
+using namespace cosmo::sequence;
 
 namespace {
 
@@ -60,13 +61,13 @@ std::string runOnce(std::uint64_t seed, TeamCounts* counts = nullptr, unsigned r
   const std::map<char, Trajectory> refs = referencesOf(trials, timing);
   TeamRunParams params;
   params.frontend = FrontendParams::loadDir(defaultConfigDir());
-  params.reference_odometry = true;
+  params.frontend.odometry = OdometryKind::Reference;
   params.registration_threads = registration_threads;
-  TeamRun run("test_team", refs, params, cosmo::pipeline::deriveSeed(seed, "radio"), timing.start());
+  TeamRun run("test_team", refs, params, cosmo::sequence::deriveSeed(seed, "radio"), timing.start());
   MergedScanStream stream = streamOf(trials, timing);
   char robot;
   Scan scan;
-  while (stream.next(robot, scan)) run.addScan(robot, scan);
+  while (stream.next(robot, scan)) run.add(robot, OwnScan::of(scan));
   run.finish(timing.end());
   const auto path = (std::filesystem::temp_directory_path() /
                      ("cosmo_team_run_" + std::to_string(seed) + "_" + std::to_string(registration_threads) + ".jrl"))
@@ -92,13 +93,13 @@ std::string runLoam(bool run_ahead, std::size_t max_scans, unsigned cores = 0, u
   TeamRunParams params;
   params.frontend = FrontendParams::loadDir(defaultConfigDir());
   params.registration_threads = registration_threads;
-  TeamRun run("test_team", refs, params, cosmo::pipeline::deriveSeed(3, "radio"), timing.start());
+  TeamRun run("test_team", refs, params, cosmo::sequence::deriveSeed(3, "radio"), timing.start());
   StampNs last = 0;
   if (run_ahead) {
     OdometryRunAhead ahead(sourcesOf(trials), timing, params.frontend, refs, cores);
     AheadScan s;
     for (std::size_t n = 0; n < max_scans && ahead.next(s); ++n) {
-      run.addPrepared(s.robot, s.stamp, s.odometry, std::move(s.keyframe_scan));
+      run.add(s.robot, OwnScan::prepared(s.stamp, s.odometry, std::move(s.keyframe_scan)));
       last = s.stamp;
     }
   } else {
@@ -106,7 +107,7 @@ std::string runLoam(bool run_ahead, std::size_t max_scans, unsigned cores = 0, u
     char robot;
     Scan scan;
     for (std::size_t n = 0; n < max_scans && stream.next(robot, scan); ++n) {
-      run.addScan(robot, scan);
+      run.add(robot, OwnScan::of(scan));
       last = scan.stamp;
     }
   }
@@ -170,11 +171,11 @@ TEST(TeamRun, PreparedKeyframesMustMatchTheFrontendsKeyframer) {
   TeamRun run("t", refs, params, 1, 0);
   OdometryResult r;
   const auto kf = std::make_shared<const Scan>();
-  EXPECT_THROW(run.addPrepared('a', 1000, r, nullptr), std::logic_error);  // keyframe 0 not prepared
+  EXPECT_THROW(run.add('a', OwnScan::prepared(1000, r, nullptr)), std::logic_error);  // keyframe 0 not prepared
   TeamRun run2("t", refs, params, 1, 0);
-  run2.addPrepared('a', 1000, r, kf);
-  EXPECT_THROW(run2.addPrepared('a', 2000, r, kf), std::logic_error);  // no motion: not a keyframe
-  EXPECT_THROW(run2.addPrepared('z', 3000, r, nullptr), std::invalid_argument);
+  run2.add('a', OwnScan::prepared(1000, r, kf));
+  EXPECT_THROW(run2.add('a', OwnScan::prepared(2000, r, kf)), std::logic_error);  // no motion: not a keyframe
+  EXPECT_THROW(run2.add('z', OwnScan::prepared(3000, r, nullptr)), std::invalid_argument);
 }
 
 TEST(MergedScanStream, MergesBySequenceTimeAndDropsNonIncreasingStamps) {
@@ -260,16 +261,16 @@ TEST(TeamRun, RegistrationThreadsStopCleanlyWithoutFinish) {
   const std::map<char, Trajectory> refs = referencesOf(trials, timing);
   TeamRunParams params;
   params.frontend = FrontendParams::loadDir(defaultConfigDir());
-  params.reference_odometry = true;
+  params.frontend.odometry = OdometryKind::Reference;
   params.registration_threads = 2;
   std::size_t keyframes = 0;
   {
-    TeamRun run("test_team", refs, params, cosmo::pipeline::deriveSeed(5, "radio"), timing.start());
+    TeamRun run("test_team", refs, params, cosmo::sequence::deriveSeed(5, "radio"), timing.start());
     ASSERT_NE(run.registrationPool(), nullptr);
     MergedScanStream stream = streamOf(trials, timing);
     char robot;
     Scan scan;
-    for (int n = 0; n < 60 && stream.next(robot, scan); ++n) run.addScan(robot, scan);
+    for (int n = 0; n < 60 && stream.next(robot, scan); ++n) run.add(robot, OwnScan::of(scan));
     keyframes = run.counts().keyframes;
   }
   EXPECT_GT(keyframes, 2u);
@@ -283,13 +284,13 @@ TEST(TeamRun, ReplaysARadioTraceInsteadOfTheDistanceModel) {
   const auto deliveredWith = [&](const RadioParams& radio, RadioStats* stats) {
     TeamRunParams params;
     params.frontend = FrontendParams::loadDir(defaultConfigDir());
-    params.reference_odometry = true;
+    params.frontend.odometry = OdometryKind::Reference;
     params.radio = radio;
     TeamRun run("test_team", referencesOf(trials, timing), params, deriveSeed(5, "radio"), timing.start());
     MergedScanStream stream = streamOf(trials, timing);
     char robot;
     Scan scan;
-    while (stream.next(robot, scan)) run.addScan(robot, scan);
+    while (stream.next(robot, scan)) run.add(robot, OwnScan::of(scan));
     run.finish(timing.end());
     *stats = run.radio().stats();
     return run.counts().transfers_delivered;

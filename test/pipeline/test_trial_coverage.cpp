@@ -9,11 +9,11 @@
 
 #include "cosmo/odometry/dewarp.hpp"
 #include "cosmo/odometry/synthetic_scene.hpp"
-#include "cosmo/pipeline/scan_stream.hpp"
-#include "cosmo/pipeline/trial_coverage.hpp"
+#include "cosmo/sequence/scan_stream.hpp"
+#include "cosmo/sequence/trial_coverage.hpp"
 
 using namespace cosmo;
-using namespace cosmo::pipeline;
+using namespace cosmo::sequence;
 
 namespace {
 

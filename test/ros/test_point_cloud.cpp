@@ -132,7 +132,7 @@ TEST(PointCloud, IntegerAndNarrowFieldsConvert) {
 }
 
 TEST(PointCloud, DecodingIntoAUsedScanReplacesEveryField) {
-  // ScanBagReader decodes each message into the caller's Scan: a cloud without intensity, ring and time must
+  // The bag reader (trials::Ros1ScanSource) decodes each message into the caller's Scan: a cloud without intensity, ring and time must
   // not leave the previous scan's fields behind.
   Scan s = fromPointCloud2(toPointCloud2(sweep(50), "lidar"));
   ASSERT_TRUE(s.hasTime() && s.hasRing() && s.hasIntensity());

@@ -57,17 +57,17 @@ TEST(TeamSequenceMsg, AMalformedTrajectoryIsRefusedNamingTopicAndField) {
 }
 
 TEST(TeamSequenceMsg, TheSequenceCarriesRobotsTrialsSpansAndSeed) {
-  pipeline::SequenceConfig config;
+  sequence::SequenceConfig config;
   config.name = "team";
   config.seed = 18446744073709551557ULL;  // 64 bits survive
   for (char r : {'a', 'b'}) {
-    pipeline::TrialConfig t;
+    sequence::TrialConfig t;
     t.robot = r;
     t.name = std::string("trial_") + r;
     config.trials.push_back(t);
   }
   config.anchor = 'a';
-  const pipeline::SequenceTiming timing = pipeline::SequenceTiming::synchronize(
+  const sequence::SequenceTiming timing = sequence::SequenceTiming::synchronize(
       {{'a', 1000000000ULL, 5000000000ULL}, {'b', 2000000000ULL, 9000000000ULL}}, 'a', 0.0, 1);
   const cosmo::TeamSequence m = ros_glue::teamSequenceToMsg(config, timing);
   EXPECT_EQ(m.name, "team");

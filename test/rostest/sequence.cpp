@@ -131,7 +131,7 @@ TEST(SequenceLaunch, LockstepJrlIsByteIdenticalToTheOfflineDriver) {
   std::ostringstream cmd;
   cmd << shellQuote(siblingProgram("cosmo_generate")) << " " << shellQuote(sequence) << " --seed " << seed << " --comm "
       << comm << " --config-dir " << shellQuote(config_dir) << " --noise-models " << shellQuote(noise_models)
-      << " --out " << shellQuote(out_dir) << " --quiet" << (odometry == "reference" ? " --reference-odometry" : "");
+      << " --out " << shellQuote(out_dir) << " --quiet" << (odometry == "reference" ? " --odometry reference" : "");
   if (max_seconds > 0) cmd << " --max-seconds " << max_seconds;
   cmd << " > " << shellQuote(out_dir + ".log") << " 2>&1";
   const ros::WallTime start = ros::WallTime::now();

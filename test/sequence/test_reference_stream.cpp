@@ -2,10 +2,10 @@
 // since the previous scan, thinned to the spacing, then the scan's stamp.
 #include <gtest/gtest.h>
 
-#include "cosmo/pipeline/reference_stream.hpp"
+#include "cosmo/sequence/reference_stream.hpp"
 
 using namespace cosmo;
-using namespace cosmo::pipeline;
+using namespace cosmo::sequence;
 
 namespace {
 constexpr StampNs kMs = 1000000ULL;

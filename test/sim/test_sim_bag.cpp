@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "cosmo/trials/trial_scans.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/ros/bag_io.hpp"
 #include "cosmo/ros/point_cloud.hpp"
@@ -69,7 +70,7 @@ TEST(SimBag, BagRoundTrip) {
       w.write("/os_cloud_node/points", written.back(), "os_sensor");
     }
   }
-  ros_glue::ScanBagReader r(bag, "/os_cloud_node/points");
+  trials::Ros1ScanSource r(bag, "/os_cloud_node/points");
   EXPECT_EQ(r.size(), 5u);
   Scan s;
   for (const auto& w : written) {

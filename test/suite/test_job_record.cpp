@@ -76,7 +76,7 @@ TEST(JobRecord, AChangedOrMissingOutputMakesItStale) {
 
 TEST(JobRecord, OtherParametersMakeItStale) {
   Finished d;
-  d.plan.jobs.front().args.push_back("--reference-odometry");
+  d.plan.jobs.front().args.insert(d.plan.jobs.front().args.end(), {"--odometry", "reference"});
   EXPECT_EQ(d.state().kind, JobState::Kind::Stale);
   EXPECT_EQ(d.state().reason, "parameters changed");
 }

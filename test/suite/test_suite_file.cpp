@@ -75,7 +75,7 @@ TEST(SuitePlan, TheVariantGridNamesEveryGroupAndPassesItsOptions) {
   const Job& j = plan.job("alpha_s2_odom-reference");
   EXPECT_EQ(j.datasetNames(), (std::vector<std::string>{"alpha_s2_odom-reference_wifi", "alpha_s2_odom-reference_proradio"}));
   const std::vector<std::string> want{(f.root / "seq/alpha.yaml").string(), "--comm", "wifi,proradio", "--seed", "2",
-                                      "--max-seconds", "12", "--reference-odometry"};
+                                      "--max-seconds", "12", "--odometry", "reference"};
   EXPECT_EQ(j.args, want);
   EXPECT_EQ(j.robots, 3);
   EXPECT_NEAR(j.seconds, 12.0, 1e-9);  // min(reference span 20 s, max_seconds)

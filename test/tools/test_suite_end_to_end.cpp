@@ -64,7 +64,7 @@ TEST_F(SuiteEndToEnd, EveryDatasetIsThereValidAndWhatCosmoGenerateWritesAlone) {
   EXPECT_EQ(readFile(estimate), readFile(a / "noise_models/synthetic_cu/synthetic_cu.yaml"));
   for (const auto& g : groups()) {
     const fs::path out = alone / g.id;
-    std::vector<std::string> args{sequence(g.layout), "--comm", "wifi,proradio", "--seed", g.seed, "--reference-odometry",
+    std::vector<std::string> args{sequence(g.layout), "--comm", "wifi,proradio", "--seed", g.seed, "--odometry", "reference",
                                   "--out", out.string(), "--quiet"};
     if (g.layout == "cu-multi") args.insert(args.end(), {"--noise-models", (a / "noise_models/synthetic_cu/synthetic_cu.yaml").string()});
     const Outcome r = runTool("cosmo_generate", args);
@@ -199,7 +199,7 @@ TEST_F(SuiteEndToEnd, TheGateThresholdOptionIsTheSequencesOwnKeys) {
   const fs::path keys_dir = root() / "gate_keys";
   fs::create_directories(keys_dir);
   std::ofstream(keys_dir / cached.filename()) << yaml;
-  const std::vector<std::string> common{"--comm", "wifi", "--reference-odometry", "--max-seconds", "12", "--quiet"};
+  const std::vector<std::string> common{"--comm", "wifi", "--odometry", "reference", "--max-seconds", "12", "--quiet"};
   std::vector<std::string> with_keys{(keys_dir / cached.filename()).string(), "--out", (root() / "gate_a").string()};
   std::vector<std::string> with_option{cached.string(), "--gate-threshold", "0.7", "--out", (root() / "gate_b").string()};
   with_keys.insert(with_keys.end(), common.begin(), common.end());

@@ -16,8 +16,8 @@
 #include <sstream>
 
 #include "cosmo/jrl/io.hpp"
-#include "cosmo/pipeline/sequence_config.hpp"
-#include "cosmo/ros/bag_scan_source.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
+#include "cosmo/trials/bag_scan_source.hpp"
 #include "cosmo/ros/trial_layout_writer.hpp"
 #include "cosmo/sim/sequence_planner.hpp"
 #include "cosmo/trials/trial_reference.hpp"
@@ -146,7 +146,7 @@ class ToolsOnFixtures : public ::testing::Test {
   static fs::path generate(const Fixture& f, const fs::path& out, const std::string& cache, bool loam = false) {
     const ToolRun r = runTool(
         "cosmo_generate",
-        "'" + f.sequence.string() + "' --out '" + out.string() + "' --quiet" + (loam ? "" : " --reference-odometry"),
+        "'" + f.sequence.string() + "' --out '" + out.string() + "' --quiet" + (loam ? "" : " --odometry reference"),
         "COSMO_SCAN_CACHE='" + cache + "'");
     EXPECT_EQ(r.status, 0) << r.output;
     return out / "tools_fixture_wifi.jrl";
@@ -158,8 +158,8 @@ class ToolsOnFixtures : public ::testing::Test {
     const jrl::Dataset ds = jrl::readJrl(jrl_path.string());
     ASSERT_TRUE(ds.groundtruth.has_value()) << "the JRL is not labelled";
     ASSERT_TRUE(ds.outliers.has_value()) << "the JRL has no outlier labels";
-    const pipeline::SequenceConfig config = pipeline::SequenceConfig::load(f.sequence.string());
-    const pipeline::SequenceTiming timing = ros_glue::synchronizeSequence(config);
+    const sequence::SequenceConfig config = sequence::SequenceConfig::load(f.sequence.string());
+    const sequence::SequenceTiming timing = trials::synchronizeSequence(config);
     const Eigen::Vector3d offset = trials::sequenceReferenceOffset(config);
     char line[160];
     std::snprintf(line, sizeof line, "reference_offset: [%.3f, %.3f, %.3f]", offset.x(), offset.y(), offset.z());

@@ -13,7 +13,7 @@
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/pipeline/team_run.hpp"
 #include "cosmo/ros/bag_io.hpp"
-#include "cosmo/ros/bag_scan_source.hpp"
+#include "cosmo/trials/bag_scan_source.hpp"
 #include "cosmo/ros/trial_layout_writer.hpp"
 #include "cosmo/sim/scan_simulator.hpp"
 #include "cosmo/sim/sequence_planner.hpp"
@@ -105,23 +105,23 @@ struct LayoutTrial {
 
 struct SequenceRun {
   std::vector<pipeline::KeyframeRecord> keyframes;
-  pipeline::SequenceTiming timing;
+  sequence::SequenceTiming timing;
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();
   bool labelled = false;
 };
 
 SequenceRun runSequence(const std::string& config_path) {
-  const pipeline::SequenceConfig config = pipeline::SequenceConfig::load(config_path);
+  const sequence::SequenceConfig config = sequence::SequenceConfig::load(config_path);
   SequenceRun r;
-  r.timing = ros_glue::synchronizeSequence(config);
+  r.timing = trials::synchronizeSequence(config);
   r.offset = trials::sequenceReferenceOffset(config);
   pipeline::TeamRunParams params;
-  params.reference_odometry = true;
+  params.frontend.odometry = pipeline::OdometryKind::Reference;
   pipeline::TeamRun run("e2e", trials::loadSequenceReferences(config, r.timing), params, 1, r.timing.start());
-  pipeline::MergedScanStream stream = ros_glue::openSequenceStream(config, r.timing);
+  sequence::MergedScanStream stream = trials::openSequenceStream(config, r.timing);
   char robot;
   Scan scan;
-  while (stream.next(robot, scan)) run.addScan(robot, scan);
+  while (stream.next(robot, scan)) run.add(robot, pipeline::OwnScan::of(scan));
   run.finish(r.timing.end());
   BuildReport report;
   run.recorder().build(&report);

@@ -14,9 +14,9 @@
 #include <sstream>
 
 #include "cosmo/ros/bag_io.hpp"
-#include "cosmo/ros/bag_scan_source.hpp"
+#include "cosmo/trials/bag_scan_source.hpp"
 #include "cosmo/ros/trial_layout_writer.hpp"
-#include "cosmo/ros/trial_probe.hpp"
+#include "cosmo/trials/trial_probe.hpp"
 #include "cosmo/sim/scan_simulator.hpp"
 #include "cosmo/trials/bag_format.hpp"
 #include "cosmo/trials/ros1_bag.hpp"
@@ -130,12 +130,12 @@ void expectMessageFromProbeAndSpan(const std::string& path, const std::string& r
   EXPECT_NE(error.find(path + ": " + record + " record at byte "), std::string::npos) << error;
   EXPECT_NE(error.find(field), std::string::npos) << error;
   EXPECT_NE(error.find("rosbag reindex " + path), std::string::npos) << error;
-  pipeline::TrialConfig trial;
+  sequence::TrialConfig trial;
   trial.bag = path;
   trial.topic = kTopic;
-  const pipeline::TrialProbe probe = ros_glue::probeTrial(trial);
+  const sequence::TrialProbe probe = trials::probeTrial(trial);
   EXPECT_NE(probe.error.find(record + " record at byte"), std::string::npos) << probe.error;
-  EXPECT_THROW(ros_glue::readTrialSpan(trial), trials::Ros1BagError);
+  EXPECT_THROW(trials::readTrialSpan(trial), trials::Ros1BagError);
 }
 
 }  // namespace
@@ -191,7 +191,7 @@ TEST(Ros1Bag, TiesBetweenConnectionsComeInLibrosbagsOrder) {
 }
 
 TEST(Ros1Bag, IndexCountsOfAnMcdBagEndWithAMessage) {
-  // librosbag died with SIGBUS in rosbag::Bag::readHeaderFromBuffer (from ScanBagReader::next in the pre-flight
+  // librosbag died with SIGBUS in rosbag::Bag::readHeaderFromBuffer (from the bag reader's next() in the pre-flight
   // probe of cosmo_generate) on an MCD-layout bag whose first index data record's `count` was 2 instead of 1: it
   // read the next record's bytes as a second index entry, whose offset lies 1.8 GB past the chunk. The same with
   // the chunk info's `count`.

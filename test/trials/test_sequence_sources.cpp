@@ -8,12 +8,12 @@
 #include <fstream>
 
 #include "cosmo/common/pose_io.hpp"
-#include "cosmo/pipeline/sequence_config.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
 #include "cosmo/trials/sequence_metadata.hpp"
 #include "cosmo/trials/trial_reference.hpp"
 
 using namespace cosmo;
-using namespace cosmo::pipeline;
+using namespace cosmo::sequence;
 using namespace cosmo::trials;
 namespace fs = std::filesystem;
 

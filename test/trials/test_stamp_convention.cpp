@@ -8,7 +8,7 @@
 
 #include "cosmo/odometry/loam_odometry.hpp"
 #include "cosmo/odometry/synthetic_scene.hpp"
-#include "cosmo/pipeline/trial_coverage.hpp"
+#include "cosmo/sequence/trial_coverage.hpp"
 #include "cosmo/trials/ouster_cloud.hpp"
 #include "cosmo/trials/point_cloud_decode.hpp"
 
@@ -70,8 +70,8 @@ TEST(StampConvention, StartAndEndStampedCopiesDecodeToTheSameScans) {
 
 TEST(StampConvention, SameOdometryFromBothCopies) {
   auto run = [](std::vector<Scan> scans) {
-    pipeline::CoveredScanSource source(std::make_unique<pipeline::VectorScanSource>(std::move(scans)),
-                                       pipeline::TrialCoverage{});
+    sequence::CoveredScanSource source(std::make_unique<sequence::VectorScanSource>(std::move(scans)),
+                                       sequence::TrialCoverage{});
     LoamOdometry odom;
     std::vector<std::pair<StampNs, Pose3>> poses;
     Scan s;

@@ -13,7 +13,7 @@
 #include <iterator>
 #include <stdexcept>
 
-#include "cosmo/ros/bag_scan_source.hpp"
+#include "cosmo/trials/bag_scan_source.hpp"
 #include "cosmo/ros/trial_layout_writer.hpp"
 #include "cosmo/sim/scan_simulator.hpp"
 #include "cosmo/sim/sequence_planner.hpp"
@@ -80,8 +80,8 @@ struct Fixture {
   Pose3 trueLidarPose(StampNs s) const { return plan.trials[0].body.atClamped(s) * T_body_lidar; }
 };
 
-pipeline::TrialConfig trialOf(const ros_glue::WrittenTrial& w, const fs::path& dir, const std::string& topic) {
-  pipeline::TrialConfig c;
+sequence::TrialConfig trialOf(const ros_glue::WrittenTrial& w, const fs::path& dir, const std::string& topic) {
+  sequence::TrialConfig c;
   c.robot = 'a';
   c.bag = (dir / w.bag).string();
   c.topic = topic;
@@ -92,9 +92,9 @@ pipeline::TrialConfig trialOf(const ros_glue::WrittenTrial& w, const fs::path& d
 }
 
 /// Reads every scan back and compares it with the simulated one.
-void expectScansAsWritten(const Fixture& f, const pipeline::TrialConfig& trial, const trials::OusterSweep& sweep,
+void expectScansAsWritten(const Fixture& f, const sequence::TrialConfig& trial, const trials::OusterSweep& sweep,
                           const char* ring_type) {
-  auto src = ros_glue::openTrialScanSource(trial);
+  auto src = trials::openTrialScanSource(trial);
   EXPECT_EQ(src->size(), static_cast<std::size_t>(kScans));
   const double column = 1.0 / (kColumns * sweep.rate_hz);
   Scan s;
@@ -128,7 +128,7 @@ void expectScansAsWritten(const Fixture& f, const pipeline::TrialConfig& trial, 
     }
   }
   EXPECT_FALSE(src->next(s));
-  const auto span = ros_glue::readTrialSpan(trial);
+  const auto span = trials::readTrialSpan(trial);
   EXPECT_EQ(span.first, trials::ousterHeaderStamp(f.truth.front().stamp, sweep));
   EXPECT_EQ(span.last, trials::ousterHeaderStamp(f.truth.back().stamp, sweep));
 }
@@ -179,7 +179,7 @@ TEST(TrialLayouts, McdLayoutReadsBackAsSimulated) {
 
   // Missing topic: the ROS 1 reader lists the bag's topics.
   try {
-    ros_glue::openTrialScanSource(trialOf(f.written, d.path, "/velodyne_points"));
+    trials::openTrialScanSource(trialOf(f.written, d.path, "/velodyne_points"));
     FAIL() << "no error for a missing topic";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("/os_cloud_node/points (sensor_msgs/PointCloud2)"), std::string::npos)
@@ -199,7 +199,7 @@ TEST(TrialLayouts, CuMultiLayoutReadsBackAsSimulated) {
   EXPECT_EQ(trials::detectBagFormat(bag.string()), trials::BagFormat::Ros2Sqlite);
   const auto sweep = trials::cuMultiSweep(kBeams, kColumns, 20.0);
   expectScansAsWritten(f, trialOf(f.written, d.path, "robot2/ouster/points"), sweep, "uint16");
-  pipeline::TrialConfig db3 = trialOf(f.written, d.path, "/robot2/ouster/points");
+  sequence::TrialConfig db3 = trialOf(f.written, d.path, "/robot2/ouster/points");
   db3.bag = (bag / "robot2_walk_a_lidar_0.db3").string();
   expectScansAsWritten(f, db3, sweep, "uint16");
 
@@ -230,9 +230,9 @@ TEST(TrialLayouts, ContainerIsChosenByContentNotByName) {
   fs::copy_file(d.path / "cu" / cu.written.bag / "robot2_walk_a_lidar_0.db3", d.path / "renamed.bag");
   EXPECT_EQ(trials::detectBagFormat((d.path / "renamed.db3").string()), trials::BagFormat::Ros1);
   EXPECT_EQ(trials::detectBagFormat((d.path / "renamed.bag").string()), trials::BagFormat::Ros2Sqlite);
-  pipeline::TrialConfig t = trialOf(cu.written, d.path / "cu", "robot2/ouster/points");
+  sequence::TrialConfig t = trialOf(cu.written, d.path / "cu", "robot2/ouster/points");
   t.bag = (d.path / "renamed.bag").string();
-  auto src = ros_glue::openTrialScanSource(t);
+  auto src = trials::openTrialScanSource(t);
   Scan s;
   ASSERT_TRUE(src->next(s));
   EXPECT_EQ(s.size(), cu.truth[0].size());
@@ -240,22 +240,22 @@ TEST(TrialLayouts, ContainerIsChosenByContentNotByName) {
   std::ofstream(d.path / "notes.bag") << "just some text\n";
   t.bag = (d.path / "notes.bag").string();
   try {
-    ros_glue::openTrialScanSource(t);
+    trials::openTrialScanSource(t);
     FAIL() << "no error for a text file";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(t.bag + ": neither a ROS 1 bag"), std::string::npos) << e.what();
   }
   t.bag = (d.path / "absent.bag").string();
-  EXPECT_THROW(ros_glue::readTrialSpan(t), std::runtime_error);
+  EXPECT_THROW(trials::readTrialSpan(t), std::runtime_error);
 }
 
 TEST(TrialLayouts, ScanCacheGivesBitIdenticalScansAndOnlyWhenComplete) {
   TempDir d;
   const Fixture f(ros_glue::TrialLayout::Mcd, 10.0, d.path);
-  const pipeline::TrialConfig trial = trialOf(f.written, d.path, "/os_cloud_node/points");
+  const sequence::TrialConfig trial = trialOf(f.written, d.path, "/os_cloud_node/points");
   auto readAll = [&](std::size_t limit) {
     std::vector<std::pair<Scan, trials::DecodeCounts>> out;
-    auto src = ros_glue::openTrialScanSource(trial);
+    auto src = trials::openTrialScanSource(trial);
     Scan s;
     while (out.size() < limit && src->next(s)) out.push_back({s, src->lastCounts()});
     return out;

@@ -30,6 +30,9 @@ class Trajectory {
   std::optional<Pose3> at(StampNs stamp) const;
   /// Pose at `stamp`, interpolated, held constant before the start and after the end.
   Pose3 atClamped(StampNs stamp) const;
+  /// Pose at `stamp`, interpolated, held at the nearest end for at most `tolerance` ns outside [start, end];
+  /// std::nullopt farther out (and for an empty trajectory).
+  std::optional<Pose3> atWithin(StampNs stamp, StampNs tolerance) const;
   /// Same trajectory with every stamp moved by `offset_ns` (may be negative).
   Trajectory shifted(long long offset_ns) const;
   /// Path length (sum of translation steps), metres.

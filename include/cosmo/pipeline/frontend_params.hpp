@@ -4,7 +4,9 @@
 #include <string>
 
 #include "cosmo/common/config.hpp"
+#include "cosmo/common/config_dir.hpp"
 #include "cosmo/odometry/loam_params.hpp"
+#include "cosmo/pipeline/odometry_source.hpp"
 #include "cosmo/place_recognition/place_recognizer.hpp"
 #include "cosmo/registration/registration_params.hpp"
 
@@ -28,6 +30,9 @@ struct FrontendParams {
   bool spill_keyframes = true;
   /// Folder of the spill file (empty: the system's temp folder, TMPDIR).
   std::string spill_dir;
+  /// Which odometry the scans get (odometry_source.hpp): the drivers' one key (the node's ~odometry,
+  /// cosmo_generate's --odometry), not a key of frontend.yaml.
+  OdometryKind odometry = OdometryKind::Loam;
 
   LoamParams loam;
   PlaceRecognitionParams place;
@@ -51,8 +56,5 @@ struct FrontendParams {
     v("spill_dir", spill_dir);
   }
 };
-
-/// The package's config folder in the source tree (compiled in), for tools run from a build tree.
-std::string defaultConfigDir();
 
 }  // namespace cosmo::pipeline

@@ -30,8 +30,8 @@
 #include "cosmo/odometry/loam_odometry.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/pipeline/keyframe_taker.hpp"
-#include "cosmo/pipeline/scan_stream.hpp"
-#include "cosmo/pipeline/sequence_timing.hpp"
+#include "cosmo/sequence/scan_stream.hpp"
+#include "cosmo/sequence/sequence_timing.hpp"
 
 namespace cosmo::pipeline {
 
@@ -52,7 +52,7 @@ class OdometryRunAhead {
   /// MergedScanStream; `references`: robot -> its sensor reference trajectory in sequence time (keyframe dewarping,
   /// as the robot's RobotFrontend holds it; a robot missing or empty: dewarped with odometry); `cores`: how many
   /// threads may be busy at once (0: the machine's hardware concurrency). Starts one worker thread per robot.
-  OdometryRunAhead(std::map<char, std::unique_ptr<ScanSource>> sources, const SequenceTiming& timing,
+  OdometryRunAhead(std::map<char, std::unique_ptr<sequence::ScanSource>> sources, const sequence::SequenceTiming& timing,
                    const FrontendParams& params, const std::map<char, Trajectory>& references, unsigned cores = 0);
   ~OdometryRunAhead();
   OdometryRunAhead(const OdometryRunAhead&) = delete;
@@ -68,10 +68,10 @@ class OdometryRunAhead {
 
  private:
   struct Worker {
-    Worker(char r, MergedScanStream s, const FrontendParams& params, Trajectory ref)
+    Worker(char r, sequence::MergedScanStream s, const FrontendParams& params, Trajectory ref)
         : robot(r), stream(std::move(s)), odometry(params.loam), taker(params), reference(std::move(ref)) {}
     char robot;
-    MergedScanStream stream;
+    sequence::MergedScanStream stream;
     LoamOdometry odometry;
     KeyframeTaker taker;
     Trajectory reference;

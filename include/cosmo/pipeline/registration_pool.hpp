@@ -21,7 +21,7 @@ namespace cosmo::pipeline {
 class RegistrationPool {
  public:
   using Job = std::function<RegistrationResult()>;
-  /// Starts `threads` threads (at least one).
+  /// Starts `threads` threads; zero: every job runs inline in submit() (its result is ready when submit returns).
   explicit RegistrationPool(unsigned threads);
   /// Stops the threads after their current job; jobs not started are abandoned (their futures report a broken
   /// promise).

@@ -4,8 +4,9 @@
 //   scan -> odometry (LOAM, or a pose from an external odometry source) -> keyframer (d_kf) -> dewarp
 //   (reference trajectory when given, else odometry) -> PlaceRecognizer (own + per-teammate databases) ->
 //   GlobalRegistration of every candidate -> loop-closure measurements stamped with the time they were computed.
-// It keeps its dewarped keyframe scans (points only, the radio payload) to offer to teammates, and takes
-// teammates' scans with receiveTeammateScan(). Kept scans and their registration features go to a spill file
+// One door per kind of input, add(OwnScan | TeammateScan | ReferencePose | OdometryPose), one result (Step), and
+// complete() for the loop closures it started; everything else is set when it is built (FrontendSetup).
+// It keeps its dewarped keyframe scans (points only, the radio payload) to offer to teammates. Kept scans and their registration features go to a spill file
 // (FrontendParams::spill_keyframes, kept_scan.hpp) and are in memory only while in use, so that its memory does not
 // grow with the keyframes; the most recent own keyframe scan stays in memory (it is offered to the radio next).
 //
@@ -30,6 +31,7 @@
 #include "cosmo/pipeline/frontend_params.hpp"
 #include "cosmo/pipeline/keyframe_taker.hpp"
 #include "cosmo/pipeline/kept_scan.hpp"
+#include "cosmo/pipeline/odometry_source.hpp"
 #include "cosmo/pipeline/registration_pool.hpp"
 #include "cosmo/place_recognition/place_recognizer.hpp"
 #include "cosmo/registration/global_registration.hpp"
@@ -39,7 +41,7 @@ namespace cosmo::pipeline {
 /// A keyframe this robot took.
 struct KeyframeRecord {
   char robot = 'a';
-  std::size_t index = 0;  ///< from 0, or from RobotFrontend::numberKeyframesFrom()
+  std::size_t index = 0;  ///< from FrontendSetup::first_index (0)
   StampNs stamp = 0;
   Pose3 odom_pose = Pose3::Identity();  ///< sensor pose in this robot's odometry frame
   Pose3 relative = Pose3::Identity();   ///< odometry from the previous keyframe (identity for index 0)
@@ -72,81 +74,115 @@ struct LoopClosureAttempt {
   bool inter() const { return robot1 != robot2; }
 };
 
-/// A candidate whose registration runs on a RegistrationPool: the attempt without its registration's verdict,
-/// and the registration's result to come. RobotFrontend::completeLoopClosure() turns it into the attempt.
+/// A candidate whose registration runs on the front-end's RegistrationPool (zero threads: already computed): the
+/// attempt without its registration's verdict, and the registration's result to come. RobotFrontend::complete()
+/// turns it into the attempt.
 struct PendingLoopClosure {
   LoopClosureAttempt attempt;  ///< keys, owner, computed_at, descriptor distance; not yet the measurement
   std::shared_future<RegistrationResult> result;
-  bool ready() const;  ///< the result has arrived (completeLoopClosure() will not wait)
+  bool ready() const;  ///< the result has arrived (complete() will not wait)
 };
 
-/// What one scan produced.
-struct ScanOutcome {
-  OdometryResult odometry;                                ///< pose (sensor, odometry frame) at the scan stamp
-  std::optional<KeyframeRecord> keyframe;                 ///< set when the scan became a keyframe
-  std::vector<LoopClosureAttempt> loop_closures;          ///< registered inline (no RegistrationPool set)
-  std::vector<PendingLoopClosure> pending_loop_closures;  ///< with a RegistrationPool, instead of loop_closures
+/// One of the robot's own scans (stamps increasing): its points, or its LOAM odometry and keyframe scan prepared
+/// ahead (OdometryRunAhead: a LoamOdometry and a KeyframeTaker with these parameters fed exactly this robot's scans
+/// in order), which give the same step as the points.
+struct OwnScan {
+  StampNs stamp = 0;
+  const Scan* points = nullptr;               ///< the scan, sensor frame (nullptr when prepared); not kept
+  std::optional<OdometryResult> loam;         ///< its LOAM result computed elsewhere (used with LOAM odometry)
+  std::shared_ptr<const Scan> keyframe_scan;  ///< prepared: its keyframe scan when it is a keyframe
+
+  static OwnScan of(const Scan& scan) { return OwnScan{scan.stamp, &scan, std::nullopt, nullptr}; }
+  static OwnScan withLoam(const Scan& scan, const OdometryResult& loam) { return OwnScan{scan.stamp, &scan, loam, nullptr}; }
+  static OwnScan prepared(StampNs stamp, const OdometryResult& loam, std::shared_ptr<const Scan> keyframe_scan) {
+    return OwnScan{stamp, nullptr, loam, std::move(keyframe_scan)};
+  }
+};
+
+/// A teammate's keyframe scan (points, sensor frame) received at `received_at` (the time its loop closures are
+/// computed at).
+struct TeammateScan {
+  char robot = 'a';
+  std::size_t index = 0;
+  std::shared_ptr<const KeptScan> kept;  ///< the sender's own kept scan (TeamRun keeps each scan once), or
+  std::shared_ptr<const Scan> scan;      ///< the scan itself
+  StampNs received_at = 0;
+
+  /// A scan decoded from a message: its invalid points removed.
+  static TeammateScan decoded(char robot, std::size_t index, const Scan& scan, StampNs received_at);
+  static TeammateScan shared(char robot, std::size_t index, std::shared_ptr<const Scan> scan, StampNs received_at) {
+    return TeammateScan{robot, index, nullptr, std::move(scan), received_at};
+  }
+  static TeammateScan keptBySender(char robot, std::size_t index, std::shared_ptr<const KeptScan> kept,
+                                   StampNs received_at) {
+    return TeammateScan{robot, index, std::move(kept), nullptr, received_at};
+  }
+};
+
+/// A reference (world) sensor pose as it arrives (live use); stamps not after the last are ignored.
+struct ReferencePose {
+  StampNs stamp = 0;
+  Pose3 sensor_in_world = Pose3::Identity();
+};
+
+/// A pose of an external odometry source (OdometryKind::External), sensor in its odometry frame.
+struct OdometryPose {
+  StampNs stamp = 0;
+  Pose3 sensor_in_odometry = Pose3::Identity();
+};
+
+/// What one input produced.
+struct Step {
+  bool dropped = false;                    ///< a scan that was not processed (no odometry for it, stamp not increasing)
+  OdometryResult odometry;                 ///< a processed scan: pose (sensor, odometry frame) at its stamp
+  std::optional<KeyframeRecord> keyframe;  ///< set when the scan became a keyframe
+  std::vector<PendingLoopClosure> closures;  ///< complete() each, in order
+  std::vector<std::string> notices;          ///< what the driver should tell (odometry fallbacks, dropped inputs)
+};
+
+/// Everything a front-end is built with.
+struct FrontendSetup {
+  FrontendParams params;  ///< params.odometry: which odometry its scans get
+  /// The robot's sensor (LiDAR) trajectory in the world frame, in sequence time (may be empty), and how the rest of
+  /// it arrives (odometry_source.hpp: whole before the first scan, or pose by pose through add(ReferencePose)).
+  Trajectory reference;
+  ReferenceArrival reference_arrival = ReferenceArrival::Whole;
+  /// The index of its first keyframe (a restarted front-end continues its robot's, so that no index names two poses).
+  std::size_t first_index = 0;
+  /// Registration features cached here, shared with other front-ends of the process that use the same
+  /// registration parameters (TeamRun; same results as an own cache). nullptr: its own.
+  std::shared_ptr<FeatureCache> features;
+  /// Where the registrations run (nullptr: a pool of zero threads, i.e. inline). The jobs share the feature cache,
+  /// which is thread-safe, and hold copies of what they need (the pool may outlive the front-end).
+  std::shared_ptr<RegistrationPool> pool;
 };
 
 class RobotFrontend {
  public:
-  /// `reference`: the robot's sensor (LiDAR) trajectory in the world frame, in sequence time (may be empty).
+  RobotFrontend(char robot, FrontendSetup setup);
+  /// LOAM-or-params.odometry front-end with a whole reference, its own caches, registrations inline.
   RobotFrontend(char robot, const FrontendParams& params, Trajectory reference = {});
 
-  /// Next scan (sensor frame, stamps increasing), odometry by LOAM.
-  ScanOutcome processScan(const Scan& scan);
-  /// Next scan with its sensor pose from an external odometry source (any fixed odometry frame).
-  ScanOutcome processScan(const Scan& scan, const Pose3& external_odom_pose);
-  /// Next scan with LOAM odometry computed elsewhere (OdometryRunAhead: a LoamOdometry with these parameters fed
-  /// exactly this robot's scans in order); the same outcome as processScan(scan).
-  ScanOutcome processScan(const Scan& scan, const OdometryResult& loam_result);
-  /// The next scan known by its stamp, with its LOAM odometry and, when it is a keyframe, the keyframe scan made
-  /// from it by a KeyframeTaker fed the same poses (OdometryRunAhead): the same outcome as processScan(scan).
-  /// Throws std::logic_error when this front-end takes a keyframe whose scan was not given, or a scan was given
-  /// for a scan that is no keyframe.
-  ScanOutcome processPrepared(StampNs stamp, const OdometryResult& loam_result,
-                              std::shared_ptr<const Scan> keyframe_scan);
-  /// A teammate's keyframe scan (points, sensor frame) received at `received_at`: searched against the own
-  /// database, stored in that teammate's database; returns the registered candidates.
-  std::vector<LoopClosureAttempt> receiveTeammateScan(char teammate, std::size_t index, const Scan& scan,
-                                                      StampNs received_at);
-  /// The same sharing the scan (the offline driver hands the sender's own copy: xz is lossless).
-  std::vector<LoopClosureAttempt> receiveTeammateScan(char teammate, std::size_t index,
-                                                      std::shared_ptr<const Scan> scan, StampNs received_at);
-  /// The same with the registrations left pending (on the RegistrationPool when one is set, else computed
-  /// already); complete each with completeLoopClosure(), in order.
-  std::vector<PendingLoopClosure> receiveTeammateScanPending(char teammate, std::size_t index,
-                                                             std::shared_ptr<const Scan> scan, StampNs received_at);
-  /// The same keeping the sender's own KeptScan (TeamRun: the team keeps the scan and its features once).
-  std::vector<PendingLoopClosure> receiveTeammateScanPending(char teammate, std::size_t index,
-                                                             std::shared_ptr<const KeptScan> scan, StampNs received_at);
-  /// Waits for a pending registration and returns the finished attempt (counted as accepted or rejected).
-  /// The same attempt, bit for bit, as the inline registration gives.
-  LoopClosureAttempt completeLoopClosure(const PendingLoopClosure& pending);
-
-  /// Registrations run on `pool` from now on (nullptr: inline, the default): ScanOutcome then carries
-  /// pending_loop_closures instead of loop_closures. The jobs share this front-end's feature cache, which is
-  /// thread-safe, and hold copies of what they need (the pool may outlive the front-end).
-  void setRegistrationPool(std::shared_ptr<RegistrationPool> pool) { pool_ = std::move(pool); }
-
-  /// Registration features cached in `cache` from now on, shared with other front-ends of this process that use
-  /// the same registration parameters (TeamRun); the results are the same as with the own cache. (Give it a
-  /// spill file, e.g. spillFile(), to keep the features out of memory.)
-  void shareFeatureCache(std::shared_ptr<FeatureCache> cache);
-
-  /// Numbers this front-end's keyframes from `first` instead of 0 (a restarted front-end continues its robot's
-  /// indices, so that no index names two poses); before the first scan.
-  void numberKeyframesFrom(std::size_t first) { first_index_ = first; }
-
-  /// Appends a reference (world) sensor pose as it arrives (live use); stamps not after the last are ignored.
-  void appendReference(StampNs stamp, const Pose3& sensor_in_world);
+  /// The next own scan: odometry (OdometrySource) -> keyframer -> place recognition -> registrations started.
+  /// Throws std::logic_error when a prepared scan does not match this front-end's keyframer (a keyframe whose scan
+  /// was not given, or a keyframe scan given for a scan that is no keyframe) or with reference odometry.
+  Step add(const OwnScan& scan);
+  /// A teammate's keyframe scan: searched against the own database, stored in that teammate's database; its
+  /// candidates' registrations started.
+  Step add(const TeammateScan& scan);
+  /// A reference pose (pose-by-pose arrival).
+  Step add(const ReferencePose& pose);
+  /// An external odometry pose.
+  Step add(const OdometryPose& pose);
+  /// Waits for a pending registration and returns the finished attempt (counted as accepted or rejected): the same
+  /// attempt, bit for bit, whichever thread computed it.
+  LoopClosureAttempt complete(const PendingLoopClosure& pending);
 
   char robot() const { return robot_; }
   const FrontendParams& params() const { return params_; }
   /// Dewarped keyframe scan (points only, stamp = keyframe stamp); nullptr for an unknown index. Read back from the
   /// spill file unless in use (the most recent keyframe's always is).
   std::shared_ptr<const Scan> keyframeScan(std::size_t index) const;
-  std::shared_ptr<const Scan> keyframeScanShared(std::size_t index) const { return keyframeScan(index); }
   /// The kept keyframe scan (what TeamRun delivers to teammates); nullptr for an unknown index.
   std::shared_ptr<const KeptScan> keptScan(std::size_t index) const;
   /// The spill file of this front-end's kept scans and (unless shared) features; nullptr when not spilling.
@@ -157,7 +193,8 @@ class RobotFrontend {
   StampNs lastStamp() const { return last_stamp_; }
   bool hasReference() const { return !reference_.empty(); }
   const Trajectory& reference() const { return reference_; }
-  /// Reference pose at `stamp` (within the tolerance), else nullopt.
+  /// A keyframe's reference pose at `stamp`: within FrontendParams::reference_tolerance_s of the trajectory, else
+  /// nullopt.
   std::optional<Pose3> referenceAt(StampNs stamp) const;
   /// Counters.
   std::size_t loopClosuresAccepted() const { return accepted_; }
@@ -169,17 +206,19 @@ class RobotFrontend {
   const FeatureCache& featureCache() const { return *feature_cache_; }
 
  private:
+  /// The scan's odometry as the OdometrySource chooses it; nullopt: dropped (with a notice in `step`).
+  std::optional<OdometryResult> odometryOf(const OwnScan& scan, Step& step);
   /// `take_keyframe`: the keyframe scan of this scan when it becomes one.
-  ScanOutcome afterOdometry(StampNs stamp, OdometryResult odometry,
-                            const std::function<std::shared_ptr<const Scan>()>& take_keyframe);
-  ScanOutcome afterOdometry(const Scan& scan, OdometryResult odometry);
-  /// Starts the registration of candidate `c` (on the pool, else inline).
+  void afterOdometry(StampNs stamp, OdometryResult odometry,
+                     const std::function<std::shared_ptr<const Scan>()>& take_keyframe, Step& step);
+  /// Starts the registration of candidate `c` on the pool.
   PendingLoopClosure registerPair(const LoopCandidate& c, StampNs computed_at);
   std::shared_ptr<const KeptScan> storedScan(char robot, std::size_t index) const;
 
   char robot_;
   FrontendParams params_;
   Trajectory reference_;
+  OdometrySource odometry_source_;
   LoamOdometry odometry_;
   KeyframeTaker taker_;
   PlaceRecognizer recognizer_;

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "cosmo/common/scan.hpp"
-#include "cosmo/pipeline/scan_stream.hpp"
+#include "cosmo/sequence/scan_stream.hpp"
 
 namespace cosmo::pipeline {
 
@@ -49,7 +49,7 @@ class ScanReadAhead {
  private:
   std::size_t capacity_;
   std::deque<Scan> held_;
-  IncreasingStamps increasing_;
+  sequence::IncreasingStamps increasing_;
   bool ended_ = false;
   std::size_t dropped_ = 0, skipped_ = 0;
 };

@@ -44,13 +44,12 @@
 namespace cosmo::pipeline {
 
 struct TeamRunParams {
+  /// frontend.odometry: loam, or reference (perfect odometry: tests, and isolating loop-closure errors; the
+  /// references are whole, so a robot's pose is held at their ends, and robots without one use LOAM).
   FrontendParams frontend;
   RadioParams radio = RadioParams::wifi();
   NoiseModels noise;
   OutlierRule outlier_rule = OutlierRule::Fidelity;
-  /// Take each robot's odometry from its reference trajectory instead of LOAM (perfect odometry: tests, and
-  /// isolating loop-closure errors). Robots without a reference use LOAM.
-  bool reference_odometry = false;
   /// Threads that run the loop-closure registrations (0: inline on the caller's thread). Same output either way.
   unsigned registration_threads = 0;
   /// Extra lines of the dataset's metadata (DatasetRecorder::setMetadata), e.g. the sequence's reference offset.
@@ -74,14 +73,9 @@ class TeamRun {
   TeamRun(std::string dataset_name, std::map<char, Trajectory> references, const TeamRunParams& params,
           std::uint64_t radio_seed, StampNs time_origin);
 
-  /// Runs the radio through `scan.stamp`, then the scan through `robot`'s front-end.
-  void addScan(char robot, const Scan& scan);
-  /// The same with the scan's LOAM odometry computed ahead (OdometryRunAhead); ignored with reference odometry.
-  void addScan(char robot, const Scan& scan, const OdometryResult& loam_result);
-  /// The same with the scan known by its stamp and its keyframe scan made ahead (RobotFrontend::processPrepared);
-  /// without reference odometry only.
-  void addPrepared(char robot, StampNs stamp, const OdometryResult& loam_result,
-                   std::shared_ptr<const Scan> keyframe_scan);
+  /// Runs the radio through `scan.stamp`, then the scan through `robot`'s front-end (RobotFrontend::add: its
+  /// points, or prepared ahead by OdometryRunAhead).
+  void add(char robot, const OwnScan& scan);
   /// Runs the radio through `end` (the sequence end) so late transfers are delivered, and waits for every
   /// pending registration (the recorder is complete afterwards).
   void finish(StampNs end);
@@ -90,6 +84,7 @@ class TeamRun {
   /// The registration threads (nullptr without).
   const RegistrationPool* registrationPool() const { return pool_.get(); }
 
+  const TeamRunParams& params() const { return params_; }
   /// The recorder; with registration threads complete only after finish() (or drain()).
   const DatasetRecorder& recorder() const { return recorder_; }
   const RadioSimulator& radio() const { return radio_; }
@@ -105,10 +100,9 @@ class TeamRun {
   void advanceRadioTo(StampNs t);
   /// What the team's event order (LockstepSchedule) runs before `robot`'s scan at `stamp`: the due radio steps.
   void beforeScan(char robot, StampNs stamp);
-  void addScan(char robot, const Scan& scan, const OdometryResult* loam_result);
   RobotFrontend& frontendFor(char robot);
-  /// Bookkeeping of a scan's outcome: the keyframe recorded and offered to the radio, loop closures recorded.
-  void take(const RobotFrontend& fe, const ScanOutcome& out);
+  /// Bookkeeping of a step: the keyframe recorded and offered to the radio, loop closures recorded in order.
+  void take(const RobotFrontend& fe, Step step);
   void record(const LoopClosureAttempt& a);
   void recordKeyframe(const KeyframeRecord& kf);
   /// Records the queue's front while it is ready (`wait`: waits for every pending registration), and waits for the

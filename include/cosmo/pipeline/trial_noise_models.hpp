@@ -10,7 +10,7 @@
 #include "cosmo/common/trajectory.hpp"
 #include "cosmo/dataset/noise_model_estimation.hpp"
 #include "cosmo/jrl/dataset.hpp"
-#include "cosmo/pipeline/scan_stream.hpp"
+#include "cosmo/sequence/scan_stream.hpp"
 #include "cosmo/pipeline/team_run.hpp"
 
 namespace cosmo::pipeline {
@@ -24,7 +24,7 @@ struct TrialNoiseModels {
 /// (params.noise is not used for anything kept), then estimates the models from its measurements against
 /// `reference` (the robot's sensor trajectory, sequence time). `trial_label` and `environment` are written
 /// into the result. Throws std::runtime_error when the run has too few measurements (names the counts).
-TrialNoiseModels estimateTrialNoiseModels(char robot, MergedScanStream& stream, const Trajectory& reference,
+TrialNoiseModels estimateTrialNoiseModels(char robot, sequence::MergedScanStream& stream, const Trajectory& reference,
                                           const TeamRunParams& params, std::uint64_t radio_seed,
                                           const NoiseModelEstimationParams& estimation, const std::string& trial_label,
                                           const std::string& environment);

@@ -14,28 +14,9 @@ class View;
 
 namespace cosmo::ros_glue {
 
-/// Reads the sensor_msgs/PointCloud2 messages of one topic in time order (decoded by trials::decodeCloud:
-/// invalid returns dropped), through cosmo's own bounds-checked reader (trials::Ros1ScanSource): a damaged bag
-/// throws naming the file, the byte offset and the record. The topic is found with or without its leading slash;
-/// when it is missing the error lists the bag's topics.
-class ScanBagReader {
- public:
-  ScanBagReader(const std::string& bag_path, const std::string& topic, bool stamp_at_end = true);
-  ~ScanBagReader();
-  /// Number of messages on the topic.
-  std::size_t size() const;
-  /// Next scan (stamped with its header stamp); false at the end.
-  bool next(Scan& scan);
-  /// Layout and counts of the last message decoded by next().
-  const trials::CloudLayout& lastLayout() const;
-  trials::DecodeCounts lastCounts() const;
-
- private:
-  std::unique_ptr<trials::Ros1ScanSource> source_;
-};
-
-/// The same scans read through librosbag (rosbag::View), which does not check a bag's records (a damaged one can
-/// crash it): kept only to check ScanBagReader against it (tests, bench_ros1_bag).
+/// The scans of one topic read through librosbag (rosbag::View), which does not check a bag's records (a damaged
+/// one can crash it): kept only to check cosmo's own reader (trials::Ros1ScanSource) against it (tests,
+/// bench_ros1_bag).
 class RosbagScanReader {
  public:
   RosbagScanReader(const std::string& bag_path, const std::string& topic, bool stamp_at_end = true);

@@ -16,7 +16,7 @@ Scan fromPointCloud2(const sensor_msgs::PointCloud2& msg, bool stamp_at_end = tr
                      const std::string& source = "PointCloud2");
 
 /// The same for a cloud whose point bytes lie elsewhere (`data`, `bytes`; msg.data is not read): a message
-/// parsed in place from its serialized form (ScanBagReader). Fills `scan`, reusing its vectors' capacity.
+/// parsed in place from its serialized form (trials::Ros1ScanSource). Fills `scan`, reusing its vectors' capacity.
 trials::DecodeCounts decodePointCloud2(const sensor_msgs::PointCloud2& msg, const uint8_t* data, std::size_t bytes,
                                        bool stamp_at_end, const std::string& source, Scan& scan);
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "cosmo/pipeline/sequence_config.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -27,7 +27,7 @@ struct ResolvedSequence {
   std::map<std::string, std::string> registration;  ///< its own registration keys (kResolvedRegistrationParam)
   /// Reads the config file (throws naming it when it cannot): for what only the file holds (noise-model file,
   /// metadata lines); the keys above need no file.
-  pipeline::SequenceConfig load() const { return pipeline::SequenceConfig::load(path, data_root); }
+  sequence::SequenceConfig load() const { return sequence::SequenceConfig::load(path, data_root); }
 };
 
 /// The sequence the player resolved, from the parameters; none while no player has resolved one (live robots).

@@ -11,6 +11,10 @@ namespace cosmo::ros_glue {
 /// throws. Throws std::runtime_error naming ~robots on a malformed entry or an empty list.
 std::vector<char> readRobotsParam(const ros::NodeHandle& pnh, const std::string& fallback = "");
 
+/// A per-robot node's robot: ~robot, else its namespace (/<r>). Throws std::runtime_error unless one lower-case
+/// letter.
+char nodeRobot(const ros::NodeHandle& pnh);
+
 /// The team's robots set by the player once it loaded the sequence config (a list of one-character strings).
 inline constexpr const char* kTeamRobotsParam = "/player/robots";
 /// Sets kTeamRobotsParam (the player).

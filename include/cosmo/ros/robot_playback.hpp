@@ -19,8 +19,8 @@
 #include "cosmo/PlayedTrial.h"
 #include "cosmo/ScansAhead.h"
 #include "cosmo/pipeline/scan_read_ahead.hpp"
-#include "cosmo/pipeline/sequence_config.hpp"
-#include "cosmo/pipeline/trial_basis.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
+#include "cosmo/sequence/trial_basis.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -30,10 +30,10 @@ std::string scansAheadTopic(char robot);
 std::string playScanTopic(char robot);
 
 /// The robot side's announcement of its trial.
-cosmo::PlayedTrial playedTrialMsg(const std::string& sequence, const pipeline::TrialConfig& trial,
-                                  const pipeline::TrialBasis& basis, bool check_ok, const std::string& check);
+cosmo::PlayedTrial playedTrialMsg(const std::string& sequence, const sequence::TrialConfig& trial,
+                                  const sequence::TrialBasis& basis, bool check_ok, const std::string& check);
 /// Its basis; throws std::runtime_error naming the topic when the message is malformed.
-pipeline::TrialBasis trialBasisFromMsg(const cosmo::PlayedTrial& msg);
+sequence::TrialBasis trialBasisFromMsg(const cosmo::PlayedTrial& msg);
 
 class RobotPlayback {
  public:
@@ -47,14 +47,14 @@ class RobotPlayback {
   /// answers is waited for without a limit (it may be generating the built-in sequence), one that does not after
   /// `connect_timeout` stops the run: ros_glue::RunStopped naming it and the likely cause. Throws
   /// std::runtime_error when a robot's check failed or a robot plays another sequence or trial than `config` names.
-  std::map<char, pipeline::TrialBasis> trials(const pipeline::SequenceConfig& config);
+  std::map<char, sequence::TrialBasis> trials(const sequence::SequenceConfig& config);
   /// `robot`'s trial player listens for requests (the player's link check of that peer).
   bool listening(char robot) const;
   /// One source per robot, for the merge: the robot's announced stamps in recorded time, without points. Its
   /// next() waits for the robot's next announcement without a limit (a robot reading a slow disk is not a failure),
   /// naming the robot every 10 s, and calls `check` while it waits (the peer policy: it throws to stop the run); it
   /// throws when ROS shuts down or an announcement breaks the protocol.
-  std::map<char, std::unique_ptr<pipeline::ScanSource>> sources(std::function<void()> check);
+  std::map<char, std::unique_ptr<sequence::ScanSource>> sources(std::function<void()> check);
   /// Asks `robot` to publish the scan stamped `recorded` (recorded time) stamped `stamp` (sequence time).
   void play(char robot, StampNs recorded, StampNs stamp);
 

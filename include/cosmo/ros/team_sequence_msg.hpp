@@ -7,8 +7,8 @@
 #include "cosmo/ReferenceTrajectory.h"
 #include "cosmo/TeamSequence.h"
 #include "cosmo/common/trajectory.hpp"
-#include "cosmo/pipeline/sequence_config.hpp"
-#include "cosmo/pipeline/sequence_timing.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
+#include "cosmo/sequence/sequence_timing.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -16,7 +16,7 @@ inline constexpr const char* kTeamSequenceTopic = "/player/sequence";
 /// /<robot>/reference_trajectory
 std::string referenceTrajectoryTopic(char robot);
 
-cosmo::TeamSequence teamSequenceToMsg(const pipeline::SequenceConfig& config, const pipeline::SequenceTiming& timing);
+cosmo::TeamSequence teamSequenceToMsg(const sequence::SequenceConfig& config, const sequence::SequenceTiming& timing);
 cosmo::ReferenceTrajectory trajectoryToMsg(char robot, const Trajectory& trajectory, const std::string& frame_id);
 /// Throws std::runtime_error naming `topic` and the field when the arrays disagree or the stamps do not increase.
 Trajectory trajectoryFromMsg(const cosmo::ReferenceTrajectory& msg, const std::string& topic);

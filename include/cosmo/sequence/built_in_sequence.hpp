@@ -4,7 +4,7 @@
 // first run generates the world).
 #include <string>
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 struct BuiltInSequence {
   std::string simulate_config;  ///< the simulation's config (default: config/sim/default.yaml)
@@ -21,4 +21,4 @@ std::string writeBuiltInSequence(const BuiltInSequence& sequence);
 /// The folder of the running program (the tools are installed beside each other); "." when unknown.
 std::string programDir();
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

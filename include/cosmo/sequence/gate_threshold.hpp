@@ -9,9 +9,9 @@
 #include <map>
 #include <string>
 
-#include "cosmo/pipeline/sequence_config.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 constexpr double kGateThresholdMin = 0.0, kGateThresholdMax = 1.0;
 
@@ -21,4 +21,4 @@ std::map<std::string, std::string> gateThresholdKeys(double threshold);
 /// The same applied to `config` (its other registration keys kept, e.g. `refine: false`).
 void applyGateThreshold(SequenceConfig& config, double threshold);
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

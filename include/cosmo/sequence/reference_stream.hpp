@@ -9,7 +9,7 @@
 #include "cosmo/common/time.hpp"
 #include "cosmo/common/trajectory.hpp"
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 class ReferenceStream {
  public:
@@ -24,4 +24,4 @@ class ReferenceStream {
   std::map<char, StampNs> last_sent_;
 };
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "cosmo/common/scan.hpp"
-#include "cosmo/pipeline/sequence_timing.hpp"
+#include "cosmo/sequence/sequence_timing.hpp"
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 /// One robot's scans in recorded time, in order.
 class ScanSource {
@@ -76,4 +76,4 @@ class MergedScanStream {
   std::size_t delivered_ = 0;
 };
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

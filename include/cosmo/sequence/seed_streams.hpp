@@ -8,7 +8,7 @@
 #include <random>
 #include <string_view>
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 /// SplitMix64 finaliser: a well-mixed 64-bit function of its input.
 inline std::uint64_t splitmix64(std::uint64_t x) {
@@ -36,4 +36,4 @@ inline double standardNormal(std::mt19937_64& rng) {
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
 }
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

@@ -19,7 +19,7 @@
 #include "cosmo/common/pose.hpp"
 #include "cosmo/registration/registration_params.hpp"
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 /// One robot's recording.
 struct TrialConfig {
@@ -76,4 +76,4 @@ RegistrationParams registrationParamsWith(const std::string& config_dir, const s
 /// `path` when absolute, else `base_dir/path` (an empty path stays empty).
 std::string resolvePath(const std::string& base_dir, const std::string& path);
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

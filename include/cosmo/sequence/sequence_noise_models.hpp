@@ -9,9 +9,9 @@
 #include <string>
 
 #include "cosmo/dataset/noise_models.hpp"
-#include "cosmo/pipeline/sequence_config.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 /// Thrown when a sequence has no usable noise models; what() says how to make them.
 struct NoiseModelsMissing : std::runtime_error {
@@ -50,4 +50,4 @@ std::string howToMakeNoiseModels(const SequenceConfig& sequence, const std::stri
 /// The trial of `sequence` that `which` names: a robot id ("c") or a trial name. Throws naming the choices.
 const TrialConfig& findTrial(const SequenceConfig& sequence, const std::string& which);
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

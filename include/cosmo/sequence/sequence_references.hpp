@@ -7,10 +7,10 @@
 #include <Eigen/Core>
 
 #include "cosmo/common/trajectory.hpp"
-#include "cosmo/pipeline/sequence_config.hpp"
-#include "cosmo/pipeline/sequence_timing.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
+#include "cosmo/sequence/sequence_timing.hpp"
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 /// Body poses (recorded time) to sensor poses in sequence time, `offset` subtracted from the positions.
 Trajectory toSensorReference(const Trajectory& body_in_world, const Pose3& extrinsic, const TrialTiming& timing,
@@ -19,4 +19,4 @@ Trajectory toSensorReference(const Trajectory& body_in_world, const Pose3& extri
 /// The offset of `reference_offset: anchor`: the anchor's first reference position rounded to whole metres.
 Eigen::Vector3d roundedFirstPosition(const Trajectory& anchor_reference);
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

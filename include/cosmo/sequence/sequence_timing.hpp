@@ -12,7 +12,7 @@
 
 #include "cosmo/common/time.hpp"
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 /// First and last scan stamps of one trial, in the trial's own (recorded) time.
 struct TrialSpan {
@@ -54,4 +54,4 @@ class SequenceTiming {
   StampNs start_ = 0, end_ = 0;
 };
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

@@ -8,10 +8,10 @@
 #include <map>
 
 #include "cosmo/common/trajectory.hpp"
-#include "cosmo/pipeline/sequence_config.hpp"
-#include "cosmo/pipeline/sequence_timing.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
+#include "cosmo/sequence/sequence_timing.hpp"
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 struct TrialBasis {
   TrialSpan span;             ///< the covered scans: first and last sweep-end stamp (span.robot: the robot)
@@ -29,4 +29,4 @@ SequenceTiming synchronizeTrials(const SequenceConfig& config, const std::map<ch
 std::map<char, Trajectory> sensorReferences(const SequenceConfig& config, const std::map<char, TrialBasis>& trials,
                                             const SequenceTiming& timing);
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

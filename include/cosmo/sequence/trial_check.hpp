@@ -7,9 +7,9 @@
 
 #include "cosmo/common/scan.hpp"
 #include "cosmo/common/trajectory.hpp"
-#include "cosmo/pipeline/sequence_config.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 /// What a reader found at the start of a trial's bag.
 struct TrialProbe {
@@ -38,4 +38,4 @@ TrialCheck checkTrial(const TrialConfig& trial, const TrialProbe& probe, const T
 /// Every line, then "ok: ..." or "cannot produce a labelled dataset: <reason>; ..." (returns whether ok).
 bool formatChecks(const std::vector<TrialCheck>& checks, std::string& text);
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

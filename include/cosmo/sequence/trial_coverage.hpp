@@ -14,10 +14,10 @@
 
 #include "cosmo/common/scan.hpp"
 #include "cosmo/common/trajectory.hpp"
-#include "cosmo/pipeline/scan_stream.hpp"
-#include "cosmo/pipeline/sequence_timing.hpp"
+#include "cosmo/sequence/scan_stream.hpp"
+#include "cosmo/sequence/sequence_timing.hpp"
 
-namespace cosmo::pipeline {
+namespace cosmo::sequence {
 
 /// Largest spacing of the reference poses around a covered sweep end (s).
 inline constexpr double kMaxReferenceGap = 1.0;
@@ -67,4 +67,4 @@ class CoveredScanSource : public ScanSource {
   std::size_t skipped_before_ = 0;
 };
 
-}  // namespace cosmo::pipeline
+}  // namespace cosmo::sequence

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "cosmo/pipeline/sequence_config.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
 #include "cosmo/suite/plan.hpp"
 
 namespace cosmo::suite {
@@ -13,15 +13,15 @@ namespace cosmo::suite {
 /// A group's inputs: the program, the sequence config, each trial's bag and reference, the config files the
 /// front-end and its comm models read, and the noise models (`estimate_file`, or the sequence's own). Sets the
 /// job's robots and seconds.
-void addGroupInputs(const Plan& plan, Job& job, const pipeline::SequenceConfig& config,
+void addGroupInputs(const Plan& plan, Job& job, const sequence::SequenceConfig& config,
                     const std::string& estimate_file);
 /// An estimate's inputs: the program, the sequence config, that trial's bag and reference, the front-end's
 /// config files.
-void addEstimateInputs(const Plan& plan, Job& job, const pipeline::SequenceConfig& config, const std::string& trial);
+void addEstimateInputs(const Plan& plan, Job& job, const sequence::SequenceConfig& config, const std::string& trial);
 
 /// The trial bags of `config` that a run would decompress first: ROS 1 bags with compressed chunks whose scan cache
 /// (trials/scan_cache.hpp) is not there yet.
-std::vector<std::string> coldCompressedBags(const pipeline::SequenceConfig& config);
+std::vector<std::string> coldCompressedBags(const sequence::SequenceConfig& config);
 
 /// Sets each group's `after`: the earlier group (in the plan's order) that first reads a bag of `cold` it reads.
 void orderFirstPasses(Plan& plan, const std::map<std::string, std::vector<std::string>>& cold);
@@ -32,7 +32,7 @@ void checkInputsExist(const Plan& plan);
 
 /// The synchronised sequence's length, estimated without reading the bags: the longest trial reference's span
 /// (0 when no trial has a reference).
-double estimatedSequenceSeconds(const pipeline::SequenceConfig& config);
+double estimatedSequenceSeconds(const sequence::SequenceConfig& config);
 
 /// Seconds as an option value ("20", "12.5").
 std::string formatSeconds(double seconds);

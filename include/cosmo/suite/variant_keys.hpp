@@ -5,7 +5,7 @@
 //
 //   seed: [1, 2]                       cosmo_generate --seed N                          name part s1, s2
 //   repeats: 3                         seeds: the sequence's own + 0, 1, 2              r0, r1, r2
-//   odometry: [loam, reference]        --reference-odometry                             odom-loam, odom-reference
+//   odometry: [loam, reference]        --odometry X                                     odom-loam, odom-reference
 //   registration: [paper, strict]      config/registration.yaml presets                 reg-paper, reg-strict
 //   registration.KEY: [v1, v2]         one config/registration.yaml key                 KEY-v1 (e.g. min_overlap-0.4)
 //   radio.KEY: [v1, v2]                one config/comm/<model>.yaml key, every model    KEY-v1 (bandwidth_kBps-500)

@@ -7,44 +7,43 @@
 #include <memory>
 #include <string>
 
-#include "cosmo/pipeline/scan_stream.hpp"
-#include "cosmo/pipeline/sequence_config.hpp"
-#include "cosmo/pipeline/sequence_timing.hpp"
-#include "cosmo/pipeline/trial_basis.hpp"
-#include "cosmo/ros/bag_io.hpp"
+#include "cosmo/sequence/scan_stream.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
+#include "cosmo/sequence/sequence_timing.hpp"
+#include "cosmo/sequence/trial_basis.hpp"
 #include "cosmo/trials/trial_scans.hpp"
 
-namespace cosmo::ros_glue {
+namespace cosmo::trials {
 
 /// The scans of one trial (its bag, topic and stamp convention), from a ROS 1 or ROS 2 bag. A ROS 1 bag with
 /// compressed chunks is read through the scan cache (trials/scan_cache.hpp; COSMO_SCAN_CACHE=off disables it):
 /// the first complete read decodes it and fills the cache, later ones read bit-identical scans from it.
-std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const pipeline::TrialConfig& trial);
+std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const sequence::TrialConfig& trial);
 
 /// Header stamps of the trial's first and last PointCloud2 (reads only the first message and the messages of
 /// the bag's last few seconds), from a ROS 1 or ROS 2 bag. Read once per process and bag; a ROS 1 bag with
 /// compressed chunks keeps them beside its scan cache (trials::scanSpanPath), so later runs read none of the bag.
-pipeline::TrialSpan readTrialSpan(const pipeline::TrialConfig& trial);
+sequence::TrialSpan readTrialSpan(const sequence::TrialConfig& trial);
 
 /// readTrialSpan as stamps of the sweep ends (the stamps of the decoded scans, whatever the trial's convention).
-pipeline::TrialSpan readSweepEndSpan(const pipeline::TrialConfig& trial);
+sequence::TrialSpan readSweepEndSpan(const sequence::TrialConfig& trial);
 
 /// What the sequence's timing and references take from a trial (pipeline/trial_basis.hpp): its sweep-end span
 /// clipped to its reference's span (pipeline/trial_coverage.hpp) and its reference as read.
-pipeline::TrialBasis readTrialBasis(const pipeline::TrialConfig& trial);
+sequence::TrialBasis readTrialBasis(const sequence::TrialConfig& trial);
 
 /// The synchronized timing of a sequence config (reads every trial's basis).
-pipeline::SequenceTiming synchronizeSequence(const pipeline::SequenceConfig& config);
+sequence::SequenceTiming synchronizeSequence(const sequence::SequenceConfig& config);
 
 /// A reader of the trial's scans in recorded time: only the scans its reference covers
-/// (pipeline::CoveredScanSource).
-std::unique_ptr<pipeline::ScanSource> openTrialSource(const pipeline::TrialConfig& trial);
+/// (sequence::CoveredScanSource).
+std::unique_ptr<sequence::ScanSource> openTrialSource(const sequence::TrialConfig& trial);
 
 /// openTrialSource for each trial (robot -> source).
-std::map<char, std::unique_ptr<pipeline::ScanSource>> openTrialSources(const pipeline::SequenceConfig& config);
+std::map<char, std::unique_ptr<sequence::ScanSource>> openTrialSources(const sequence::SequenceConfig& config);
 
 /// One merged stream over all trials of a sequence config, in sequence time.
-pipeline::MergedScanStream openSequenceStream(const pipeline::SequenceConfig& config,
-                                              const pipeline::SequenceTiming& timing);
+sequence::MergedScanStream openSequenceStream(const sequence::SequenceConfig& config,
+                                              const sequence::SequenceTiming& timing);
 
-}  // namespace cosmo::ros_glue
+}  // namespace cosmo::trials

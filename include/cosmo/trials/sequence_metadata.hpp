@@ -7,12 +7,12 @@
 #include <utility>
 #include <vector>
 
-#include "cosmo/pipeline/sequence_config.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
 
 namespace cosmo::trials {
 
 /// `key: value` pairs (values as YAML text). Reads the anchor's reference when the offset is `anchor`; throws
 /// naming the file when it cannot.
-std::vector<std::pair<std::string, std::string>> sequenceMetadata(const pipeline::SequenceConfig& config);
+std::vector<std::pair<std::string, std::string>> sequenceMetadata(const sequence::SequenceConfig& config);
 
 }  // namespace cosmo::trials

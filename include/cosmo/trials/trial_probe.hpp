@@ -3,17 +3,17 @@
 // and the whole check of a sequence config, as cosmo_check prints it.
 #include <string>
 
-#include "cosmo/pipeline/sequence_config.hpp"
-#include "cosmo/pipeline/trial_check.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
+#include "cosmo/sequence/trial_check.hpp"
 
-namespace cosmo::ros_glue {
+namespace cosmo::trials {
 
 /// Opens the trial's bag and reads its first `scans` scans on the trial's topic (never throws: problems go to
 /// TrialProbe::error).
-pipeline::TrialProbe probeTrial(const pipeline::TrialConfig& trial, std::size_t scans = 10);
+sequence::TrialProbe probeTrial(const sequence::TrialConfig& trial, std::size_t scans = 10);
 
 /// Probes every trial, reads its reference and judges it; `text` gets the lines and the verdict. True when the
 /// run can produce a labelled dataset.
-bool checkSequence(const pipeline::SequenceConfig& config, const std::string& noise_models, std::string& text);
+bool checkSequence(const sequence::SequenceConfig& config, const std::string& noise_models, std::string& text);
 
-}  // namespace cosmo::ros_glue
+}  // namespace cosmo::trials

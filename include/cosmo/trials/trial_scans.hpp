@@ -1,5 +1,5 @@
 #pragma once
-// A trial's scans as a pipeline::ScanSource, whatever the container: what every reader (ROS 1 bag, ROS 2 sqlite3
+// A trial's scans as a sequence::ScanSource, whatever the container: what every reader (ROS 1 bag, ROS 2 sqlite3
 // bag) also tells about the messages it decoded, for pre-flight checks.
 // Invalid returns are already dropped from the scans (trials::decodeCloud).
 #include <cstddef>
@@ -7,15 +7,15 @@
 #include <string>
 #include <vector>
 
-#include "cosmo/pipeline/scan_stream.hpp"
-#include "cosmo/pipeline/sequence_timing.hpp"
+#include "cosmo/sequence/scan_stream.hpp"
+#include "cosmo/sequence/sequence_timing.hpp"
 #include "cosmo/trials/point_cloud_decode.hpp"
 #include "cosmo/trials/ros1_message_stream.hpp"
 #include "cosmo/trials/ros2_bag.hpp"
 
 namespace cosmo::trials {
 
-class TrialScanSource : public pipeline::ScanSource {
+class TrialScanSource : public sequence::ScanSource {
  public:
   /// Number of messages on the topic.
   virtual std::size_t size() const = 0;
@@ -62,10 +62,10 @@ class Ros1ScanSource : public TrialScanSource {
 
 /// Header stamps of the first and the last PointCloud2 of `topic` in a ROS 1 bag (reads the first message and
 /// the messages received in the bag's last 5 s; header stamps may lag the receive times).
-pipeline::TrialSpan readRos1TrialSpan(const std::string& bag_path, const std::string& topic, char robot);
+sequence::TrialSpan readRos1TrialSpan(const std::string& bag_path, const std::string& topic, char robot);
 
 /// Header stamps of the first and the last PointCloud2 of `topic` in a ROS 2 bag (reads the first message and
 /// the messages received in the bag's last 5 s; header stamps may lag the receive times).
-pipeline::TrialSpan readRos2TrialSpan(const std::string& bag_path, const std::string& topic, char robot);
+sequence::TrialSpan readRos2TrialSpan(const std::string& bag_path, const std::string& topic, char robot);
 
 }  // namespace cosmo::trials

@@ -35,12 +35,14 @@
 #include "cosmo/pipeline/keyframe_taker.hpp"
 #include "cosmo/pipeline/team_radio.hpp"
 #include "cosmo/pipeline/team_run.hpp"
+#include "cosmo/sequence/sequence_timing.hpp"
 #include "cosmo/sim/scan_simulator.hpp"
 #include "cosmo/sim/sequence_planner.hpp"
 #include "cosmo/sim/simulation_params.hpp"
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
+using namespace cosmo::sequence;
 
 namespace {
 
@@ -212,7 +214,7 @@ std::vector<Report> runTeam(const Team& team, const sim::SimulationParams& sp, c
       shifted.stamp = e.stamp;
       kf_scan = std::make_shared<const Scan>(taker.keyframeScan(shifted, t.sensor));
     }
-    run.addPrepared(e.robot, e.stamp, odo, std::move(kf_scan));
+    run.add(e.robot, OwnScan::prepared(e.stamp, odo, std::move(kf_scan)));
     if (run.counts().keyframes >= next_report) {
       reports.push_back(report(run, total, false));
       next_report += report_every;

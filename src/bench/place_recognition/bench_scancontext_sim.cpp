@@ -4,7 +4,7 @@
 //   bench_scancontext_sim <sequence.yaml> [more.yaml ...] [--config place_recognition.yaml] [--kf 2.0]
 //                         [--max-keyframes N]
 //
-// Per trial: scans read from the bag (cosmo/ros/bag_io.hpp); a keyframe every `--kf` metres of reference
+// Per trial: scans read from the bag (trials::Ros1ScanSource); a keyframe every `--kf` metres of reference
 // motion (LiDAR pose = reference body pose * extrinsic); each keyframe scan dewarped with the reference
 // (per-point times); descriptors with the configured parameters.
 //   intra-robot: each keyframe searched against the robot's earlier keyframes (exclude_recent excluded);
@@ -24,13 +24,13 @@
 #include <string>
 #include <vector>
 
+#include "cosmo/trials/trial_scans.hpp"
 #include "cosmo/common/command_line.hpp"
 #include "cosmo/odometry/dewarp.hpp"
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/place_recognition/place_recognizer.hpp"
 #include "cosmo/place_recognition/revisit_evaluation.hpp"
-#include "cosmo/ros/bag_io.hpp"
 
 namespace fs = std::filesystem;
 using namespace cosmo;
@@ -69,7 +69,7 @@ std::vector<Keyframes> loadSequence(const std::string& yaml_path, const PlaceRec
     const Pose3 T_body_lidar = parsePoseNumbers(e, yaml_path + ": extrinsic");
     const Trajectory body = readMcdPoseCsv(ref.string());
     const std::string topic = t["topic"] ? t["topic"].as<std::string>() : "/os_cloud_node/points";
-    ros_glue::ScanBagReader reader(bag.string(), topic);
+    trials::Ros1ScanSource reader(bag.string(), topic);
     Scan scan;
     std::optional<Eigen::Vector3d> last;
     std::size_t scans = 0;

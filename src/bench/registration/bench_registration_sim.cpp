@@ -24,13 +24,13 @@
 #include <string>
 #include <vector>
 
+#include "cosmo/trials/trial_scans.hpp"
 #include "cosmo/common/command_line.hpp"
 #include "cosmo/odometry/dewarp.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/registration/global_registration.hpp"
 #include "cosmo/registration/pair_evaluation.hpp"
 #include "cosmo/bench/stage_timer.hpp"
-#include "cosmo/ros/bag_io.hpp"
 
 namespace fs = std::filesystem;
 using namespace cosmo;
@@ -61,7 +61,7 @@ std::vector<Keyframe> loadKeyframes(const std::string& yaml_path, double kf_m) {
     const Pose3 T_body_lidar = parsePoseNumbers(e, yaml_path + ": extrinsic");
     const Trajectory body = readMcdPoseCsv(ref.string());
     const std::string topic = t["topic"] ? t["topic"].as<std::string>() : "/os_cloud_node/points";
-    ros_glue::ScanBagReader reader(bag.string(), topic);
+    trials::Ros1ScanSource reader(bag.string(), topic);
     Scan scan;
     std::optional<Eigen::Vector3d> last;
     std::size_t n = 0;

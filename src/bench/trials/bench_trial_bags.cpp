@@ -19,7 +19,7 @@
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/common/command_line.hpp"
 #include "cosmo/ros/bag_io.hpp"
-#include "cosmo/ros/bag_scan_source.hpp"
+#include "cosmo/trials/bag_scan_source.hpp"
 #include "cosmo/sim/scan_simulator.hpp"
 #include "cosmo/sim/sequence_planner.hpp"
 #include "cosmo/trials/cu_multi_layout.hpp"
@@ -51,8 +51,8 @@ struct ReadCost {
   double points_per_scan = 0.0;
 };
 
-ReadCost readAll(const pipeline::TrialConfig& trial) {
-  auto src = ros_glue::openTrialScanSource(trial);
+ReadCost readAll(const sequence::TrialConfig& trial) {
+  auto src = trials::openTrialScanSource(trial);
   Scan s;
   std::size_t n = 0, points = 0;
   const double c0 = cpuMs();
@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
         w_ros2.write(trials::organisedOusterCloud(s, cu_sweep));
       }
     }
-    pipeline::TrialConfig trial;
+    sequence::TrialConfig trial;
     trial.topic = trials::kMcdTopic;
     trial.bag = bz2.string();
     const ReadCost c_bz2 = readAll(trial);

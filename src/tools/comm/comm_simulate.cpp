@@ -26,6 +26,7 @@
 
 #include <fstream>
 
+#include "cosmo/comm/comm_model.hpp"
 #include "cosmo/comm/radio_simulator.hpp"
 #include "cosmo/comm/radio_trace.hpp"
 #include "cosmo/comm/transfer_log.hpp"
@@ -95,9 +96,7 @@ std::optional<int> parseArgs(int argc, char** argv, Options& o) {
 }
 
 RadioParams radioParams(const Options& o) {
-  RadioParams params = (o.comm.size() > 5 && o.comm.compare(o.comm.size() - 5, 5, ".yaml") == 0)
-                           ? RadioParams::fromConfig(ConfigNode::load(o.comm))
-                           : RadioParams::byName(o.comm);
+  RadioParams params = resolveCommModel(o.comm, "").params;
   if (!o.size_model.empty()) params.size_model = sizeModelFromString(o.size_model, "--size-model");
   if (!o.timeout_mode.empty()) params.timeout_mode = timeoutModeFromString(o.timeout_mode, "--timeout-mode");
   if (!o.trace.empty()) params.trace = std::make_shared<const RadioTrace>(RadioTrace::read(o.trace));

@@ -7,7 +7,7 @@
 //   cosmo_lidar_odometry --bag FILE --topic T [--reference-tum F | --reference-csv pose_inW.csv]
 //                        [--extrinsic "x y z qx qy qz qw"] [...]
 //   --segments 10,20,40,100 (default) sets the segment lengths (m) of the relative errors.
-#include <cosmo/ros/bag_io.hpp>
+#include "cosmo/trials/trial_scans.hpp"
 
 #include <ctime>
 #include <filesystem>
@@ -192,7 +192,7 @@ void runFolder(const std::string& dir, const Range& range, double period, Odomet
 }
 
 void runBag(const std::string& bag, const std::string& topic, const Range& range, OdometryRun& run) {
-  ros_glue::ScanBagReader reader(bag, topic);
+  trials::Ros1ScanSource reader(bag, topic);
   Scan s;
   long i = 0, n = 0;
   while (reader.next(s)) {

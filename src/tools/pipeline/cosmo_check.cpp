@@ -11,16 +11,16 @@
 
 #include "cosmo/common/command_line.hpp"
 #include "cosmo/pipeline/frontend_params.hpp"
-#include "cosmo/pipeline/sequence_config.hpp"
-#include "cosmo/pipeline/sequence_noise_models.hpp"
-#include "cosmo/ros/trial_probe.hpp"
+#include "cosmo/sequence/sequence_config.hpp"
+#include "cosmo/trials/sequence_resolution.hpp"
+#include "cosmo/trials/trial_probe.hpp"
 
 using namespace cosmo;
 
 namespace {
 
 struct Args {
-  std::string sequence, data_root, config_dir = pipeline::defaultConfigDir(), noise;
+  std::string sequence, data_root, config_dir = cosmo::defaultConfigDir(), noise;
 };
 
 /// The command line; an exit code when the program ends here (help, a usage error).
@@ -42,10 +42,14 @@ int main(int argc, char** argv) {
   Args args;
   if (const auto code = parseArgs(argc, argv, args)) return *code;
   try {
-    const pipeline::SequenceConfig config = pipeline::SequenceConfig::load(args.sequence, args.data_root);
+    trials::SequenceChoice choice;  // as the run would resolve it (trials/sequence_resolution.hpp)
+    choice.sequence = args.sequence;
+    choice.data_root = args.data_root;
+    choice.config_dir = args.config_dir;
+    choice.noise_models = args.noise;
+    const sequence::SequenceConfig config = trials::loadSequence(choice);
     std::string text;
-    const bool ok =
-        ros_glue::checkSequence(config, pipeline::chooseNoiseModels(config, args.config_dir, args.noise), text);
+    const bool ok = trials::checkSequence(config, trials::noiseModelsSource(choice, config), text);
     std::printf("%s", text.c_str());
     return ok ? 0 : 1;
   } catch (const std::exception& e) {

@@ -57,7 +57,7 @@ std::string readText(const std::string& path) {
 }
 
 std::unique_ptr<PaperTable> paperTable() {
-  const fs::path p = fs::path(cosmo::pipeline::defaultConfigDir()) / "paper" / "fig1.yaml";
+  const fs::path p = fs::path(cosmo::defaultConfigDir()) / "paper" / "fig1.yaml";
   if (!fs::exists(p)) return nullptr;
   return std::make_unique<PaperTable>(PaperTable::load(p.string()));
 }
@@ -67,7 +67,7 @@ Plan makePlan(const Options& o, const SuiteFile& suite) {
   po.out_dir = fs::absolute(o.out).lexically_normal().string();
   if (!o.data_root.empty()) po.data_root = fs::absolute(o.data_root).lexically_normal().string();
   po.program_dir = selfExe().parent_path().string();
-  po.default_config_dir = cosmo::pipeline::defaultConfigDir();
+  po.default_config_dir = cosmo::defaultConfigDir();
   po.simulate = simulateWith(po.program_dir, suiteDir(po.out_dir, "logs"));
   return planSuite(suite, po);
 }

@@ -1,0 +1,54 @@
+#pragma once
+// What the front-end node publishes of its front-end's steps (pipeline::RobotFrontend::add), in one place:
+//   an own scan   TF <r>/odom -> <r>/base_link (its odometry) and world -> <r>/odom (the map's alignment); a keyframe
+//                 to the recorder (numbered, kept until acknowledged: RecorderLink) and offered to the teammates
+//                 (keyframe_scans);
+//   a closure     completed in order; an accepted one to the recorder; every one on the map (markers);
+//   an ack        (cosmo/FrontendAck) after every scan and delivery: what it processed, sent and skipped.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <ros/ros.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include "cosmo/dataset/noise_models.hpp"
+#include "cosmo/pipeline/frontend_map.hpp"
+#include "cosmo/pipeline/robot_frontend.hpp"
+#include "cosmo/ros/recorder_link.hpp"
+
+namespace cosmo::ros_glue {
+
+class FrontendPublisher {
+ public:
+  /// `recorder`: the node's link to the recorder (it decides the numbering before the front-end is built).
+  FrontendPublisher(ros::NodeHandle& nh, char robot, std::string world_frame, RecorderLink& recorder,
+                    std::optional<NoiseModels> noise);
+
+  /// An own scan's step, published at `stamp`; `scans_skipped`: the robot's count so far (in its keyframe).
+  void ownScan(pipeline::RobotFrontend& frontend, const pipeline::Step& step, const ros::Time& stamp,
+               std::uint32_t scans_skipped);
+  /// A teammate scan's step; `reference`: the teammate keyframe's reference pose, when its message had one.
+  void teammateScan(pipeline::RobotFrontend& frontend, const pipeline::Step& step, char teammate, std::size_t index,
+                    const std::optional<Pose3>& reference);
+  /// The ack at `stamp` (`frontend` nullptr: none built yet).
+  void ack(const pipeline::RobotFrontend* frontend, StampNs stamp, std::size_t received_dropped, std::size_t queued,
+           std::uint32_t scans_skipped);
+
+  /// The markers' labels, when they are known only later (lockstep: the player's sequence).
+  pipeline::FrontendMap& map() { return map_; }
+
+ private:
+  void closures(pipeline::RobotFrontend& frontend, const pipeline::Step& step);
+  void markers(const ros::Time& stamp);
+
+  char robot_;
+  std::string world_frame_, odom_frame_, base_frame_;
+  RecorderLink& recorder_;
+  pipeline::FrontendMap map_;
+  std::size_t loop_closures_published_ = 0;  ///< counted in the ack (the player's end-of-run handshake)
+  ros::Publisher offer_pub_, ack_pub_, marker_pub_;
+  tf2_ros::TransformBroadcaster tf_;
+};
+
+}  // namespace cosmo::ros_glue

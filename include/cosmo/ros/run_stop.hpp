@@ -1,0 +1,29 @@
+#pragma once
+// How the player ends a run, in one place: ~status_file ("done", "stopped: <reason>", "failed: see the player's
+// log", which scripts/run.sh and the suite read) and, when the run stops short, /player/abort (std_msgs/String,
+// latched: the recorder writes the dataset so far marked incomplete, the trial players exit).
+#include <string>
+
+#include <ros/ros.h>
+
+namespace cosmo::ros_glue {
+
+class RunStop {
+ public:
+  RunStop(ros::NodeHandle& nh, std::string status_file);
+
+  /// The sequence was played to its end.
+  void done() const;
+  /// The run stops: /player/abort with the reason, the status, the log line.
+  void stopped(const std::string& reason) const;
+  /// The player itself failed (an exception): the status only (its log says why).
+  void failed() const;
+
+ private:
+  void status(const std::string& text) const;
+
+  std::string status_file_;
+  ros::Publisher abort_pub_;
+};
+
+}  // namespace cosmo::ros_glue
