@@ -46,7 +46,9 @@ cosmo_module(backend DEPS common jrl PRIVATE Ceres::ceres nlohmann_json::nlohman
 cosmo_module(report DEPS common jrl)
 cosmo_module(sequence DEPS common registration dataset sim)   # what a sequence is (below the trials)
 cosmo_module(trials DEPS common sequence PRIVATE SQLite::SQLite3 BZip2::BZip2 PkgConfig::LZ4)
-cosmo_module(pipeline DEPS common jrl sim odometry place_recognition registration comm dataset sequence trials)
+cosmo_module(frontend DEPS common odometry place_recognition registration dataset sequence)  # one robot
+cosmo_module(live DEPS common)  # the policies of a distributed run
+cosmo_module(pipeline DEPS common jrl sim odometry place_recognition registration comm dataset sequence trials frontend)
 cosmo_module(nebula DEPS common jrl dataset PRIVATE OpenSSL::Crypto)
 cosmo_module(suite DEPS common jrl comm registration backend pipeline trials
              PRIVATE nlohmann_json::nlohmann_json OpenSSL::Crypto yaml-cpp)
@@ -139,8 +141,12 @@ if(NOT COSMO_BUILD_TESTING)
 endif()
 set(COSMO_TEST_LIBS_backend_test_pose_graph_solver Ceres::ceres)
 set(COSMO_TEST_LIBS_dataset_test_outlier_injection cosmo_backend)
+set(COSMO_TEST_LIBS_frontend_test_kept_scan cosmo_pipeline cosmo_dataset)
 set(COSMO_TEST_LIBS_pipeline_test_lookalike_closures cosmo_dataset)
 set(COSMO_TEST_LIBS_pipeline_test_sequence_noise_models cosmo_dataset)
+set(COSMO_TEST_LIBS_sequence_test_gate_threshold cosmo_frontend)
+set(COSMO_TEST_LIBS_sequence_test_sequence_timing cosmo_frontend cosmo_sim)
+set(COSMO_TEST_LIBS_sequence_test_trial_coverage cosmo_odometry)
 set(COSMO_TEST_LIBS_sim_test_scan_simulator TBB::tbb)
 set(COSMO_TEST_LIBS_trials_test_stamp_convention cosmo_odometry)
 file(GLOB _test_dirs LIST_DIRECTORIES true ${COSMO_ROOT}/test/*)

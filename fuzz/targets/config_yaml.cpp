@@ -7,7 +7,7 @@
 #include "cosmo/common/config.hpp"
 #include "cosmo/dataset/noise_models.hpp"
 #include "cosmo/odometry/loam_params.hpp"
-#include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/frontend/frontend_params.hpp"
 #include "cosmo/place_recognition/place_recognizer.hpp"
 #include "cosmo/registration/registration_params.hpp"
 #include "cosmo/sim/simulation_params.hpp"
@@ -29,7 +29,7 @@ COSMO_FUZZ_TARGET(config_yaml) {
   tryRead([&] { LoamParams::fromConfig(node); });
   tryRead([&] { PlaceRecognitionParams::fromConfig(node); });
   tryRead([&] { RegistrationParams::fromConfig(node); });
-  tryRead([&] { pipeline::FrontendParams::fromConfig(node); });
+  tryRead([&] { frontend::FrontendParams::fromConfig(node); });
   tryRead([&] { RadioParams::fromConfig(node); });
   tryRead([&] { NoiseModels::fromConfig(node); });
   tryRead([&] { sim::SimulationParams::fromConfig(node); });

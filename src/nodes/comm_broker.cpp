@@ -13,7 +13,7 @@
 #include "cosmo/Keyframe.h"
 #include "cosmo/comm/radio_status.hpp"
 #include "cosmo/comm/transfer_log.hpp"
-#include "cosmo/pipeline/clock_skew.hpp"
+#include "cosmo/live/clock_skew.hpp"
 #include "cosmo/pipeline/radio_broker.hpp"
 #include "cosmo/ros/comm_broker_options.hpp"
 #include "cosmo/ros/lockstep_msgs.hpp"
@@ -255,7 +255,7 @@ class CommBroker {
   Options o_;
   std::mutex mutex_;
   RadioBroker radio_;
-  pipeline::ClockSkewWatch clock_skew_;  ///< live robots' clocks, from their offers' stamps
+  live::ClockSkewWatch clock_skew_;  ///< live robots' clocks, from their offers' stamps
   std::map<std::pair<char, std::size_t>, cosmo::Keyframe> offered_;  ///< what deliveries carry besides the scan
   double last_log_write_ = 0.0;
   std::string sequence_name_;

@@ -1,4 +1,4 @@
-// frontend: one robot's front-end (pipeline::RobotFrontend) in namespace /<r>. It turns messages into the
+// frontend: one robot's front-end (frontend::RobotFrontend) in namespace /<r>. It turns messages into the
 // front-end's inputs (add: own scans, teammates' scans, reference and odometry poses) and publishes each step
 // (ros_glue::FrontendPublisher); the rules are the core's. Topics, parameters, lockstep and real time: docs/nodes.md.
 #include <geometry_msgs/PoseStamped.h>
@@ -17,8 +17,8 @@
 
 #include "cosmo/Keyframe.h"
 #include "cosmo/common/allocator_tuning.hpp"
-#include "cosmo/pipeline/pending_scans.hpp"
-#include "cosmo/pipeline/robot_frontend.hpp"
+#include "cosmo/frontend/pending_scans.hpp"
+#include "cosmo/frontend/robot_frontend.hpp"
 #include "cosmo/sequence/sequence_noise_models.hpp"
 #include "cosmo/ros/frontend_publisher.hpp"
 #include "cosmo/ros/node_main.hpp"
@@ -61,10 +61,10 @@ Options readOptions(const ros::NodeHandle& pnh) {
   return o;
 }
 
-pipeline::FrontendParams loadParams(const Options& o) {
-  pipeline::FrontendParams p = pipeline::FrontendParams::loadDir(o.config_dir);
+frontend::FrontendParams loadParams(const Options& o) {
+  frontend::FrontendParams p = frontend::FrontendParams::loadDir(o.config_dir);
   try {
-    p.odometry = pipeline::parseOdometryKind(o.odometry);
+    p.odometry = frontend::parseOdometryKind(o.odometry);
   } catch (const std::invalid_argument& e) { throw std::runtime_error(std::string("~") + e.what()); }
   return p;
 }
@@ -130,7 +130,7 @@ class FrontendNode {
   // player's sequence, whose registration keys apply, is resolved before anything is played). Inputs that come
   // earlier wait here, in order.
   void build(Trajectory reference) {
-    pipeline::FrontendSetup setup;
+    frontend::FrontendSetup setup;
     setup.params = params_;
     if (const std::optional<ros_glue::ResolvedSequence> sequence = ros_glue::resolvedSequence()) {
       try {
@@ -145,9 +145,9 @@ class FrontendNode {
       }
     }
     setup.reference = std::move(reference);
-    setup.reference_arrival = o_.lockstep ? pipeline::ReferenceArrival::Whole : pipeline::ReferenceArrival::PoseByPose;
+    setup.reference_arrival = o_.lockstep ? frontend::ReferenceArrival::Whole : frontend::ReferenceArrival::PoseByPose;
     setup.first_index = recorder_.continuation().first_index;
-    frontend_ = std::make_unique<pipeline::RobotFrontend>(o_.robot, std::move(setup));
+    frontend_ = std::make_unique<frontend::RobotFrontend>(o_.robot, std::move(setup));
     std::vector<std::function<void()>> early;
     early.swap(early_);
     for (const auto& input : early) input();
@@ -181,14 +181,14 @@ class FrontendNode {
 
   StampNs lastStamp() const { return frontend_ ? frontend_->lastStamp() : 0; }
 
-  void tell(const pipeline::Step& step, const std::string& topic) const {
+  void tell(const frontend::Step& step, const std::string& topic) const {
     for (const std::string& n : step.notices)
       ROS_WARN_THROTTLE(5.0, "frontend %c: %s: %s", o_.robot, topic.c_str(), n.c_str());
   }
 
   void onReference(const geometry_msgs::PoseStamped::ConstPtr& m) {
     whenBuilt([this, m] {
-      tell(frontend_->add(pipeline::ReferencePose{m->header.stamp.toNSec(), ros_glue::poseFromMsg(m->pose)}),
+      tell(frontend_->add(frontend::ReferencePose{m->header.stamp.toNSec(), ros_glue::poseFromMsg(m->pose)}),
            ref_sub_.getTopic());
       drainPending();
     });
@@ -196,7 +196,7 @@ class FrontendNode {
 
   void onOdom(const nav_msgs::Odometry::ConstPtr& m) {
     whenBuilt([this, m] {
-      frontend_->add(pipeline::OdometryPose{m->header.stamp.toNSec(), ros_glue::poseFromMsg(m->pose.pose)});
+      frontend_->add(frontend::OdometryPose{m->header.stamp.toNSec(), ros_glue::poseFromMsg(m->pose.pose)});
     });
   }
 
@@ -233,7 +233,7 @@ class FrontendNode {
     drainPending();
   }
 
-  // Scans wait (pipeline::PendingScans) until the reference covers their stamp; lockstep: until the front-end is built.
+  // Scans wait (frontend::PendingScans) until the reference covers their stamp; lockstep: until the front-end is built.
   void drainPending() {
     if (!frontend_) return;
     const std::optional<StampNs> reference_end =
@@ -246,7 +246,7 @@ class FrontendNode {
   void process(const sensor_msgs::PointCloud2& m) {
     try {
       const Scan scan = ros_glue::fromPointCloud2(m, o_.stamp == "end", scans_->topic());
-      const pipeline::Step step = frontend_->add(pipeline::OwnScan::of(scan));
+      const frontend::Step step = frontend_->add(frontend::OwnScan::of(scan));
       tell(step, scans_->topic());
       if (!step.dropped) out_.ownScan(*frontend_, step, ros_glue::stampToRos(scan.stamp), scansSkipped());
     } catch (const std::exception& e) {
@@ -266,7 +266,7 @@ class FrontendNode {
       scan.stamp = m.header.stamp.toNSec();
       // computed at the delivery's radio step (the offline driver's time); a broker without it: now
       const StampNs at = m.received_at.isZero() ? ros::Time::now().toNSec() : m.received_at.toNSec();
-      const pipeline::Step step = frontend_->add(pipeline::TeammateScan::decoded(m.robot[0], m.index, scan, at));
+      const frontend::Step step = frontend_->add(frontend::TeammateScan::decoded(m.robot[0], m.index, scan, at));
       std::optional<Pose3> reference;
       if (m.has_reference) reference = ros_glue::poseFromMsg(m.reference);
       out_.teammateScan(*frontend_, step, m.robot[0], m.index, reference);
@@ -282,11 +282,11 @@ class FrontendNode {
   }
 
   Options o_;
-  pipeline::FrontendParams params_;
+  frontend::FrontendParams params_;
   ros_glue::RecorderLink recorder_;  ///< numbered measurements to the recorder, kept until acknowledged
   ros_glue::FrontendPublisher out_;  ///< what each step publishes
-  std::unique_ptr<pipeline::RobotFrontend> frontend_;  ///< built once (build())
-  pipeline::PendingScans<sensor_msgs::PointCloud2::ConstPtr> pending_;
+  std::unique_ptr<frontend::RobotFrontend> frontend_;  ///< built once (build())
+  frontend::PendingScans<sensor_msgs::PointCloud2::ConstPtr> pending_;
   std::vector<std::function<void()>> early_;  ///< inputs that came before the front-end was built
   std::size_t received_dropped_ = 0;
   ros::Subscriber ref_sub_, recv_sub_, odom_sub_, trajectory_sub_;

@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cosmo/common/allocator_tuning.hpp"
-#include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/frontend/frontend_params.hpp"
 #include "cosmo/sequence/reference_stream.hpp"
 #include "cosmo/pipeline/team_drain.hpp"
 #include "cosmo/trials/bag_scan_source.hpp"
@@ -42,7 +42,7 @@ struct Options {
   std::string mode = "lockstep", world_frame = "world", status_file, playback = "base";
   std::string frontend_node = "/{r}/frontend", broker_node = "/comm_broker", recorder_node = "/recorder";
   std::string trial_player_node = "/{r}/trial_player";
-  pipeline::PeerPolicyParams peers;
+  live::PeerPolicyParams peers;
   double rate = 1.0, end_linger = -1.0;
   bool wait_for_broker = true;
   bool lockstep() const { return mode == "lockstep"; }
@@ -107,15 +107,15 @@ std::string randomRunId() {
 }
 
 /// The peers the player watches, by the options (a front-end per robot, the broker, the recorder).
-pipeline::PeerWatch peerWatch(const Options& o, const std::vector<char>& robots) {
-  pipeline::PeerWatch watch(o.lockstep() ? pipeline::RunMode::Lockstep : pipeline::RunMode::Realtime, o.peers);
-  for (char r : robots) watch.expect(o.frontendNode(r), pipeline::PeerRole::Frontend, std::string("the front-end of robot ") + r);
+live::PeerWatch peerWatch(const Options& o, const std::vector<char>& robots) {
+  live::PeerWatch watch(o.lockstep() ? live::RunMode::Lockstep : live::RunMode::Realtime, o.peers);
+  for (char r : robots) watch.expect(o.frontendNode(r), live::PeerRole::Frontend, std::string("the front-end of robot ") + r);
   if (o.robotPlayback())  // a robot's trial player is a front-end's input: the same policy
     for (char r : robots)
-      watch.expect(o.trialPlayerNode(r), pipeline::PeerRole::Frontend, std::string("the trial player of robot ") + r);
+      watch.expect(o.trialPlayerNode(r), live::PeerRole::Frontend, std::string("the trial player of robot ") + r);
   if (o.wait_for_broker && !o.broker_node.empty())
-    watch.expect(o.broker_node, pipeline::PeerRole::Broker, "the comm_broker");
-  if (!o.recorder_node.empty()) watch.expect(o.recorder_node, pipeline::PeerRole::Recorder, "the recorder");
+    watch.expect(o.broker_node, live::PeerRole::Broker, "the comm_broker");
+  if (!o.recorder_node.empty()) watch.expect(o.recorder_node, live::PeerRole::Recorder, "the recorder");
   return watch;
 }
 

@@ -19,7 +19,7 @@
 #include "cosmo/dataset/dataset_recorder.hpp"
 #include "cosmo/dataset/recorder_session.hpp"
 #include "cosmo/jrl/stats.hpp"
-#include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/frontend/frontend_params.hpp"
 #include "cosmo/sequence/sequence_noise_models.hpp"
 #include "cosmo/report/figures.hpp"
 #include "cosmo/ros/node_main.hpp"
@@ -173,8 +173,8 @@ class RecorderNode {
   }
 
   void watchPlayer(const std::string& node) {
-    cosmo::pipeline::PeerWatch watch(cosmo::pipeline::RunMode::Lockstep);
-    watch.expect(node, cosmo::pipeline::PeerRole::Player, "the player");
+    cosmo::live::PeerWatch watch(cosmo::live::RunMode::Lockstep);
+    watch.expect(node, cosmo::live::PeerRole::Player, "the player");
     player_.emplace("recorder", std::move(watch));
     player_->onStop([this](const std::string& why) {
       player_death_ = why;

@@ -7,8 +7,8 @@
 #include <memory>
 
 #include "cosmo/common/allocator_tuning.hpp"
-#include "cosmo/pipeline/frontend_params.hpp"
-#include "cosmo/pipeline/scan_read_ahead.hpp"
+#include "cosmo/frontend/frontend_params.hpp"
+#include "cosmo/sequence/scan_read_ahead.hpp"
 #include "cosmo/sequence/sequence_noise_models.hpp"
 #include "cosmo/trials/bag_scan_source.hpp"
 #include "cosmo/ros/node_main.hpp"
@@ -116,7 +116,7 @@ class TrialPlayer {
   std::string frame_;
   ros_glue::PointTimeEncoding encoding_;
   std::unique_ptr<sequence::ScanSource> source_;
-  pipeline::ScanReadAhead ahead_;
+  sequence::ScanReadAhead ahead_;
   std::string error_;  ///< the trial cannot go on (announced: the base's player stops with it)
   std::size_t played_ = 0;
   ros::Publisher points_pub_, ahead_pub_;

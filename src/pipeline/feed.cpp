@@ -2,10 +2,10 @@
 
 namespace cosmo::pipeline {
 
-void ComputedScans::keep(const AheadScan& s) {
+void ComputedScans::keep(const frontend::AheadScan& s) {
   scans.push_back(s);
   if (!s.keyframe_scan) return;
-  keyframes.push_back(std::make_shared<const KeptScan>(s.keyframe_scan, spill));
+  keyframes.push_back(std::make_shared<const frontend::KeptScan>(s.keyframe_scan, spill));
   scans.back().keyframe_scan = std::make_shared<const Scan>();  // a marker: the scan is kept above
 }
 
@@ -20,8 +20,8 @@ void progressed(const FeedPlan& plan, StampNs stamp) {
 FeedFigures replay(TeamRun& run, const FeedPlan& plan) {
   const ComputedScans& computed = *plan.computed;
   std::size_t next_keyframe = 0;
-  for (const AheadScan& s : computed.scans) {
-    run.add(s.robot, OwnScan::prepared(s.stamp, s.odometry,
+  for (const frontend::AheadScan& s : computed.scans) {
+    run.add(s.robot, frontend::OwnScan::prepared(s.stamp, s.odometry,
                                        s.keyframe_scan ? computed.keyframes.at(next_keyframe++)->get() : nullptr));
     progressed(plan, s.stamp);
   }
@@ -30,10 +30,10 @@ FeedFigures replay(TeamRun& run, const FeedPlan& plan) {
   return f;
 }
 
-FeedFigures runAhead(TeamRun& run, const FeedPlan& plan, const FrontendParams& params) {
+FeedFigures runAhead(TeamRun& run, const FeedPlan& plan, const frontend::FrontendParams& params) {
   FeedFigures f;
-  OdometryRunAhead ahead(plan.sources(), *plan.timing, params, *plan.references);
-  AheadScan s;
+  frontend::OdometryRunAhead ahead(plan.sources(), *plan.timing, params, *plan.references);
+  frontend::AheadScan s;
   for (;;) {
     const double waited = now(plan);
     const bool more = ahead.next(s);
@@ -41,7 +41,7 @@ FeedFigures runAhead(TeamRun& run, const FeedPlan& plan, const FrontendParams& p
     if (!more || s.stamp > plan.end) break;
     if (plan.computed) plan.computed->keep(s);
     const double worked = now(plan);
-    run.add(s.robot, OwnScan::prepared(s.stamp, s.odometry, std::move(s.keyframe_scan)));
+    run.add(s.robot, frontend::OwnScan::prepared(s.stamp, s.odometry, std::move(s.keyframe_scan)));
     f.team_work_s += now(plan) - worked;
     progressed(plan, s.stamp);
   }
@@ -60,7 +60,7 @@ FeedFigures serial(TeamRun& run, const FeedPlan& plan) {
   Scan scan;
   while (stream.next(robot, scan)) {
     if (scan.stamp > plan.end) break;
-    run.add(robot, OwnScan::of(scan));
+    run.add(robot, frontend::OwnScan::of(scan));
     progressed(plan, scan.stamp);
   }
   FeedFigures f;
@@ -71,9 +71,9 @@ FeedFigures serial(TeamRun& run, const FeedPlan& plan) {
 }  // namespace
 
 FeedFigures feed(TeamRun& run, const FeedPlan& plan) {
-  const FrontendParams& params = run.params().frontend;
+  const frontend::FrontendParams& params = run.params().frontend;
   FeedFigures f = plan.computed && plan.computed->ready                       ? replay(run, plan)
-                  : params.odometry == OdometryKind::Loam && !plan.serial ? runAhead(run, plan, params)
+                  : params.odometry == frontend::OdometryKind::Loam && !plan.serial ? runAhead(run, plan, params)
                                                                            : serial(run, plan);
   const double finishing = now(plan);
   run.finish(plan.end);

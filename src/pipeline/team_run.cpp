@@ -29,28 +29,28 @@ TeamRun::TeamRun(std::string dataset_name, std::map<char, Trajectory> references
   // once, not once per robot that registers against it (same results).
   recorder_.setMetadata(params.metadata);
   radio_.setTimeOrigin(time_origin);
-  auto features = std::make_shared<FeatureCache>(
-      params.frontend.spill_keyframes ? std::make_shared<SpillFile>(params.frontend.spill_dir) : nullptr);
-  if (params.registration_threads > 0) pool_ = std::make_shared<RegistrationPool>(params.registration_threads);
+  auto features = std::make_shared<frontend::FeatureCache>(
+      params.frontend.spill_keyframes ? std::make_shared<frontend::SpillFile>(params.frontend.spill_dir) : nullptr);
+  if (params.registration_threads > 0) pool_ = std::make_shared<frontend::RegistrationPool>(params.registration_threads);
   for (auto& [robot, ref] : references) {
-    FrontendSetup setup;
+    frontend::FrontendSetup setup;
     setup.params = params.frontend;
     setup.reference = std::move(ref);
     setup.features = features;
     setup.pool = pool_;
-    frontends_[robot] = std::make_unique<RobotFrontend>(robot, std::move(setup));
+    frontends_[robot] = std::make_unique<frontend::RobotFrontend>(robot, std::move(setup));
   }
 }
 
 std::vector<char> TeamRun::robots() const { return radio_.robots(); }
 
-const RobotFrontend& TeamRun::frontend(char robot) const {
+const frontend::RobotFrontend& TeamRun::frontend(char robot) const {
   auto it = frontends_.find(robot);
   if (it == frontends_.end()) throw std::invalid_argument(std::string("team run: unknown robot '") + robot + "'");
   return *it->second;
 }
 
-void TeamRun::record(const LoopClosureAttempt& a) {
+void TeamRun::record(const frontend::LoopClosureAttempt& a) {
   if (on_loop_closure) on_loop_closure(a);
   if (a.inter()) {
     ++(a.accepted ? counts_.inter_accepted : counts_.inter_rejected);
@@ -74,7 +74,7 @@ void TeamRun::record(const LoopClosureAttempt& a) {
 
 void TeamRun::advanceRadioTo(StampNs t) {
   const auto state = [this](char robot, StampNs step_stamp) {
-    const RobotFrontend& fe = *frontends_.at(robot);
+    const frontend::RobotFrontend& fe = *frontends_.at(robot);
     RadioRobotState s;
     s.on = fe.scansProcessed() > 0;
     s.position = radioPosition(fe.reference(), step_stamp, fe.lastOdomPose().translation());
@@ -86,16 +86,16 @@ void TeamRun::advanceRadioTo(StampNs t) {
       return;
     }
     ++counts_.transfers_delivered;
-    RobotFrontend& receiver = *frontends_.at(tr.receiver);
-    Step step;
+    frontend::RobotFrontend& receiver = *frontends_.at(tr.receiver);
+    frontend::Step step;
     if (payloads_.compresses()) {  // the real size model: the decompressed payload
       const std::shared_ptr<const Scan> scan = payloads_.deliver(tr.sender, tr.keyframe);
       if (!scan) return;
-      step = receiver.add(TeammateScan::shared(tr.sender, tr.keyframe, scan, step_stamp));
+      step = receiver.add(frontend::TeammateScan::shared(tr.sender, tr.keyframe, scan, step_stamp));
     } else {  // the paper's: the sender's own kept scan (one copy, on disk, its features shared)
-      std::shared_ptr<const KeptScan> kept = frontends_.at(tr.sender)->keptScan(tr.keyframe);
+      std::shared_ptr<const frontend::KeptScan> kept = frontends_.at(tr.sender)->keptScan(tr.keyframe);
       if (!kept) return;
-      step = receiver.add(TeammateScan::keptBySender(tr.sender, tr.keyframe, std::move(kept), step_stamp));
+      step = receiver.add(frontend::TeammateScan::keptBySender(tr.sender, tr.keyframe, std::move(kept), step_stamp));
     }
     take(receiver, std::move(step));
   };
@@ -107,21 +107,21 @@ void TeamRun::beforeScan(char robot, StampNs stamp) {
   if (schedule_.beforeScan(robot, stamp).step_radio) advanceRadioTo(stamp);
 }
 
-RobotFrontend& TeamRun::frontendFor(char robot) {
-  return const_cast<RobotFrontend&>(frontend(robot));  // the front-ends themselves are not const
+frontend::RobotFrontend& TeamRun::frontendFor(char robot) {
+  return const_cast<frontend::RobotFrontend&>(frontend(robot));  // the front-ends themselves are not const
 }
 
-void TeamRun::add(char robot, const OwnScan& scan) {
-  RobotFrontend& fe = frontendFor(robot);
+void TeamRun::add(char robot, const frontend::OwnScan& scan) {
+  frontend::RobotFrontend& fe = frontendFor(robot);
   beforeScan(robot, scan.stamp);
   ++counts_.scans;
   take(fe, fe.add(scan));
 }
 
-void TeamRun::take(const RobotFrontend& fe, Step step) {
+void TeamRun::take(const frontend::RobotFrontend& fe, frontend::Step step) {
   const char robot = fe.robot();
   if (step.keyframe) {
-    const KeyframeRecord& kf = *step.keyframe;
+    const frontend::KeyframeRecord& kf = *step.keyframe;
     ++counts_.keyframes;
     pending_.push_back(PendingRecord{kf, {}});
     const std::shared_ptr<const Scan> kf_scan = fe.keyframeScan(kf.index);
@@ -136,7 +136,7 @@ void TeamRun::take(const RobotFrontend& fe, Step step) {
   flush(false);
 }
 
-void TeamRun::recordKeyframe(const KeyframeRecord& kf) {
+void TeamRun::recordKeyframe(const frontend::KeyframeRecord& kf) {
   try {
     recorder_.addKeyframe(kf.robot, kf.index, kf.stamp, kf.relative, kf.reference);
   } catch (const std::exception& e) {

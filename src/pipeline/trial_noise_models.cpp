@@ -17,7 +17,7 @@ jrl::Dataset runAlone(char robot, sequence::MergedScanStream& stream, const Traj
       throw std::runtime_error("estimateTrialNoiseModels: the stream has scans of robot " + std::string(1, r) +
                                ", expected only " + std::string(1, robot));
     last = scan.stamp;
-    run.add(r, OwnScan::of(scan));
+    run.add(r, frontend::OwnScan::of(scan));
   }
   run.finish(last);
   return run.recorder().build();
@@ -55,7 +55,7 @@ TrialNoiseModels estimateTrialNoiseModels(char robot, sequence::MergedScanStream
   m.estimated_from = recordOf(out.estimate, estimation, trial_label);
   std::ostringstream provenance;
   provenance << "estimated from trial " << trial_label << " run alone through the front-end ("
-             << (params.frontend.odometry == OdometryKind::Reference ? "reference" : "LOAM") << " odometry), spec section 6";
+             << (params.frontend.odometry == frontend::OdometryKind::Reference ? "reference" : "LOAM") << " odometry), spec section 6";
   m.provenance = provenance.str();
   return out;
 }

@@ -5,7 +5,7 @@
 
 namespace cosmo::ros_glue {
 
-cosmo::RecorderKeyframe recorderKeyframeMsg(const pipeline::KeyframeRecord& kf, const std::string& frame) {
+cosmo::RecorderKeyframe recorderKeyframeMsg(const frontend::KeyframeRecord& kf, const std::string& frame) {
   cosmo::RecorderKeyframe m;
   m.header.stamp = stampToRos(kf.stamp);
   m.header.frame_id = frame;
@@ -21,7 +21,7 @@ cosmo::RecorderKeyframe recorderKeyframeMsg(const pipeline::KeyframeRecord& kf, 
   return m;
 }
 
-cosmo::RecorderLoopClosure recorderLoopClosureMsg(const pipeline::LoopClosureAttempt& a, const std::string& frame) {
+cosmo::RecorderLoopClosure recorderLoopClosureMsg(const frontend::LoopClosureAttempt& a, const std::string& frame) {
   cosmo::RecorderLoopClosure m;
   m.header.stamp = stampToRos(a.computed_at);
   m.header.frame_id = frame;

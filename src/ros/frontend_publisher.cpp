@@ -20,7 +20,7 @@ FrontendPublisher::FrontendPublisher(ros::NodeHandle& nh, char robot, std::strin
       ack_pub_(nh.advertise<cosmo::FrontendAck>("ack", 100)),
       marker_pub_(nh.advertise<visualization_msgs::MarkerArray>("markers", 5)) {}
 
-void FrontendPublisher::ownScan(pipeline::RobotFrontend& frontend, const pipeline::Step& step, const ros::Time& stamp,
+void FrontendPublisher::ownScan(frontend::RobotFrontend& frontend, const frontend::Step& step, const ros::Time& stamp,
                                 std::uint32_t scans_skipped) {
   if (step.keyframe) map_.addKeyframe(*step.keyframe);  // first: keyframe 0 aligns the odometry with the world
   tf_.sendTransform({transformMsg(map_.worldFromOdometry(), stamp, world_frame_, odom_frame_),
@@ -36,16 +36,16 @@ void FrontendPublisher::ownScan(pipeline::RobotFrontend& frontend, const pipelin
   if (step.keyframe || !step.closures.empty()) markers(stamp);
 }
 
-void FrontendPublisher::teammateScan(pipeline::RobotFrontend& frontend, const pipeline::Step& step, char teammate,
+void FrontendPublisher::teammateScan(frontend::RobotFrontend& frontend, const frontend::Step& step, char teammate,
                                      std::size_t index, const std::optional<Pose3>& reference) {
   if (reference) map_.addTeammateKeyframe(teammate, index, *reference);
   closures(frontend, step);
   markers(ros::Time::now());
 }
 
-void FrontendPublisher::closures(pipeline::RobotFrontend& frontend, const pipeline::Step& step) {
+void FrontendPublisher::closures(frontend::RobotFrontend& frontend, const frontend::Step& step) {
   for (const auto& pending : step.closures) {
-    const pipeline::LoopClosureAttempt a = frontend.complete(pending);
+    const frontend::LoopClosureAttempt a = frontend.complete(pending);
     if (a.accepted) {
       recorder_.send(recorderLoopClosureMsg(a, world_frame_));
       ++loop_closures_published_;
@@ -60,7 +60,7 @@ void FrontendPublisher::markers(const ros::Time& stamp) {
   marker_pub_.publish(frontendMarkers(map_, robot_, world_frame_, stamp));
 }
 
-void FrontendPublisher::ack(const pipeline::RobotFrontend* frontend, StampNs stamp, std::size_t received_dropped,
+void FrontendPublisher::ack(const frontend::RobotFrontend* frontend, StampNs stamp, std::size_t received_dropped,
                             std::size_t queued, std::uint32_t scans_skipped) {
   cosmo::FrontendAck a;
   a.header.stamp = stampToRos(stamp);

@@ -30,12 +30,12 @@ visualization_msgs::Marker marker(const std::string& frame, const ros::Time& sta
 // Closures join keyframes a few metres apart: lifted above the trajectories so that they stay visible.
 constexpr double kClosureLift = 1.5;
 
-visualization_msgs::Marker closureMarker(const pipeline::FrontendMap& map, const std::string& ns,
+visualization_msgs::Marker closureMarker(const frontend::FrontendMap& map, const std::string& ns,
                                          const std::string& frame, const ros::Time& stamp) {
   visualization_msgs::Marker lcs = marker(frame, stamp, ns + "/loop_closures", visualization_msgs::Marker::LINE_LIST);
   lcs.scale.x = 0.4;
   lcs.color = colorMsg(1, 1, 1);
-  for (const pipeline::ClosureSegment& c : map.closures()) {
+  for (const frontend::ClosureSegment& c : map.closures()) {
     const std_msgs::ColorRGBA col = closureLabelColor(c.label);
     for (const Eigen::Vector3d& p : {c.from, c.to}) {
       geometry_msgs::Point q = pointMsg(p);
@@ -66,12 +66,12 @@ std_msgs::ColorRGBA robotColor(char robot) {
   return colorMsg(c[0], c[1], c[2]);
 }
 
-std_msgs::ColorRGBA closureLabelColor(pipeline::ClosureLabel label) {
+std_msgs::ColorRGBA closureLabelColor(frontend::ClosureLabel label) {
   switch (label) {
-    case pipeline::ClosureLabel::Rejected: return colorMsg(0.9f, 0.1f, 0.1f, 0.5f);
-    case pipeline::ClosureLabel::Inlier: return colorMsg(0.1f, 0.9f, 0.2f);
-    case pipeline::ClosureLabel::Outlier: return colorMsg(1.0f, 0.6f, 0.0f);
-    case pipeline::ClosureLabel::Unlabelled: break;
+    case frontend::ClosureLabel::Rejected: return colorMsg(0.9f, 0.1f, 0.1f, 0.5f);
+    case frontend::ClosureLabel::Inlier: return colorMsg(0.1f, 0.9f, 0.2f);
+    case frontend::ClosureLabel::Outlier: return colorMsg(1.0f, 0.6f, 0.0f);
+    case frontend::ClosureLabel::Unlabelled: break;
   }
   return colorMsg(0.2f, 0.4f, 1.0f);
 }
@@ -82,7 +82,7 @@ std_msgs::ColorRGBA throughputColor(double fraction) {
                   0.0f);
 }
 
-visualization_msgs::MarkerArray frontendMarkers(const pipeline::FrontendMap& map, char robot, const std::string& frame,
+visualization_msgs::MarkerArray frontendMarkers(const frontend::FrontendMap& map, char robot, const std::string& frame,
                                                 const ros::Time& stamp) {
   const std::string ns(1, robot);
   visualization_msgs::Marker traj = marker(frame, stamp, ns + "/trajectory", visualization_msgs::Marker::LINE_STRIP);

@@ -75,8 +75,8 @@ double wallSeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-pipeline::PeerProbe probePeer(const std::string& node, double timeout) {
-  pipeline::PeerProbe probe;
+live::PeerProbe probePeer(const std::string& node, double timeout) {
+  live::PeerProbe probe;
   XmlRpc::XmlRpcValue args, result, payload;
   args[0] = ros::this_node::getName();
   args[1] = node;
@@ -94,7 +94,7 @@ pipeline::PeerProbe probePeer(const std::string& node, double timeout) {
   }
   probe.error = tcpReachable(host, port, timeout, probe.refused);
   if (!probe.error.empty()) {
-    probe.hint = pipeline::unreachableHint(peerAddress(probe));
+    probe.hint = live::unreachableHint(peerAddress(probe));
     return probe;
   }
   BoundedXmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
@@ -110,8 +110,8 @@ pipeline::PeerProbe probePeer(const std::string& node, double timeout) {
   return probe;
 }
 
-pipeline::PeerAddress peerAddress(const pipeline::PeerProbe& probe) {
-  pipeline::PeerAddress a;
+live::PeerAddress peerAddress(const live::PeerProbe& probe) {
+  live::PeerAddress a;
   a.uri = probe.uri;
   std::uint32_t port = 0;
   ros::network::splitURI(probe.uri, a.host, port);
@@ -147,7 +147,7 @@ std::string unlinkedReason(const std::string& peer_uri, const std::string& topic
       result.size() < 3 || result[2].getType() != XmlRpc::XmlRpcValue::TypeArray || result[2].size() < 3 ||
       result[2][1].getType() != XmlRpc::XmlRpcValue::TypeString || result[2][2].getType() != XmlRpc::XmlRpcValue::TypeInt)
     return "it does not name a topic server for " + topic + " (does it publish it?)";
-  pipeline::PeerProbe server;
+  live::PeerProbe server;
   const std::string server_host = static_cast<std::string>(result[2][1]);
   const std::string endpoint = server_host + ":" + std::to_string(static_cast<int>(result[2][2]));
   server.uri = "http://" + endpoint + "/";
@@ -157,12 +157,12 @@ std::string unlinkedReason(const std::string& peer_uri, const std::string& topic
     return "its topic server at " + endpoint + " answers from here, so it cannot reach this node's: " +
            ros::this_node::getName() + " registered the address " + ros::network::getHost() +
            ", which ROS_IP / ROS_HOSTNAME on this machine must make one the peer's machine reaches";
-  pipeline::PeerAddress a = peerAddress(server);
+  live::PeerAddress a = peerAddress(server);
   a.uri = endpoint;
-  return pipeline::unlinkedHint(a);
+  return live::unlinkedHint(a);
 }
 
-PeerMonitor::PeerMonitor(std::string owner, pipeline::PeerWatch watch, double period)
+PeerMonitor::PeerMonitor(std::string owner, live::PeerWatch watch, double period)
     : owner_(std::move(owner)), period_(period), watch_(std::move(watch)) {}
 
 PeerMonitor::~PeerMonitor() {
@@ -200,7 +200,7 @@ void PeerMonitor::probeOnce() {
     nodes = watch_.nodes();
   }
   for (const std::string& node : nodes) {
-    const pipeline::PeerProbe probe = probePeer(node);
+    const live::PeerProbe probe = probePeer(node);
     const auto check = link_checks_.find(node);
     const bool linked = check == link_checks_.end() || check->second();
     std::string hint;  // alive, not linked for 5 s (connections take a moment): why, looked for every 5 s
@@ -221,7 +221,7 @@ void PeerMonitor::probeOnce() {
   std::optional<std::string> stop;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    for (const pipeline::PeerNotice& n : watch_.review(wallSeconds())) {
+    for (const live::PeerNotice& n : watch_.review(wallSeconds())) {
       if (n.warning)
         ROS_WARN("%s: %s", owner_.c_str(), n.text.c_str());
       else
@@ -254,7 +254,7 @@ bool PeerMonitor::alive(const std::string& node) const {
   return watch_.alive(node);
 }
 
-pipeline::PeerState PeerMonitor::state(const std::string& node) const {
+live::PeerState PeerMonitor::state(const std::string& node) const {
   std::lock_guard<std::mutex> lock(mutex_);
   return watch_.state(node);
 }

@@ -29,10 +29,10 @@ bool RecorderLink::decided() {
   if (decided_) return true;
   const double waited = (ros::WallTime::now() - start_).toSec();
   if (progress_ && !progress_->session.empty()) {
-    const pipeline::RecorderHolding held = recorderHolding(*progress_, robot_);
+    const live::RecorderHolding held = recorderHolding(*progress_, robot_);
     const bool holds = held.highest_seq > 0 || held.next_index > 0;
     if (holds && !broker_next_index_ && waited < kBrokerWait) return false;
-    continuation_ = pipeline::continueAfter(held, broker_next_index_);
+    continuation_ = live::continueAfter(held, broker_next_index_);
   } else if (waited < recorder_wait_) {
     return false;
   } else {

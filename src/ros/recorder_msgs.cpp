@@ -68,8 +68,8 @@ cosmo::RecorderProgress recorderProgressMsg(const dataset::RecorderIntake& intak
   return p;
 }
 
-pipeline::RecorderHolding recorderHolding(const cosmo::RecorderProgress& m, char robot) {
-  pipeline::RecorderHolding h;
+live::RecorderHolding recorderHolding(const cosmo::RecorderProgress& m, char robot) {
+  live::RecorderHolding h;
   const std::optional<std::size_t> i = slot(m, robot);
   if (!i) return h;
   h.highest_seq = m.highest[*i];

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "cosmo/pipeline/peer_address_hint.hpp"
+#include "cosmo/live/peer_address_hint.hpp"
 #include "cosmo/ros/peer_probe.hpp"
 #include "cosmo/ros/pose_msg.hpp"
 #include "cosmo/ros/team_sequence_msg.hpp"
@@ -62,7 +62,7 @@ class RobotPlayback::Source : public sequence::ScanSource {
     Clock::time_point noted = Clock::now();
     for (;;) {
       if (const auto e = p_.errors_.find(robot_); e != p_.errors_.end()) throw std::runtime_error(e->second);
-      pipeline::AnnouncedStamps& announced = p_.announced_[robot_];
+      sequence::AnnouncedStamps& announced = p_.announced_[robot_];
       if (const std::optional<StampNs> stamp = announced.take()) {
         scan = Scan();
         scan.stamp = *stamp;
@@ -126,7 +126,7 @@ std::vector<char> RobotPlayback::notHeard() const {
 
 std::string RobotPlayback::describe(char robot, bool& alive) const {
   const std::string node = node_(robot);
-  const pipeline::PeerProbe p = probePeer(node);
+  const live::PeerProbe p = probePeer(node);
   alive = p.answered;
   if (p.answered)
     return std::string("robot ") + robot + ": its trial player " + node + " answers (pid " + std::to_string(p.pid) +
@@ -135,7 +135,7 @@ std::string RobotPlayback::describe(char robot, bool& alive) const {
     return std::string("robot ") + robot + ": its trial player " + node + " registered at " + p.uri +
            " but does not answer (" + p.error + "): " + (p.hint.empty() ? "did it die?" : p.hint);
   return std::string("robot ") + robot + ": its trial player " + node + " (robot.launch playback:=robot): " +
-         pipeline::neverRegisteredHint(ros::master::getURI());
+         live::neverRegisteredHint(ros::master::getURI());
 }
 
 std::map<char, sequence::TrialBasis> RobotPlayback::trials(const sequence::SequenceConfig& config) {

@@ -3,7 +3,6 @@
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
-#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -12,11 +11,6 @@ namespace fs = std::filesystem;
 
 namespace cosmo::suite {
 namespace {
-
-std::string configDirArg(const Job& job) {
-  const auto it = std::find(job.args.begin(), job.args.end(), "--config-dir");
-  return it == job.args.end() || it + 1 == job.args.end() ? "" : *(it + 1);
-}
 
 /// `file` (its keys under `section:` or at the root) with `keys` set under `section:`.
 void setKeys(const fs::path& file, const std::string& section, const std::map<std::string, std::string>& keys,
@@ -36,7 +30,7 @@ void setKeys(const fs::path& file, const std::string& section, const std::map<st
 
 void makeConfigOverlay(const Plan& plan, const Job& job) {
   if (job.registration.empty() && job.radio.empty()) return;
-  const fs::path dir = configDirArg(job);
+  const fs::path dir = job.request.config_dir;
   if (dir.empty() || fs::exists(dir / "COMPLETE")) return;
   const fs::path tmp = dir.string() + ".tmp." + std::to_string(::getpid());
   fs::remove_all(tmp);

@@ -132,7 +132,7 @@ std::map<std::string, std::string> inputIdentities(const Job& job, IdentityCache
 
 std::string jobKey(const Job& job, const std::map<std::string, std::string>& identities) {
   std::string text = std::string(job.kind == Job::Kind::Estimate ? "estimate" : "datasets") + "\n";
-  for (const auto& a : job.args) text += "arg " + a + "\n";
+  for (const auto& a : pipeline::generateArgs(job.request)) text += "arg " + a + "\n";
   for (const auto& [k, v] : job.registration) text += "registration " + k + "=" + v + "\n";
   for (const auto& [k, v] : job.radio) text += "radio " + k + "=" + v + "\n";
   for (const auto& s : job.post_steps) {

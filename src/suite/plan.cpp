@@ -125,20 +125,15 @@ Job groupJob(const Resolved& seq, const std::vector<std::pair<std::string, Varia
   job.radio = effect.radio;
   job.post_steps = effect.post_steps;
   job.comms = suite.comms;
-  job.args = {seq.entry.sequence, "--comm"};
-  std::string comms;
-  for (const auto& c : suite.comms) comms += (comms.empty() ? "" : ",") + c;
-  job.args.push_back(comms);
-  if (!seq.data_root.empty()) job.args.insert(job.args.end(), {"--data-root", seq.data_root});
-  if (effect.seed) job.args.insert(job.args.end(), {"--seed", std::to_string(*effect.seed)});
-  if (effect.seed_offset)
-    job.args.insert(job.args.end(), {"--seed", std::to_string(seq.config.seed + *effect.seed_offset)});
-  if (suite.max_seconds > 0) job.args.insert(job.args.end(), {"--max-seconds", formatSeconds(suite.max_seconds)});
-  job.args.insert(job.args.end(), effect.generate_args.begin(), effect.generate_args.end());
-  if (!job.registration.empty() || !job.radio.empty())
-    job.args.insert(job.args.end(), {"--config-dir", overlayDir(o.out_dir, job)});
-  else if (!suite.config_dir.empty())
-    job.args.insert(job.args.end(), {"--config-dir", suite.config_dir});
+  pipeline::GenerateRequest& r = job.request;
+  r.sequence = seq.entry.sequence;
+  r.data_root = seq.data_root;
+  r.comms = suite.comms;
+  if (effect.seed) r.seed = *effect.seed;
+  if (effect.seed_offset) r.seed = seq.config.seed + *effect.seed_offset;
+  r.max_seconds = suite.max_seconds;
+  for (const auto& set : effect.request) set(r);
+  r.config_dir = !job.registration.empty() || !job.radio.empty() ? overlayDir(o.out_dir, job) : suite.config_dir;
   return job;
 }
 
@@ -150,9 +145,11 @@ Job estimateJob(const EstimateEntry& e, const Resolved& seq, const SuiteFile& su
   try {
     sequence::findTrial(seq.config, e.trial);
   } catch (const std::exception& ex) { throw std::runtime_error(e.where + ".trial: " + ex.what()); }
-  job.args = {seq.entry.sequence, "--estimate-noise-models", e.trial, "--estimate-only"};
-  if (!seq.data_root.empty()) job.args.insert(job.args.end(), {"--data-root", seq.data_root});
-  if (!suite.config_dir.empty()) job.args.insert(job.args.end(), {"--config-dir", suite.config_dir});
+  job.request.sequence = seq.entry.sequence;
+  job.request.data_root = seq.data_root;
+  job.request.config_dir = suite.config_dir;
+  job.request.estimate_trial = e.trial;
+  job.request.estimate_only = true;
   return job;
 }
 
@@ -213,7 +210,7 @@ Plan planSuite(const SuiteFile& suite, const PlanOptions& o) {
         estimate_file = (fs::path(jobFolder(plan, plan.job(users.at(seq.entry.label)))) /
                          plan.job(users.at(seq.entry.label)).estimateFile())
                             .string();
-        job.args.insert(job.args.end(), {"--noise-models", estimate_file});
+        job.request.noise_models = estimate_file;
       }
       addGroupInputs(plan, job, seq.config, estimate_file);
       cold[job.id] = seq_cold;

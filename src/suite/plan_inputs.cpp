@@ -157,10 +157,4 @@ double estimatedSequenceSeconds(const sequence::SequenceConfig& config) {
   return longest;
 }
 
-std::string formatSeconds(double seconds) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", seconds);
-  return buf;
-}
-
 }  // namespace cosmo::suite

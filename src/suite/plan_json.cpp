@@ -22,7 +22,7 @@ json toJson(const Job& j) {
           {"sequence", j.sequence},
           {"sequence_name", j.sequence_name},
           {"comms", j.comms},
-          {"args", j.args},
+          {"args", pipeline::generateArgs(j.request)},
           {"registration", j.registration},
           {"radio", j.radio},
           {"post_steps", steps},
@@ -41,7 +41,7 @@ Job jobFromJson(const json& o) {
   j.sequence = o.at("sequence").get<std::string>();
   j.sequence_name = o.at("sequence_name").get<std::string>();
   j.comms = o.at("comms").get<std::vector<std::string>>();
-  j.args = o.at("args").get<std::vector<std::string>>();
+  j.request = pipeline::generateRequestFromArgs(o.at("args").get<std::vector<std::string>>());
   j.registration = o.at("registration").get<std::map<std::string, std::string>>();
   j.radio = o.at("radio").get<std::map<std::string, std::string>>();
   for (const auto& s : o.at("post_steps"))

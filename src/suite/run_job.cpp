@@ -98,13 +98,15 @@ std::vector<OutputFile> hashOutputs(const std::string& dir) {
 
 std::vector<std::string> generateCommand(const Plan& plan, const Job& job, const std::string& tmp,
                                          const RunJobOptions& o) {
-  std::vector<std::string> argv{(fs::path(plan.program_dir) / "cosmo_generate").string()};
-  argv.insert(argv.end(), job.args.begin(), job.args.end());
+  pipeline::GenerateRequest request = job.request;
   if (job.kind == Job::Kind::Estimate) {
-    argv.insert(argv.end(), {"--noise-models-out", (fs::path(tmp) / job.estimateFile()).string()});
+    request.noise_models_out = (fs::path(tmp) / job.estimateFile()).string();
   } else {
-    argv.insert(argv.end(), {"--out", tmp, "--registration-threads", std::to_string(o.registration_threads)});
+    request.out_dir = tmp;
+    request.registration_threads = o.registration_threads;
   }
+  std::vector<std::string> argv{(fs::path(plan.program_dir) / "cosmo_generate").string()};
+  for (auto& a : pipeline::generateArgs(request)) argv.push_back(std::move(a));
   return argv;
 }
 

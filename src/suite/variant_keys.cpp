@@ -74,7 +74,7 @@ VariantKey odometryKey() {
           },
           [](const std::string&, const VariantValue& v) { return "odom-" + v.scalar; },
           [](const std::string&, const VariantValue& v, VariantEffect& e) {
-            e.generate_args.insert(e.generate_args.end(), {"--odometry", v.scalar});
+            e.request.push_back([odometry = v.scalar](pipeline::GenerateRequest& r) { r.odometry = odometry; });
           }};
 }
 
@@ -110,7 +110,7 @@ VariantKey radioParamKey() {
           [](const std::string& sub, const VariantValue& v, VariantEffect& e) { e.radio[sub] = v.scalar; }};
 }
 
-/// The registration gate's acceptance threshold (pipeline/gate_threshold.hpp): `cosmo_generate --gate-threshold X`,
+/// The registration gate's acceptance threshold (sequence/gate_threshold.hpp): `cosmo_generate --gate-threshold X`,
 /// which sets `gate: strict`, `min_structure_overlap: X` on top of the sequence's own keys.
 VariantKey gateThresholdKey() {
   const auto check = [](const VariantValue& v) {
@@ -126,7 +126,7 @@ VariantKey gateThresholdKey() {
           [check](const std::string&, const VariantValue& v) { check(v); },
           [](const std::string&, const VariantValue& v) { return "gate-" + v.scalar; },
           [](const std::string&, const VariantValue& v, VariantEffect& e) {
-            e.generate_args.insert(e.generate_args.end(), {"--gate-threshold", v.scalar});
+            e.request.push_back([x = std::stod(v.scalar)](pipeline::GenerateRequest& r) { r.gate_threshold = x; });
           }};
 }
 

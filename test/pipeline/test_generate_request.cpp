@@ -1,25 +1,18 @@
-// cosmo_generate's options as a struct (pipeline/generate.hpp): the command line the suite writes from a request
+// cosmo_generate's options as a struct (pipeline/generate_request.hpp): the command line the suite writes from a request
 // (generateArgs) reads back into the same request (addGenerateOptions), and a request's checks name the option.
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "cosmo/pipeline/generate.hpp"
+#include "cosmo/pipeline/generate_request.hpp"
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
 
 namespace {
 
-GenerateRequest parsed(const std::vector<std::string>& args) {
-  CLI::App app("cosmo_generate");
-  GenerateRequest r;
-  addGenerateOptions(app, r);
-  std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 parses a reversed vector
-  app.parse(reversed);
-  return r;
-}
+GenerateRequest parsed(const std::vector<std::string>& args) { return generateRequestFromArgs(args); }
 
 }  // namespace
 
@@ -31,7 +24,7 @@ TEST(GenerateRequest, ArgumentsReadBackIntoTheSameRequest) {
   r.seed = 7;
   r.max_seconds = 12.5;
   r.odometry = "reference";
-  r.gate_threshold = 0.55;
+  r.gate_threshold = 0.1 + 0.2;  // not 0.3: its text must read back as the same double
   r.config_dir = "/tmp/config overlay";
   r.noise_models = "/tmp/nm.yaml";
   r.outlier_rule = "squared";
@@ -58,6 +51,10 @@ TEST(GenerateRequest, ArgumentsReadBackIntoTheSameRequest) {
   EXPECT_EQ(generateArgs(plain), std::vector<std::string>{"s.yaml"});
   EXPECT_FALSE(parsed({"s.yaml"}).seed.has_value());
   EXPECT_EQ(parsed({"s.yaml", "--reference-odometry"}).odometry, "reference");
+  try {
+    parsed({"s.yaml", "--odometry", "gps"});
+    ADD_FAILURE() << "an odometry that does not exist was read";
+  } catch (const std::runtime_error& e) { EXPECT_NE(std::string(e.what()).find("--odometry"), std::string::npos); }
 }
 
 TEST(GenerateRequest, ChecksNameTheOption) {

@@ -9,11 +9,11 @@
 
 #include "cosmo/dataset/noise_model_estimation.hpp"
 #include "cosmo/dataset/outlier_rule.hpp"
-#include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/frontend/frontend_params.hpp"
 #include "cosmo/sequence/scan_stream.hpp"
 #include "cosmo/sequence/sequence_references.hpp"
 #include "cosmo/pipeline/team_run.hpp"
-#include "synthetic_team.hpp"
+#include "../support/synthetic_team.hpp"
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
@@ -54,7 +54,7 @@ TEST(LookalikeClosures, ATerracedStreetYieldsAcceptedWrongPlaceClosuresLabelledO
   std::map<char, Trajectory> refs{
       {trial.robot, toSensorReference(trial.body, trial.extrinsic, timing.of(trial.robot))}};
   TeamRunParams params;
-  params.frontend = FrontendParams::loadDir(defaultConfigDir());
+  params.frontend = frontend::FrontendParams::loadDir(defaultConfigDir());
   params.noise = NoiseModels::load(defaultConfigDir() + "/noise_models/synthetic.yaml");
   TeamRun run("terraced_street", refs, params, 5, timing.start());
   std::map<char, std::unique_ptr<ScanSource>> sources;
@@ -62,7 +62,7 @@ TEST(LookalikeClosures, ATerracedStreetYieldsAcceptedWrongPlaceClosuresLabelledO
   MergedScanStream stream(std::move(sources), timing);
   char robot;
   Scan scan;
-  while (stream.next(robot, scan)) run.add(robot, OwnScan::of(scan));
+  while (stream.next(robot, scan)) run.add(robot, frontend::OwnScan::of(scan));
   run.finish(timing.end());
 
   // The street is driven once: every loop closure the gate accepted is a place a block or more away.

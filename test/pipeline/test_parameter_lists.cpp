@@ -12,7 +12,7 @@
 #include "cosmo/comm/radio_params.hpp"
 #include "cosmo/common/param_list.hpp"
 #include "cosmo/odometry/loam_params.hpp"
-#include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/frontend/frontend_params.hpp"
 #include "cosmo/place_recognition/place_recognizer.hpp"
 #include "cosmo/place_recognition/scan_context.hpp"
 #include "cosmo/registration/registration_params.hpp"
@@ -148,8 +148,8 @@ TEST(ParameterLists, PlaceRecognitionFileStructAndReaderAgree) {
 
 TEST(ParameterLists, FrontendFileStructAndReaderAgree) {
   const ConfigNode section = shippedSection("frontend.yaml", {"frontend"});
-  expectFileStructAndReaderAgree(section, pipeline::FrontendParams{});
-  EXPECT_EQ(listedValues(pipeline::FrontendParams::fromConfig(section)), listedValues(pipeline::FrontendParams{}));
+  expectFileStructAndReaderAgree(section, frontend::FrontendParams{});
+  EXPECT_EQ(listedValues(frontend::FrontendParams::fromConfig(section)), listedValues(frontend::FrontendParams{}));
 }
 
 TEST(ParameterLists, RadioFilesHoldTheirPresetsAndTheReaderAgrees) {
@@ -173,7 +173,7 @@ TEST(ParameterLists, AMisspeltKeyStopsTheReadNamingTheFileTheKeyAndTheNearestPar
             "test.yaml: place_recognition.scan_context.ring: unknown parameter (did you mean 'rings'?)");
   EXPECT_EQ(errorOf<PlaceRecognitionParams>("place_recognition:\n  treshold: 0.3\n"),
             "test.yaml: place_recognition.treshold: unknown parameter (did you mean 'threshold'?)");
-  EXPECT_EQ(errorOf<pipeline::FrontendParams>("frontend:\n  colour: red\n"),
+  EXPECT_EQ(errorOf<frontend::FrontendParams>("frontend:\n  colour: red\n"),
             "test.yaml: frontend.colour: unknown parameter");
   EXPECT_EQ(errorOf<RadioParams>("comm:\n  preset: wifi\n  dinit: 20\n"),
             "test.yaml: comm.dinit: unknown parameter (did you mean 'd_init'?)");

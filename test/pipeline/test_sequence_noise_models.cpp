@@ -10,11 +10,11 @@
 #include <fstream>
 
 #include "cosmo/dataset/outlier_rule.hpp"
-#include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/frontend/frontend_params.hpp"
 #include "cosmo/sequence/sequence_noise_models.hpp"
 #include "cosmo/sequence/sequence_references.hpp"
 #include "cosmo/pipeline/trial_noise_models.hpp"
-#include "synthetic_team.hpp"
+#include "../support/synthetic_team.hpp"
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
@@ -118,7 +118,7 @@ TEST(TrialNoiseModels, EstimateFromOneTrialAloneFitsTheClosuresItSawAndLabelsThe
   sources[trial.robot] = std::make_unique<VectorScanSource>(trial.scans);
   MergedScanStream stream(std::move(sources), timing);
   TeamRunParams params;
-  params.frontend = FrontendParams::loadDir(defaultConfigDir());
+  params.frontend = frontend::FrontendParams::loadDir(defaultConfigDir());
   NoiseModelEstimationParams estimation;
   estimation.min_samples = 6;
   const TrialNoiseModels result =

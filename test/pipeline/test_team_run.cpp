@@ -13,8 +13,8 @@
 #include "cosmo/sequence/seed_streams.hpp"
 #include "cosmo/sequence/sequence_references.hpp"
 #include "cosmo/pipeline/team_run.hpp"
-#include "cosmo/pipeline/odometry_run_ahead.hpp"
-#include "synthetic_team.hpp"
+#include "cosmo/frontend/odometry_run_ahead.hpp"
+#include "../support/synthetic_team.hpp"
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
@@ -60,14 +60,14 @@ std::string runOnce(std::uint64_t seed, TeamCounts* counts = nullptr, unsigned r
   const SequenceTiming timing = timingOf(trials, seed, 0.5);
   const std::map<char, Trajectory> refs = referencesOf(trials, timing);
   TeamRunParams params;
-  params.frontend = FrontendParams::loadDir(defaultConfigDir());
-  params.frontend.odometry = OdometryKind::Reference;
+  params.frontend = frontend::FrontendParams::loadDir(defaultConfigDir());
+  params.frontend.odometry = frontend::OdometryKind::Reference;
   params.registration_threads = registration_threads;
   TeamRun run("test_team", refs, params, cosmo::sequence::deriveSeed(seed, "radio"), timing.start());
   MergedScanStream stream = streamOf(trials, timing);
   char robot;
   Scan scan;
-  while (stream.next(robot, scan)) run.add(robot, OwnScan::of(scan));
+  while (stream.next(robot, scan)) run.add(robot, frontend::OwnScan::of(scan));
   run.finish(timing.end());
   const auto path = (std::filesystem::temp_directory_path() /
                      ("cosmo_team_run_" + std::to_string(seed) + "_" + std::to_string(registration_threads) + ".jrl"))
@@ -91,15 +91,15 @@ std::string runLoam(bool run_ahead, std::size_t max_scans, unsigned cores = 0, u
   const SequenceTiming timing = timingOf(trials, 3, 0.5);
   const std::map<char, Trajectory> refs = referencesOf(trials, timing);
   TeamRunParams params;
-  params.frontend = FrontendParams::loadDir(defaultConfigDir());
+  params.frontend = frontend::FrontendParams::loadDir(defaultConfigDir());
   params.registration_threads = registration_threads;
   TeamRun run("test_team", refs, params, cosmo::sequence::deriveSeed(3, "radio"), timing.start());
   StampNs last = 0;
   if (run_ahead) {
-    OdometryRunAhead ahead(sourcesOf(trials), timing, params.frontend, refs, cores);
-    AheadScan s;
+    frontend::OdometryRunAhead ahead(sourcesOf(trials), timing, params.frontend, refs, cores);
+    frontend::AheadScan s;
     for (std::size_t n = 0; n < max_scans && ahead.next(s); ++n) {
-      run.add(s.robot, OwnScan::prepared(s.stamp, s.odometry, std::move(s.keyframe_scan)));
+      run.add(s.robot, frontend::OwnScan::prepared(s.stamp, s.odometry, std::move(s.keyframe_scan)));
       last = s.stamp;
     }
   } else {
@@ -107,7 +107,7 @@ std::string runLoam(bool run_ahead, std::size_t max_scans, unsigned cores = 0, u
     char robot;
     Scan scan;
     for (std::size_t n = 0; n < max_scans && stream.next(robot, scan); ++n) {
-      run.add(robot, OwnScan::of(scan));
+      run.add(robot, frontend::OwnScan::of(scan));
       last = scan.stamp;
     }
   }
@@ -145,10 +145,10 @@ TEST(OdometryRunAhead, HandsOverInTheTeamsStreamOrderWithItsDroppedScans) {
   worker_sources['a'] = std::make_unique<VectorScanSource>(a);
   worker_sources['b'] = std::make_unique<VectorScanSource>(b);
   MergedScanStream stream(std::move(team_sources), timing);
-  OdometryRunAhead ahead(std::move(worker_sources), timing, FrontendParams{}, {});
+  frontend::OdometryRunAhead ahead(std::move(worker_sources), timing, frontend::FrontendParams{}, {});
   char robot;
   Scan scan;
-  AheadScan s;
+  frontend::AheadScan s;
   int n = 0;
   while (stream.next(robot, scan)) {
     ASSERT_TRUE(ahead.next(s));
@@ -171,11 +171,11 @@ TEST(TeamRun, PreparedKeyframesMustMatchTheFrontendsKeyframer) {
   TeamRun run("t", refs, params, 1, 0);
   OdometryResult r;
   const auto kf = std::make_shared<const Scan>();
-  EXPECT_THROW(run.add('a', OwnScan::prepared(1000, r, nullptr)), std::logic_error);  // keyframe 0 not prepared
+  EXPECT_THROW(run.add('a', frontend::OwnScan::prepared(1000, r, nullptr)), std::logic_error);  // keyframe 0 not prepared
   TeamRun run2("t", refs, params, 1, 0);
-  run2.add('a', OwnScan::prepared(1000, r, kf));
-  EXPECT_THROW(run2.add('a', OwnScan::prepared(2000, r, kf)), std::logic_error);  // no motion: not a keyframe
-  EXPECT_THROW(run2.add('z', OwnScan::prepared(3000, r, nullptr)), std::invalid_argument);
+  run2.add('a', frontend::OwnScan::prepared(1000, r, kf));
+  EXPECT_THROW(run2.add('a', frontend::OwnScan::prepared(2000, r, kf)), std::logic_error);  // no motion: not a keyframe
+  EXPECT_THROW(run2.add('z', frontend::OwnScan::prepared(3000, r, nullptr)), std::invalid_argument);
 }
 
 TEST(MergedScanStream, MergesBySequenceTimeAndDropsNonIncreasingStamps) {
@@ -260,8 +260,8 @@ TEST(TeamRun, RegistrationThreadsStopCleanlyWithoutFinish) {
   const SequenceTiming timing = timingOf(trials, 5, 0.5);
   const std::map<char, Trajectory> refs = referencesOf(trials, timing);
   TeamRunParams params;
-  params.frontend = FrontendParams::loadDir(defaultConfigDir());
-  params.frontend.odometry = OdometryKind::Reference;
+  params.frontend = frontend::FrontendParams::loadDir(defaultConfigDir());
+  params.frontend.odometry = frontend::OdometryKind::Reference;
   params.registration_threads = 2;
   std::size_t keyframes = 0;
   {
@@ -270,7 +270,7 @@ TEST(TeamRun, RegistrationThreadsStopCleanlyWithoutFinish) {
     MergedScanStream stream = streamOf(trials, timing);
     char robot;
     Scan scan;
-    for (int n = 0; n < 60 && stream.next(robot, scan); ++n) run.add(robot, OwnScan::of(scan));
+    for (int n = 0; n < 60 && stream.next(robot, scan); ++n) run.add(robot, frontend::OwnScan::of(scan));
     keyframes = run.counts().keyframes;
   }
   EXPECT_GT(keyframes, 2u);
@@ -283,14 +283,14 @@ TEST(TeamRun, ReplaysARadioTraceInsteadOfTheDistanceModel) {
   const SequenceTiming timing = timingOf(trials, 5, 0.5);
   const auto deliveredWith = [&](const RadioParams& radio, RadioStats* stats) {
     TeamRunParams params;
-    params.frontend = FrontendParams::loadDir(defaultConfigDir());
-    params.frontend.odometry = OdometryKind::Reference;
+    params.frontend = frontend::FrontendParams::loadDir(defaultConfigDir());
+    params.frontend.odometry = frontend::OdometryKind::Reference;
     params.radio = radio;
     TeamRun run("test_team", referencesOf(trials, timing), params, deriveSeed(5, "radio"), timing.start());
     MergedScanStream stream = streamOf(trials, timing);
     char robot;
     Scan scan;
-    while (stream.next(robot, scan)) run.add(robot, OwnScan::of(scan));
+    while (stream.next(robot, scan)) run.add(robot, frontend::OwnScan::of(scan));
     run.finish(timing.end());
     *stats = run.radio().stats();
     return run.counts().transfers_delivered;

@@ -12,13 +12,13 @@ using namespace cosmo;
 namespace {
 Pose3 at(double x, double y) { return test::planarPose(x, y); }
 /// A keyframe whose odometry is its reference.
-pipeline::KeyframeRecord keyframe(std::size_t index, const Pose3& pose) {
+frontend::KeyframeRecord keyframe(std::size_t index, const Pose3& pose) {
   return test::keyframeRecord(index, pose, pose);
 }
 }  // namespace
 
 TEST(Markers, ALineIsDeletedUntilItHasContent) {
-  pipeline::FrontendMap map('a');
+  frontend::FrontendMap map('a');
   map.addKeyframe(keyframe(0, at(0, 0)));
   const visualization_msgs::MarkerArray one = ros_glue::frontendMarkers(map, 'a', "world", ros::Time(1.0));
   ASSERT_EQ(one.markers.size(), 3u);
@@ -31,10 +31,10 @@ TEST(Markers, ALineIsDeletedUntilItHasContent) {
 }
 
 TEST(Markers, ClosuresAreLiftedAndColouredByTheirLabel) {
-  pipeline::FrontendMap map('a');
+  frontend::FrontendMap map('a');
   map.addKeyframe(keyframe(0, at(0, 0)));
   map.addKeyframe(keyframe(1, at(2, 0)));
-  pipeline::LoopClosureAttempt a;
+  frontend::LoopClosureAttempt a;
   a.owner = a.robot1 = a.robot2 = 'a';
   a.index1 = 0;
   a.index2 = 1;
@@ -43,7 +43,7 @@ TEST(Markers, ClosuresAreLiftedAndColouredByTheirLabel) {
   const visualization_msgs::Marker lcs = ros_glue::frontendMarkers(map, 'a', "world", ros::Time(1.0)).markers[2];
   ASSERT_EQ(lcs.points.size(), 2u);
   EXPECT_GT(lcs.points[0].z, 1.0);
-  EXPECT_EQ(lcs.colors[0], ros_glue::closureLabelColor(pipeline::ClosureLabel::Rejected));
+  EXPECT_EQ(lcs.colors[0], ros_glue::closureLabelColor(frontend::ClosureLabel::Rejected));
 }
 
 TEST(Markers, NoLinksIsADelete) {
@@ -54,7 +54,7 @@ TEST(Markers, NoLinksIsADelete) {
 }
 
 TEST(FrontendMsgs, KeyframePosesTravelBitExact) {
-  pipeline::KeyframeRecord kf = keyframe(3, at(1.0 / 3.0, 2.0 / 7.0));
+  frontend::KeyframeRecord kf = keyframe(3, at(1.0 / 3.0, 2.0 / 7.0));
   kf.relative = makePose(Eigen::Vector3d(0.1, 0.2, 0.3), Eigen::Quaterniond(0.9, 0.1, 0.2, 0.3).normalized());
   const cosmo::RecorderKeyframe m = ros_glue::recorderKeyframeMsg(kf, "world");
   EXPECT_EQ(m.robot, "a");

@@ -48,7 +48,7 @@ inline bool spinUntil(const std::function<bool()>& done, double seconds) {
 
 /// The process id of `node` (0 when it does not answer).
 inline int pidOf(const std::string& node) {
-  const pipeline::PeerProbe probe = ros_glue::probePeer(node, 2.0);
+  const live::PeerProbe probe = ros_glue::probePeer(node, 2.0);
   return probe.answered ? probe.pid : 0;
 }
 

@@ -1,4 +1,4 @@
-// The reference poses a player sends beside the scans (pipeline/reference_stream.hpp): the reference's stamps
+// The reference poses a player sends beside the scans (sequence/reference_stream.hpp): the reference's stamps
 // since the previous scan, thinned to the spacing, then the scan's stamp.
 #include <gtest/gtest.h>
 

@@ -76,7 +76,7 @@ TEST(JobRecord, AChangedOrMissingOutputMakesItStale) {
 
 TEST(JobRecord, OtherParametersMakeItStale) {
   Finished d;
-  d.plan.jobs.front().args.insert(d.plan.jobs.front().args.end(), {"--odometry", "reference"});
+  d.plan.jobs.front().request.odometry = "reference";
   EXPECT_EQ(d.state().kind, JobState::Kind::Stale);
   EXPECT_EQ(d.state().reason, "parameters changed");
 }

@@ -74,9 +74,16 @@ TEST(SuitePlan, TheVariantGridNamesEveryGroupAndPassesItsOptions) {
                                                  "alpha_s2_odom-reference"}));
   const Job& j = plan.job("alpha_s2_odom-reference");
   EXPECT_EQ(j.datasetNames(), (std::vector<std::string>{"alpha_s2_odom-reference_wifi", "alpha_s2_odom-reference_proradio"}));
+  EXPECT_EQ(j.request.sequence, (f.root / "seq/alpha.yaml").string());
+  EXPECT_EQ(j.request.comms, (std::vector<std::string>{"wifi", "proradio"}));
+  EXPECT_EQ(j.request.seed, 2u);
+  EXPECT_EQ(j.request.max_seconds, 12.0);
+  EXPECT_EQ(j.request.odometry, "reference");
+  // what its process runs, and what the plan file keeps, reads back as the same request
   const std::vector<std::string> want{(f.root / "seq/alpha.yaml").string(), "--comm", "wifi,proradio", "--seed", "2",
                                       "--max-seconds", "12", "--odometry", "reference"};
-  EXPECT_EQ(j.args, want);
+  EXPECT_EQ(cosmo::pipeline::generateArgs(j.request), want);
+  EXPECT_EQ(cosmo::pipeline::generateArgs(Plan::fromJson(plan.toJson(), "plan").job(j.id).request), want);
   EXPECT_EQ(j.robots, 3);
   EXPECT_NEAR(j.seconds, 12.0, 1e-9);  // min(reference span 20 s, max_seconds)
   EXPECT_EQ(j.jrlFile("wifi"), "alpha_wifi.jrl");
@@ -88,8 +95,8 @@ TEST(SuitePlan, RepeatsSeedFromTheSequencesOwnSeed) {
   const auto suite = f.write("s.yaml", "sequences:\n  - sequence: seq/alpha.yaml\nvariants:\n  repeats: 2\n");
   const Plan plan = planSuite(SuiteFile::load(suite.string()), suite_test::planOptions(f));
   ASSERT_EQ(ids(plan), (std::vector<std::string>{"alpha_r0", "alpha_r1"}));
-  EXPECT_EQ(plan.jobs[1].args[3], "--seed");
-  EXPECT_EQ(plan.jobs[1].args[4], "4");  // the sequence's seed 3 + 1
+  EXPECT_EQ(plan.jobs[0].request.seed, 3u);
+  EXPECT_EQ(plan.jobs[1].request.seed, 4u);  // the sequence's seed 3 + 1
 }
 
 TEST(SuitePlan, ConfigVariantsGetTheirOwnConfigFolderAndMayNotOverrideTheSequence) {
@@ -103,9 +110,7 @@ TEST(SuitePlan, ConfigVariantsGetTheirOwnConfigFolderAndMayNotOverrideTheSequenc
   EXPECT_EQ(j.id, "alpha_reg-paper_bandwidth_kBps-500");
   EXPECT_EQ(j.registration.at("gate"), "paper");
   EXPECT_EQ(j.radio.at("bandwidth_kBps"), "500");
-  const auto dir = std::find(j.args.begin(), j.args.end(), "--config-dir");
-  ASSERT_NE(dir, j.args.end());
-  EXPECT_EQ((dir + 1)->rfind(plan.out_dir + "/.suite/config/", 0), 0u) << *(dir + 1);
+  EXPECT_EQ(j.request.config_dir.rfind(plan.out_dir + "/.suite/config/", 0), 0u) << j.request.config_dir;
   const auto clash = f.write("c.yaml", "sequences:\n  - sequence: own/beta.yaml\nvariants:\n  registration: [strict]\n");
   try {
     planSuite(SuiteFile::load(clash.string()), suite_test::planOptions(f));
@@ -125,16 +130,14 @@ TEST(SuitePlan, TheEstimateIsAJobTheGroupsOfItsEnvironmentWaitFor) {
   ASSERT_EQ(ids(plan), (std::vector<std::string>{"noise_models/cu_boulder", "kittredge", "campus", "ntu"}));
   const Job& e = plan.jobs[0];
   EXPECT_EQ(e.kind, Job::Kind::Estimate);
-  EXPECT_EQ(e.args, (std::vector<std::string>{(f.root / "k/kittredge.yaml").string(), "--estimate-noise-models", "c",
-                                              "--estimate-only"}));
+  EXPECT_EQ(cosmo::pipeline::generateArgs(e.request),
+            (std::vector<std::string>{(f.root / "k/kittredge.yaml").string(), "--estimate-noise-models", "c",
+                                      "--estimate-only"}));
   EXPECT_EQ(e.robots, 1);
   const std::string models = plan.out_dir + "/noise_models/cu_boulder/cu_boulder.yaml";
   for (const char* id : {"kittredge", "campus"}) {
     EXPECT_EQ(plan.job(id).depends_on, std::vector<std::string>{"noise_models/cu_boulder"}) << id;
-    const auto& a = plan.job(id).args;
-    ASSERT_GE(a.size(), 2u);
-    EXPECT_EQ(a[a.size() - 2], "--noise-models");
-    EXPECT_EQ(a.back(), models);
+    EXPECT_EQ(plan.job(id).request.noise_models, models);
   }
   EXPECT_TRUE(plan.job("ntu").depends_on.empty());
 }
@@ -223,8 +226,10 @@ TEST(SuitePlan, TheGateThresholdAndInjectedOutliersAreVariants) {
   ASSERT_EQ(ids(plan), (std::vector<std::string>{"beta_gate-0.45_inj-group-0.2-s3-g4-of-all",
                                                  "beta_gate-0.7_inj-group-0.2-s3-g4-of-all"}));
   const Job& j = plan.jobs[1];
-  const auto gate = std::find(j.args.begin(), j.args.end(), "--gate-threshold");
-  ASSERT_NE(gate, j.args.end());
+  EXPECT_EQ(j.request.gate_threshold, 0.7);
+  const std::vector<std::string> args = cosmo::pipeline::generateArgs(j.request);
+  const auto gate = std::find(args.begin(), args.end(), "--gate-threshold");
+  ASSERT_NE(gate, args.end());
   EXPECT_EQ(*(gate + 1), "0.7");
   EXPECT_TRUE(j.registration.empty());  // no config copy: the option goes on top of the sequence's keys
   ASSERT_EQ(j.post_steps.size(), 1u);

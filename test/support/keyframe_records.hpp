@@ -5,7 +5,7 @@
 #include <optional>
 
 #include "cosmo/common/pose.hpp"
-#include "cosmo/pipeline/robot_frontend.hpp"
+#include "cosmo/frontend/robot_frontend.hpp"
 
 namespace cosmo::test {
 
@@ -15,9 +15,9 @@ inline Pose3 planarPose(double x, double y, double yaw = 0.0) {
 }
 
 /// Keyframe `index` of `robot` at odometry pose `odom`, with its reference pose when it has one.
-inline pipeline::KeyframeRecord keyframeRecord(std::size_t index, const Pose3& odom, std::optional<Pose3> reference,
+inline frontend::KeyframeRecord keyframeRecord(std::size_t index, const Pose3& odom, std::optional<Pose3> reference,
                                                char robot = 'a') {
-  pipeline::KeyframeRecord kf;
+  frontend::KeyframeRecord kf;
   kf.robot = robot;
   kf.index = index;
   kf.odom_pose = odom;

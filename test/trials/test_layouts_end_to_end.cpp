@@ -104,7 +104,7 @@ struct LayoutTrial {
 };
 
 struct SequenceRun {
-  std::vector<pipeline::KeyframeRecord> keyframes;
+  std::vector<frontend::KeyframeRecord> keyframes;
   sequence::SequenceTiming timing;
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();
   bool labelled = false;
@@ -116,12 +116,12 @@ SequenceRun runSequence(const std::string& config_path) {
   r.timing = trials::synchronizeSequence(config);
   r.offset = trials::sequenceReferenceOffset(config);
   pipeline::TeamRunParams params;
-  params.frontend.odometry = pipeline::OdometryKind::Reference;
+  params.frontend.odometry = frontend::OdometryKind::Reference;
   pipeline::TeamRun run("e2e", trials::loadSequenceReferences(config, r.timing), params, 1, r.timing.start());
   sequence::MergedScanStream stream = trials::openSequenceStream(config, r.timing);
   char robot;
   Scan scan;
-  while (stream.next(robot, scan)) run.add(robot, pipeline::OwnScan::of(scan));
+  while (stream.next(robot, scan)) run.add(robot, frontend::OwnScan::of(scan));
   run.finish(r.timing.end());
   BuildReport report;
   run.recorder().build(&report);

@@ -13,8 +13,8 @@
 #include <memory>
 #include <vector>
 
-#include "cosmo/pipeline/kept_scan.hpp"
-#include "cosmo/pipeline/odometry_run_ahead.hpp"
+#include "cosmo/frontend/kept_scan.hpp"
+#include "cosmo/frontend/odometry_run_ahead.hpp"
 #include "cosmo/pipeline/team_run.hpp"
 #include "cosmo/sequence/scan_stream.hpp"
 #include "cosmo/sequence/sequence_config.hpp"
@@ -25,14 +25,14 @@ namespace cosmo::pipeline {
 /// The robots' own results of a run, kept for the next comm model; their keyframe scans wait in a spill file
 /// (KeptScan), not in memory.
 struct ComputedScans {
-  explicit ComputedScans(std::shared_ptr<SpillFile> spill_file = nullptr) : spill(std::move(spill_file)) {}
-  std::vector<AheadScan> scans;
-  std::vector<std::shared_ptr<const KeptScan>> keyframes;  ///< one per keyframe of `scans`, in order
-  std::shared_ptr<SpillFile> spill;
+  explicit ComputedScans(std::shared_ptr<frontend::SpillFile> spill_file = nullptr) : spill(std::move(spill_file)) {}
+  std::vector<frontend::AheadScan> scans;
+  std::vector<std::shared_ptr<const frontend::KeptScan>> keyframes;  ///< one per keyframe of `scans`, in order
+  std::shared_ptr<frontend::SpillFile> spill;
   std::map<char, std::size_t> dropped;
   bool ready = false;
 
-  void keep(const AheadScan& s);
+  void keep(const frontend::AheadScan& s);
 };
 
 /// How a run was fed: scans dropped per robot (stamps not increasing), and where the team's thread spent its

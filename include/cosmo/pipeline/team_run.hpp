@@ -37,16 +37,16 @@
 #include "cosmo/dataset/dataset_recorder.hpp"
 #include "cosmo/dataset/noise_models.hpp"
 #include "cosmo/dataset/outlier_rule.hpp"
-#include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/frontend/frontend_params.hpp"
 #include "cosmo/pipeline/lockstep_schedule.hpp"
-#include "cosmo/pipeline/robot_frontend.hpp"
+#include "cosmo/frontend/robot_frontend.hpp"
 
 namespace cosmo::pipeline {
 
 struct TeamRunParams {
   /// frontend.odometry: loam, or reference (perfect odometry: tests, and isolating loop-closure errors; the
   /// references are whole, so a robot's pose is held at their ends, and robots without one use LOAM).
-  FrontendParams frontend;
+  frontend::FrontendParams frontend;
   RadioParams radio = RadioParams::wifi();
   NoiseModels noise;
   OutlierRule outlier_rule = OutlierRule::Fidelity;
@@ -75,50 +75,50 @@ class TeamRun {
 
   /// Runs the radio through `scan.stamp`, then the scan through `robot`'s front-end (RobotFrontend::add: its
   /// points, or prepared ahead by OdometryRunAhead).
-  void add(char robot, const OwnScan& scan);
+  void add(char robot, const frontend::OwnScan& scan);
   /// Runs the radio through `end` (the sequence end) so late transfers are delivered, and waits for every
   /// pending registration (the recorder is complete afterwards).
   void finish(StampNs end);
   /// Records what is pending, waiting for the registrations (finish() does it too).
   void drain();
   /// The registration threads (nullptr without).
-  const RegistrationPool* registrationPool() const { return pool_.get(); }
+  const frontend::RegistrationPool* registrationPool() const { return pool_.get(); }
 
   const TeamRunParams& params() const { return params_; }
   /// The recorder; with registration threads complete only after finish() (or drain()).
   const DatasetRecorder& recorder() const { return recorder_; }
   const RadioSimulator& radio() const { return radio_; }
-  const RobotFrontend& frontend(char robot) const;
+  const frontend::RobotFrontend& frontend(char robot) const;
   const TeamCounts& counts() const { return counts_; }
   std::vector<char> robots() const;
   /// Recorder messages (refused measurements), for the log.
   const std::vector<std::string>& warnings() const { return warnings_; }
   /// Called for every loop-closure attempt (progress, visualisation); optional.
-  std::function<void(const LoopClosureAttempt&)> on_loop_closure;
+  std::function<void(const frontend::LoopClosureAttempt&)> on_loop_closure;
 
  private:
   void advanceRadioTo(StampNs t);
   /// What the team's event order (LockstepSchedule) runs before `robot`'s scan at `stamp`: the due radio steps.
   void beforeScan(char robot, StampNs stamp);
-  RobotFrontend& frontendFor(char robot);
+  frontend::RobotFrontend& frontendFor(char robot);
   /// Bookkeeping of a step: the keyframe recorded and offered to the radio, loop closures recorded in order.
-  void take(const RobotFrontend& fe, Step step);
-  void record(const LoopClosureAttempt& a);
-  void recordKeyframe(const KeyframeRecord& kf);
+  void take(const frontend::RobotFrontend& fe, frontend::Step step);
+  void record(const frontend::LoopClosureAttempt& a);
+  void recordKeyframe(const frontend::KeyframeRecord& kf);
   /// Records the queue's front while it is ready (`wait`: waits for every pending registration), and waits for the
   /// front while more than kMaxPending registrations are pending.
   void flush(bool wait);
 
   /// A recorder call in the single-threaded order: a keyframe, or a loop closure whose registration may be pending.
   struct PendingRecord {
-    std::optional<KeyframeRecord> keyframe;
-    PendingLoopClosure loop_closure;
+    std::optional<frontend::KeyframeRecord> keyframe;
+    frontend::PendingLoopClosure loop_closure;
   };
   /// Registrations the team may run ahead of (bounds the lag of counts() and the queue's memory).
   static constexpr std::size_t kMaxPending = 64;
 
   TeamRunParams params_;
-  std::map<char, std::unique_ptr<RobotFrontend>> frontends_;
+  std::map<char, std::unique_ptr<frontend::RobotFrontend>> frontends_;
   RadioSimulator radio_;
   LockstepSchedule schedule_;
   DatasetRecorder recorder_;
@@ -126,7 +126,7 @@ class TeamRun {
   StampNs origin_;
   TeamCounts counts_;
   std::vector<std::string> warnings_;
-  std::shared_ptr<RegistrationPool> pool_;
+  std::shared_ptr<frontend::RegistrationPool> pool_;
   std::deque<PendingRecord> pending_;
   std::size_t pending_loop_closures_ = 0;
 };

@@ -7,13 +7,13 @@
 #include "cosmo/Keyframe.h"
 #include "cosmo/RecorderKeyframe.h"
 #include "cosmo/RecorderLoopClosure.h"
-#include "cosmo/pipeline/robot_frontend.hpp"
+#include "cosmo/frontend/robot_frontend.hpp"
 
 namespace cosmo::ros_glue {
 
 /// `frame`: the frame of the reference pose (the world).
-cosmo::RecorderKeyframe recorderKeyframeMsg(const pipeline::KeyframeRecord& keyframe, const std::string& frame);
-cosmo::RecorderLoopClosure recorderLoopClosureMsg(const pipeline::LoopClosureAttempt& closure,
+cosmo::RecorderKeyframe recorderKeyframeMsg(const frontend::KeyframeRecord& keyframe, const std::string& frame);
+cosmo::RecorderLoopClosure recorderLoopClosureMsg(const frontend::LoopClosureAttempt& closure,
                                                   const std::string& frame);
 /// The keyframe `keyframe` (as sent to the recorder) with its scan in `scan_frame` (the robot's base frame).
 cosmo::Keyframe keyframeOfferMsg(const cosmo::RecorderKeyframe& keyframe, const Scan& scan,

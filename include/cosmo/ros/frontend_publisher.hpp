@@ -1,5 +1,5 @@
 #pragma once
-// What the front-end node publishes of its front-end's steps (pipeline::RobotFrontend::add), in one place:
+// What the front-end node publishes of its front-end's steps (frontend::RobotFrontend::add), in one place:
 //   an own scan   TF <r>/odom -> <r>/base_link (its odometry) and world -> <r>/odom (the map's alignment); a keyframe
 //                 to the recorder (numbered, kept until acknowledged: RecorderLink) and offered to the teammates
 //                 (keyframe_scans);
@@ -13,8 +13,8 @@
 #include <tf2_ros/transform_broadcaster.h>
 
 #include "cosmo/dataset/noise_models.hpp"
-#include "cosmo/pipeline/frontend_map.hpp"
-#include "cosmo/pipeline/robot_frontend.hpp"
+#include "cosmo/frontend/frontend_map.hpp"
+#include "cosmo/frontend/robot_frontend.hpp"
 #include "cosmo/ros/recorder_link.hpp"
 
 namespace cosmo::ros_glue {
@@ -26,26 +26,26 @@ class FrontendPublisher {
                     std::optional<NoiseModels> noise);
 
   /// An own scan's step, published at `stamp`; `scans_skipped`: the robot's count so far (in its keyframe).
-  void ownScan(pipeline::RobotFrontend& frontend, const pipeline::Step& step, const ros::Time& stamp,
+  void ownScan(frontend::RobotFrontend& frontend, const frontend::Step& step, const ros::Time& stamp,
                std::uint32_t scans_skipped);
   /// A teammate scan's step; `reference`: the teammate keyframe's reference pose, when its message had one.
-  void teammateScan(pipeline::RobotFrontend& frontend, const pipeline::Step& step, char teammate, std::size_t index,
+  void teammateScan(frontend::RobotFrontend& frontend, const frontend::Step& step, char teammate, std::size_t index,
                     const std::optional<Pose3>& reference);
   /// The ack at `stamp` (`frontend` nullptr: none built yet).
-  void ack(const pipeline::RobotFrontend* frontend, StampNs stamp, std::size_t received_dropped, std::size_t queued,
+  void ack(const frontend::RobotFrontend* frontend, StampNs stamp, std::size_t received_dropped, std::size_t queued,
            std::uint32_t scans_skipped);
 
   /// The markers' labels, when they are known only later (lockstep: the player's sequence).
-  pipeline::FrontendMap& map() { return map_; }
+  frontend::FrontendMap& map() { return map_; }
 
  private:
-  void closures(pipeline::RobotFrontend& frontend, const pipeline::Step& step);
+  void closures(frontend::RobotFrontend& frontend, const frontend::Step& step);
   void markers(const ros::Time& stamp);
 
   char robot_;
   std::string world_frame_, odom_frame_, base_frame_;
   RecorderLink& recorder_;
-  pipeline::FrontendMap map_;
+  frontend::FrontendMap map_;
   std::size_t loop_closures_published_ = 0;  ///< counted in the ack (the player's end-of-run handshake)
   ros::Publisher offer_pub_, ack_pub_, marker_pub_;
   tf2_ros::TransformBroadcaster tf_;

@@ -1,5 +1,5 @@
 #pragma once
-// Seeing a peer node the way `rosnode ping` does (pipeline::PeerWatch holds the policy):
+// Seeing a peer node the way `rosnode ping` does (live::PeerWatch holds the policy):
 // - probePeer(): the master's lookupNode, then a TCP connection to the node's XML-RPC URI and its getPid, each
 //   bounded by a timeout, so that a peer behind a dead route or a stopped process cannot block the caller;
 // - PeerMonitor: a thread that probes the expected peers about once a second, feeds a PeerWatch, logs what its
@@ -16,8 +16,8 @@
 #include <string>
 #include <thread>
 
-#include "cosmo/pipeline/peer_address_hint.hpp"
-#include "cosmo/pipeline/peer_watch.hpp"
+#include "cosmo/live/peer_address_hint.hpp"
+#include "cosmo/live/peer_watch.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -28,11 +28,11 @@ class RunStopped : public std::runtime_error {
 };
 
 /// One probe of the node named `node` (a resolved name, e.g. "/b/frontend"), `timeout` s at most per step.
-pipeline::PeerProbe probePeer(const std::string& node, double timeout = 1.0);
+live::PeerProbe probePeer(const std::string& node, double timeout = 1.0);
 
 /// What this machine finds out about the address a probed peer registered, for the hints of
-/// pipeline/peer_address_hint.hpp (the probe's host resolution and connection, and whether it is a loopback one).
-pipeline::PeerAddress peerAddress(const pipeline::PeerProbe& probe);
+/// live/peer_address_hint.hpp (the probe's host resolution and connection, and whether it is a loopback one).
+live::PeerAddress peerAddress(const live::PeerProbe& probe);
 
 /// Why this node's topic connections with the peer at `peer_uri` (alive) are not made: its topic server for
 /// `topic` (one it publishes; XML-RPC requestTopic) does not accept a connection from here, or it does, and then the
@@ -45,7 +45,7 @@ double wallSeconds();
 class PeerMonitor {
  public:
   /// `owner`: the node that watches, for its messages (e.g. "player").
-  PeerMonitor(std::string owner, pipeline::PeerWatch watch, double period = 1.0);
+  PeerMonitor(std::string owner, live::PeerWatch watch, double period = 1.0);
   ~PeerMonitor();
   PeerMonitor(const PeerMonitor&) = delete;
   PeerMonitor& operator=(const PeerMonitor&) = delete;
@@ -64,7 +64,7 @@ class PeerMonitor {
   std::optional<std::string> stopReason() const;
   bool connected() const;
   bool alive(const std::string& node) const;
-  pipeline::PeerState state(const std::string& node) const;
+  live::PeerState state(const std::string& node) const;
   std::string describe(const std::string& node) const;
 
  private:
@@ -73,7 +73,7 @@ class PeerMonitor {
   std::string owner_;
   double period_;
   mutable std::mutex mutex_;
-  pipeline::PeerWatch watch_;
+  live::PeerWatch watch_;
   std::map<std::string, std::function<bool()>> link_checks_;
   std::map<std::string, std::string> link_topics_;
   std::map<std::string, double> link_hint_at_;  ///< since when a link is missing / its reason was last looked for

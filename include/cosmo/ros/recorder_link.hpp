@@ -1,8 +1,8 @@
 #pragma once
 // A front-end's side of the recorder protocol: its measurements (cosmo/RecorderKeyframe on keyframes_meas,
-// cosmo/RecorderLoopClosure on loop_closures) numbered and kept in a pipeline::Outbox until /recorder/progress
+// cosmo/RecorderLoopClosure on loop_closures) numbered and kept in a live::Outbox until /recorder/progress
 // acknowledges them, and sent again to a new recorder session or when not acknowledged within a second; and, for a
-// front-end that may be a restart (real time), where its numbering continues (pipeline::continueAfter): decided
+// front-end that may be a restart (real time), where its numbering continues (live::continueAfter): decided
 // once the recorder's progress was heard (and the comm_broker's offers, /comm/offered, when the recorder holds
 // something of the robot), or after `recorder_wait` s without a recorder (then afresh, with a warning).
 // Everything runs on the node's own callback queue (ros::spin).
@@ -16,8 +16,8 @@
 #include "cosmo/RecorderKeyframe.h"
 #include "cosmo/RecorderLoopClosure.h"
 #include "cosmo/RecorderProgress.h"
-#include "cosmo/pipeline/frontend_continuation.hpp"
-#include "cosmo/pipeline/outbox.hpp"
+#include "cosmo/live/frontend_continuation.hpp"
+#include "cosmo/live/outbox.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -29,7 +29,7 @@ class RecorderLink {
 
   /// Whether the numbering is decided (then continuation() holds).
   bool decided();
-  const pipeline::Continuation& continuation() const { return continuation_; }
+  const live::Continuation& continuation() const { return continuation_; }
 
   /// Numbers, keeps and publishes; the first keyframe of a restart is bridged.
   void send(cosmo::RecorderKeyframe keyframe);
@@ -49,12 +49,12 @@ class RecorderLink {
   char robot_;
   double recorder_wait_;
   ros::WallTime start_;
-  std::optional<pipeline::Continuation> decided_;
-  pipeline::Continuation continuation_;
+  std::optional<live::Continuation> decided_;
+  live::Continuation continuation_;
   std::optional<cosmo::RecorderProgress> progress_;
   std::optional<std::uint32_t> broker_next_index_;
   bool bridge_pending_ = false;
-  pipeline::Outbox<Message> outbox_;
+  live::Outbox<Message> outbox_;
   ros::Publisher kf_pub_, lc_pub_;
   ros::Subscriber progress_sub_, offered_sub_;
   ros::WallTimer resend_timer_;

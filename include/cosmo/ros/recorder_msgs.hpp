@@ -10,7 +10,7 @@
 #include "cosmo/dataset/dataset_recorder.hpp"
 #include "cosmo/dataset/measurement_record.hpp"
 #include "cosmo/dataset/recorder_intake.hpp"
-#include "cosmo/pipeline/frontend_continuation.hpp"
+#include "cosmo/live/frontend_continuation.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -25,7 +25,7 @@ cosmo::RecorderProgress recorderProgressMsg(const dataset::RecorderIntake& intak
                                             const DatasetRecorder& recorder);
 
 /// What `msg` says the recorder holds of `robot` (nothing when it does not list the robot).
-pipeline::RecorderHolding recorderHolding(const cosmo::RecorderProgress& msg, char robot);
+live::RecorderHolding recorderHolding(const cosmo::RecorderProgress& msg, char robot);
 /// The acknowledged seq of `robot` in `msg` (0 when it does not list the robot).
 std::uint64_t recorderAcked(const cosmo::RecorderProgress& msg, char robot);
 

@@ -3,7 +3,7 @@
 // on the robot's own machine, so raw scans never leave it. The base's player holds no scan: it takes each trial's
 // span and reference from the robot's announcement (/<r>/played_trial, cosmo/PlayedTrial), merges the robots'
 // read-ahead stamps (/<r>/scans_ahead, cosmo/ScansAhead) into the team's order with the merge it always uses, and
-// asks each robot for its scans one by one (/<r>/play_scan, cosmo/PlayScan). pipeline/scan_read_ahead.hpp is the
+// asks each robot for its scans one by one (/<r>/play_scan, cosmo/PlayScan). sequence/scan_read_ahead.hpp is the
 // protocol without ROS; this is the base's side of it (the robot's side is the trial_player node).
 #include <condition_variable>
 #include <functional>
@@ -18,7 +18,7 @@
 #include "cosmo/PlayScan.h"
 #include "cosmo/PlayedTrial.h"
 #include "cosmo/ScansAhead.h"
-#include "cosmo/pipeline/scan_read_ahead.hpp"
+#include "cosmo/sequence/scan_read_ahead.hpp"
 #include "cosmo/sequence/sequence_config.hpp"
 #include "cosmo/sequence/trial_basis.hpp"
 
@@ -73,7 +73,7 @@ class RobotPlayback {
   mutable std::mutex mutex_;
   std::condition_variable changed_;
   std::map<char, cosmo::PlayedTrial> trials_;
-  std::map<char, pipeline::AnnouncedStamps> announced_;
+  std::map<char, sequence::AnnouncedStamps> announced_;
   std::map<char, std::string> errors_;  ///< a robot's broken announcement
   std::vector<ros::Subscriber> subs_;
   std::map<char, ros::Publisher> play_pubs_;

@@ -1,6 +1,6 @@
 #pragma once
 // A front-end's scan input. Real time (capacity > 0): the points topic is served by its own thread, which only
-// pushes each scan into a bounded pipeline::ScanQueue (the oldest waiting scan is skipped when it is full); the
+// pushes each scan into a bounded frontend::ScanQueue (the oldest waiting scan is skipped when it is full); the
 // scans are handed, one per callback, to `on_scan` on the node's own callback queue (ros::spin), between the other
 // callbacks. Lockstep (capacity 0): `on_scan` is called directly by the subscriber (the player waits for every scan).
 #include <atomic>
@@ -12,7 +12,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
 
-#include "cosmo/pipeline/scan_queue.hpp"
+#include "cosmo/frontend/scan_queue.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -39,7 +39,7 @@ class ScanInput {
   void drainOne();
 
   std::function<void(const Scan&)> on_scan_;
-  pipeline::ScanQueue<Scan> queue_;
+  frontend::ScanQueue<Scan> queue_;
   std::atomic<bool> held_, scheduled_{false};
   ros::CallbackQueue own_queue_;
   std::unique_ptr<ros::AsyncSpinner> spinner_;

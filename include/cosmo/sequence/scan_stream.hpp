@@ -36,7 +36,7 @@ class VectorScanSource : public ScanSource {
 };
 
 /// One robot's rule for bad input: a scan whose stamp does not increase is dropped. The merge applies it per
-/// robot; a robot-side trial player (pipeline/scan_read_ahead.hpp) applies it to its own trial before announcing.
+/// robot; a robot-side trial player (sequence/scan_read_ahead.hpp) applies it to its own trial before announcing.
 class IncreasingStamps {
  public:
   /// Whether a scan stamped `stamp` is kept (then it is the latest).

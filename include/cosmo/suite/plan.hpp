@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "cosmo/pipeline/generate_request.hpp"
 #include "cosmo/suite/suite_file.hpp"
 
 namespace cosmo::suite {
@@ -35,8 +36,9 @@ struct Job {
   std::string sequence;       ///< the sequence config (absolute path)
   std::string sequence_name;  ///< its `name:`: cosmo_generate writes <sequence_name>_<comm>.*
   std::vector<std::string> comms;
-  /// cosmo_generate's arguments but --out and --registration-threads (estimates: also --noise-models-out).
-  std::vector<std::string> args;
+  /// What its cosmo_generate runs, but the output folder and the registration threads (estimates: also where the
+  /// estimate goes): run_job.cpp sets those and runs pipeline::generateArgs(request) as a process.
+  pipeline::GenerateRequest request;
   std::map<std::string, std::string> registration, radio;  ///< config keys set by variants (a config copy)
   std::vector<PostStep> post_steps;
   std::vector<std::string> depends_on;  ///< job ids whose outputs it needs (a noise-model estimate)

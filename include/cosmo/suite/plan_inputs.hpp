@@ -34,7 +34,4 @@ void checkInputsExist(const Plan& plan);
 /// (0 when no trial has a reference).
 double estimatedSequenceSeconds(const sequence::SequenceConfig& config);
 
-/// Seconds as an option value ("20", "12.5").
-std::string formatSeconds(double seconds);
-
 }  // namespace cosmo::suite

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "cosmo/common/config.hpp"
+#include "cosmo/pipeline/generate_request.hpp"
 
 namespace cosmo::suite {
 
@@ -35,11 +36,11 @@ struct PostStep {
 
 /// What the variants of one dataset group change in its run.
 struct VariantEffect {
-  std::vector<std::string> generate_args;           ///< cosmo_generate options
+  std::vector<std::function<void(pipeline::GenerateRequest&)>> request;  ///< what it sets in the run's request
   std::map<std::string, std::string> registration;  ///< config/registration.yaml keys
   std::map<std::string, std::string> radio;         ///< config/comm/<model>.yaml keys (every comm model)
   std::vector<PostStep> post_steps;
-  std::optional<unsigned long long> seed;           ///< --seed
+  std::optional<unsigned long long> seed;           ///< the seed
   std::optional<unsigned long long> seed_offset;    ///< repeats: the sequence's seed + this
 };
 

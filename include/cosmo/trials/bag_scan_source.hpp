@@ -28,8 +28,8 @@ sequence::TrialSpan readTrialSpan(const sequence::TrialConfig& trial);
 /// readTrialSpan as stamps of the sweep ends (the stamps of the decoded scans, whatever the trial's convention).
 sequence::TrialSpan readSweepEndSpan(const sequence::TrialConfig& trial);
 
-/// What the sequence's timing and references take from a trial (pipeline/trial_basis.hpp): its sweep-end span
-/// clipped to its reference's span (pipeline/trial_coverage.hpp) and its reference as read.
+/// What the sequence's timing and references take from a trial (sequence/trial_basis.hpp): its sweep-end span
+/// clipped to its reference's span (sequence/trial_coverage.hpp) and its reference as read.
 sequence::TrialBasis readTrialBasis(const sequence::TrialConfig& trial);
 
 /// The synchronized timing of a sequence config (reads every trial's basis).

@@ -29,7 +29,7 @@ struct SequenceChoice {
   std::string noise_models;    ///< a noise-model file overriding the sequence's
   std::string estimate_trial;  ///< the noise models are estimated first from this trial run alone (none loaded)
   std::optional<unsigned long long> seed;
-  std::optional<double> gate_threshold;  ///< the registration gate's threshold (pipeline/gate_threshold.hpp)
+  std::optional<double> gate_threshold;  ///< the registration gate's threshold (sequence/gate_threshold.hpp)
   double max_seconds = 0.0;              ///< 0: the whole sequence
   bool check = true;  ///< the pre-flight check before the trials are read (off where the trials are elsewhere)
 };

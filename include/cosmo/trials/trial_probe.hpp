@@ -1,5 +1,5 @@
 #pragma once
-// The pre-flight check's reading side (pipeline/trial_check.hpp judges): what a trial's bag holds at its start,
+// The pre-flight check's reading side (sequence/trial_check.hpp judges): what a trial's bag holds at its start,
 // and the whole check of a sequence config, as cosmo_check prints it.
 #include <string>
 

@@ -2,7 +2,7 @@
 // A trial's reference in the form the pipeline uses: LiDAR poses in the world frame in sequence time,
 // T_world_lidar = T_world_body * T_body_lidar (the trial's extrinsic), minus the sequence's reference offset, read
 // from whichever reference format the trial's `reference:` file has (reference_file.hpp). Also which of the
-// trial's scans that reference covers (pipeline/trial_coverage.hpp) and the sequence's one reference offset.
+// trial's scans that reference covers (sequence/trial_coverage.hpp) and the sequence's one reference offset.
 #include <Eigen/Core>
 #include <map>
 

@@ -31,8 +31,8 @@
 #include "cosmo/common/command_line.hpp"
 #include "cosmo/common/config.hpp"
 #include "cosmo/dataset/noise_models.hpp"
-#include "cosmo/pipeline/frontend_params.hpp"
-#include "cosmo/pipeline/keyframe_taker.hpp"
+#include "cosmo/frontend/frontend_params.hpp"
+#include "cosmo/frontend/keyframe_taker.hpp"
 #include "cosmo/pipeline/team_radio.hpp"
 #include "cosmo/pipeline/team_run.hpp"
 #include "cosmo/sequence/sequence_timing.hpp"
@@ -121,7 +121,7 @@ sim::SimulationParams simulationParams(const Options& o) {
 TeamRunParams teamParams(const Options& o) {
   const std::string config_dir = defaultConfigDir();
   TeamRunParams params;
-  params.frontend = FrontendParams::loadDir(config_dir);
+  params.frontend = frontend::FrontendParams::loadDir(config_dir);
   params.frontend.spill_keyframes = o.spill;
   params.radio = RadioParams::fromConfig(ConfigNode::load(config_dir + "/comm/" + o.comm + ".yaml"));
   params.noise = NoiseModels::load(config_dir + "/noise_models/synthetic.yaml");
@@ -171,9 +171,9 @@ Report report(TeamRun& run, const bench::Stopwatch& total, bool last) {
   const std::size_t kfs = run.counts().keyframes;
   Report r{kfs, statusBytes("VmRSS"), statusBytes("VmHWM")};
   std::set<const void*> seen;
-  FrontendFootprint team;
+  frontend::FrontendFootprint team;
   for (char robot : run.robots()) team += run.frontend(robot).footprint(seen);
-  const FeatureCacheFootprint fc = run.frontend(run.robots().front()).featureCache().footprint();
+  const frontend::FeatureCacheFootprint fc = run.frontend(run.robots().front()).featureCache().footprint();
   std::printf(
       "keyframes %5zu  RSS %7.1f MB  peak %7.1f MB | scans own %zu + received %zu: %7.1f MB in memory, "
       "%7.1f MB spilled | features %zu: %7.1f MB in memory, %7.1f MB spilled | descriptors %6.1f MB | "
@@ -191,11 +191,11 @@ std::vector<Report> runTeam(const Team& team, const sim::SimulationParams& sp, c
                             std::size_t report_every, const bench::Stopwatch& total) {
   const StampNs origin = radioGridOrigin(team.events.front().stamp, params.radio.step);
   TeamRun run(sp.name + "_memory", team.references, params, 1, origin);
-  std::map<char, KeyframeTaker> takers;
+  std::map<char, frontend::KeyframeTaker> takers;
   std::map<char, std::unique_ptr<sim::ScanSimulator>> simulators;
   std::map<char, const Trial*> by_robot;
   for (const Trial& t : team.trials) {
-    takers.emplace(t.robot, KeyframeTaker(params.frontend));
+    takers.emplace(t.robot, frontend::KeyframeTaker(params.frontend));
     simulators[t.robot] = std::make_unique<sim::ScanSimulator>(*t.world, sp.lidar);
     by_robot[t.robot] = &t;
   }
@@ -206,7 +206,7 @@ std::vector<Report> runTeam(const Team& team, const sim::SimulationParams& sp, c
     OdometryResult odo;
     odo.pose = t.sensor.atClamped(e.stamp);  // perfect odometry
     odo.initial_guess = "reference";
-    KeyframeTaker& taker = takers.at(e.robot);
+    frontend::KeyframeTaker& taker = takers.at(e.robot);
     std::shared_ptr<const Scan> kf_scan;
     if (taker.update(e.stamp, odo.pose).is_keyframe) {
       const Scan sweep = simulators.at(e.robot)->simulate(t.body, t.extrinsic, e.stamp - t.shift, t.noise_seed);
@@ -214,7 +214,7 @@ std::vector<Report> runTeam(const Team& team, const sim::SimulationParams& sp, c
       shifted.stamp = e.stamp;
       kf_scan = std::make_shared<const Scan>(taker.keyframeScan(shifted, t.sensor));
     }
-    run.add(e.robot, OwnScan::prepared(e.stamp, odo, std::move(kf_scan)));
+    run.add(e.robot, frontend::OwnScan::prepared(e.stamp, odo, std::move(kf_scan)));
     if (run.counts().keyframes >= next_report) {
       reports.push_back(report(run, total, false));
       next_report += report_every;

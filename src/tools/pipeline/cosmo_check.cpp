@@ -10,7 +10,7 @@
 #include <string>
 
 #include "cosmo/common/command_line.hpp"
-#include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/frontend/frontend_params.hpp"
 #include "cosmo/sequence/sequence_config.hpp"
 #include "cosmo/trials/sequence_resolution.hpp"
 #include "cosmo/trials/trial_probe.hpp"

@@ -139,7 +139,7 @@ class Console {
         "  wall %.1f s for %.1f s of sequence (%.2fx real time), CPU %.1f s (%.0f %% of one core; the team's "
         "thread %.1f s",
         wall_s, duration_, duration_ / std::max(wall_s, 1e-9), cpu, 100.0 * cpu / std::max(wall_s, 1e-9), team_cpu);
-    if (const RegistrationPool* pool = run.registrationPool())
+    if (const frontend::RegistrationPool* pool = run.registrationPool())
       std::printf(", %u registration threads %.1f s", pool->threads(), pool->cpuSeconds());
     std::printf("), peak memory %.0f MB\n", peakRssMb());
     const FeedFigures& f = d.feed;

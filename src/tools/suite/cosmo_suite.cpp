@@ -18,7 +18,7 @@
 
 #include "cosmo/common/command_line.hpp"
 #include "cosmo/dataset/atomic_file.hpp"
-#include "cosmo/pipeline/frontend_params.hpp"
+#include "cosmo/frontend/frontend_params.hpp"
 #include "cosmo/suite/local_run.hpp"
 #include "cosmo/suite/out_dir.hpp"
 #include "cosmo/suite/plan.hpp"
