@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <sstream>
 #include <stdexcept>
 
 namespace cosmo::dataset {
@@ -21,8 +22,7 @@ std::string yamlQuoted(const std::string& text) {
   return q + "\"";
 }
 
-RecorderSession::RecorderSession(const std::string& output_dir, JournalHeader run, NoiseModels noise,
-                                 OutlierRule rule)
+RecorderSession::RecorderSession(const std::string& output_dir, JournalHeader run, NoiseModels noise, OutlierRule rule)
     : run_(std::move(run)),
       recorder_(run_.name, run_.robots, std::move(noise), rule),
       intake_(run_.robots),
@@ -107,10 +107,21 @@ MetadataLines RecorderSession::metadata(const MetadataLines& sequence_lines) con
   return lines;
 }
 
-BuildReport RecorderSession::write(const std::string& path, const MetadataLines& sequence_lines,
-                                   jrl::Dataset* built) {
+BuildReport RecorderSession::write(const std::string& path, const MetadataLines& sequence_lines, jrl::Dataset* built) {
   recorder_.setMetadata(metadata(sequence_lines));
   return recorder_.write(path, built);
+}
+
+std::string RecorderSession::writtenLine(const std::string& path, const std::string& why,
+                                         const BuildReport& report) const {
+  std::ostringstream out;
+  out << "wrote " << path << " (" << why << (incomplete_.empty() ? "" : ", marked incomplete")
+      << "): " << report.entries << " entries; " << recorder_.progressLine();
+  if (!report.labelled) out << "; " << report.labels_note;
+  if (report.keyframes_pending || report.loop_closures_pending)
+    out << "; pending (not written yet): " << report.keyframes_pending << " keyframes, " << report.loop_closures_pending
+        << " loop closures";
+  return out.str();
 }
 
 bool RecorderSession::finish(bool written) {

@@ -12,7 +12,6 @@
 
 #include "cosmo/Keyframe.h"
 #include "cosmo/comm/radio_status.hpp"
-#include "cosmo/comm/transfer_log.hpp"
 #include "cosmo/live/clock_skew.hpp"
 #include "cosmo/pipeline/radio_broker.hpp"
 #include "cosmo/ros/comm_broker_options.hpp"
@@ -28,36 +27,25 @@ using namespace cosmo;
 namespace {
 
 using pipeline::RadioBroker;
-using Options = ros_glue::CommBrokerOptions;
 
 class CommBroker {
  public:
-  CommBroker(ros::NodeHandle& nh, Options options)
+  CommBroker(ros::NodeHandle& nh, ros_glue::CommBrokerOptions options)
       : o_(std::move(options)),
         radio_(o_.radio, o_.robots, static_cast<std::uint64_t>(o_.seed), o_.lockstep, o_.compress,
                static_cast<std::uint32_t>(o_.xz_preset)) {
     connectRobots(nh);
-    if (o_.lockstep)
-      connectLockstep(nh);
-    else
+    if (!o_.lockstep)
       timer_ = nh.createWallTimer(ros::WallDuration(0.01), [this](const ros::WallTimerEvent&) { onTimer(); });
-    const RadioParams& p = o_.radio;
-    ROS_INFO(
-        "comm_broker: %zu robots, B %.0f kB/s, d_init %.0f m, d_intf %.0f m, P_max %.2f, seed %s, sizes %s, "
-        "timeout %s%s",
-        o_.robots.size(), p.bandwidth_kBps, p.d_init, p.d_intf, p.p_max,
-        o_.lockstep ? "from the sequence" : std::to_string(o_.seed).c_str(), toString(p.size_model).c_str(),
-        toString(p.timeout_mode).c_str(), o_.lockstep ? ", lockstep (driven by the player)" : "");
+    if (o_.lockstep) connectLockstep(nh);
+    ros_glue::logCommBrokerStart(o_);
   }
 
   ~CommBroker() { writeLog(); }
 
   void writeLog() {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (o_.log_file.empty()) return;
-    try {
-      writeTransferLog(o_.log_file, radio());
-    } catch (const std::exception& e) { ROS_ERROR("comm_broker: %s", e.what()); }
+    log_.write(radio());
   }
 
  private:
@@ -78,15 +66,13 @@ class CommBroker {
   }
 
   void connectLockstep(ros::NodeHandle& nh) {
-    sequence_sub_ = nh.subscribe<cosmo::TeamSequence>(
-        ros_glue::kTeamSequenceTopic, 1, [this](const cosmo::TeamSequence::ConstPtr& m) { onSequence(*m); });
+    sequence_sub_ = nh.subscribe(ros_glue::kTeamSequenceTopic, 1, &CommBroker::onSequence, this);
     for (char r : radio().robots())
       trajectory_subs_.push_back(nh.subscribe<cosmo::ReferenceTrajectory>(
           ros_glue::referenceTrajectoryTopic(r), 1,
           [this, r](const cosmo::ReferenceTrajectory::ConstPtr& m) { onTrajectory(r, *m); }));
     step_done_pub_ = nh.advertise<cosmo::RadioStepDone>("comm/step_done", 100);
-    step_request_sub_ = nh.subscribe<cosmo::RadioStepRequest>(
-        "comm/step_request", 100, [this](const cosmo::RadioStepRequest::ConstPtr& m) { onStepRequest(*m); });
+    step_request_sub_ = nh.subscribe("comm/step_request", 100, &CommBroker::onStepRequest, this);
   }
 
   /// Decode and pack (xz, outside the lock), then the offer to the radio.
@@ -112,17 +98,8 @@ class CommBroker {
         ROS_WARN("comm_broker: %s", skew->c_str());
     offered_[{r, m.index}] = ros_glue::offeredKeyframeMeta(m);
     radio_.offer(r, m.index, std::move(payload));
-    publishOffered();
+    offered_pub_.publish(ros_glue::offeredMsg(radio_.nextIndex()));  // where a restarted front-end continues
     runPendingSteps();
-  }
-
-  /// With the mutex held: per robot, where a restarted front-end continues its keyframe indices.
-  void publishOffered() {
-    nlohmann::json next = nlohmann::json::object();
-    for (const auto& [r, n] : radio_.nextIndex()) next[std::string(1, r)] = n;
-    std_msgs::String m;
-    m.data = next.dump();
-    offered_pub_.publish(m);
   }
 
   void onPose(char r, const geometry_msgs::PoseStamped& m) {
@@ -148,7 +125,8 @@ class CommBroker {
   }
 
   // Lockstep: the player's resolved sequence (latched): grid origin and radio seed, then every robot's reference.
-  void onSequence(const cosmo::TeamSequence& m) {
+  void onSequence(const cosmo::TeamSequence::ConstPtr& msg) {
+    const cosmo::TeamSequence& m = *msg;
     std::lock_guard<std::mutex> lock(mutex_);
     sequence_name_ = m.name;
     const std::vector<char> in_sequence(m.robots.begin(), m.robots.end());
@@ -190,14 +168,15 @@ class CommBroker {
     };
     // No limit here: the player stops the run when a front-end never connects (its peer policy).
     while (ros::ok() && !ros_glue::waitUntil([&] { return missing().empty(); }, ros_glue::wallDeadline(10.0)))
-      ROS_INFO("comm_broker: lockstep: waiting for the front-ends of robots %s (/<r>/keyframe_scans from it, "
-               "/<r>/received_scans to it); the player stops the run if one never connects",
-               missing().c_str());
+      ROS_INFO(
+          "comm_broker: lockstep: waiting for the front-ends of robots %s (/<r>/keyframe_scans from it, "
+          "/<r>/received_scans to it); the player stops the run if one never connects",
+          missing().c_str());
   }
 
-  void onStepRequest(const cosmo::RadioStepRequest& m) {
+  void onStepRequest(const cosmo::RadioStepRequest::ConstPtr& m) {
     std::lock_guard<std::mutex> lock(mutex_);
-    radio_.request(ros_glue::radioStepFromMsg(m));
+    radio_.request(ros_glue::radioStepFromMsg(*m));
     runPendingSteps();
   }
 
@@ -237,27 +216,16 @@ class CommBroker {
   void publishRadioState(const ros::Time& stamp, double radio_time, double stats_time,
                          const RadioBroker::Links& links) {
     links_pub_.publish(ros_glue::linkMarkers(radio(), links, radio_time, o_.frame_id, stamp));
-    std_msgs::String stats;
-    stats.data = radioStatus(radio(), stats_time).dump();
-    stats_pub_.publish(stats);
-    writeLogEvery30s(radio_time);
+    stats_pub_.publish(ros_glue::radioStatsMsg(radio(), stats_time));
+    log_.writeEvery30s(radio(), radio_time);
   }
 
-  /// The transfer log (CSV + summary) rewritten when 30 s of radio time passed since the last write.
-  void writeLogEvery30s(double radio_time) {
-    if (o_.log_file.empty() || radio_time - last_log_write_ < 30.0) return;
-    last_log_write_ = radio_time;
-    try {
-      writeTransferLog(o_.log_file, radio());
-    } catch (const std::exception& ex) { ROS_ERROR_THROTTLE(30.0, "comm_broker: %s", ex.what()); }
-  }
-
-  Options o_;
+  ros_glue::CommBrokerOptions o_;
   std::mutex mutex_;
   RadioBroker radio_;
-  live::ClockSkewWatch clock_skew_;  ///< live robots' clocks, from their offers' stamps
+  live::ClockSkewWatch clock_skew_;                                  ///< live robots' clocks, from their offers' stamps
   std::map<std::pair<char, std::size_t>, cosmo::Keyframe> offered_;  ///< what deliveries carry besides the scan
-  double last_log_write_ = 0.0;
+  ros_glue::TransferLogFile log_{o_.log_file};
   std::string sequence_name_;
   ros::WallTimer timer_;
   std::vector<ros::Subscriber> keyframe_subs_, pose_subs_, trajectory_subs_;

@@ -5,12 +5,6 @@
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 
-#include <sys/prctl.h>
-#include <sys/resource.h>
-#include <unistd.h>
-
-#include <csignal>
-#include <cstdio>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -19,14 +13,13 @@
 #include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/frontend/pending_scans.hpp"
 #include "cosmo/frontend/robot_frontend.hpp"
-#include "cosmo/sequence/sequence_noise_models.hpp"
+#include "cosmo/ros/frontend_msgs.hpp"
+#include "cosmo/ros/frontend_options.hpp"
 #include "cosmo/ros/frontend_publisher.hpp"
 #include "cosmo/ros/node_main.hpp"
 #include "cosmo/ros/point_cloud.hpp"
 #include "cosmo/ros/pose_msg.hpp"
 #include "cosmo/ros/recorder_link.hpp"
-#include "cosmo/ros/resolved_sequence.hpp"
-#include "cosmo/ros/robot_list.hpp"
 #include "cosmo/ros/scan_input.hpp"
 #include "cosmo/ros/team_sequence_msg.hpp"
 
@@ -34,80 +27,26 @@ using namespace cosmo;
 
 namespace {
 
-struct Options {
-  char robot = 'a';
-  std::string config_dir, odometry = "loam", noise_models, world_frame = "world", stamp = "end";
-  double reference_wait = 0.5, recorder_wait = 10.0;
-  int scan_queue = 10;
-  bool lockstep = false;
-};
-
-Options readOptions(const ros::NodeHandle& pnh) {
-  Options o;
-  o.robot = ros_glue::nodeRobot(pnh);
-  pnh.param<std::string>("config_dir", o.config_dir, cosmo::defaultConfigDir());
-  pnh.param<std::string>("odometry", o.odometry, o.odometry);
-  pnh.param<std::string>("noise_models", o.noise_models, "");
-  pnh.param<std::string>("world_frame", o.world_frame, o.world_frame);
-  pnh.param("reference_wait", o.reference_wait, o.reference_wait);
-  pnh.param("lockstep", o.lockstep, o.lockstep);
-  pnh.param("scan_queue", o.scan_queue, o.scan_queue);
-  pnh.param("recorder_wait", o.recorder_wait, o.recorder_wait);
-  pnh.param<std::string>("stamp", o.stamp, o.stamp);
-  if (o.scan_queue < 1) throw std::runtime_error("~scan_queue must be at least 1, got " + std::to_string(o.scan_queue));
-  if (o.stamp != "end" && o.stamp != "start")
-    throw std::runtime_error("~stamp must be start or end (the sweep instant of the header stamp), got '" + o.stamp +
-                             "'");
-  return o;
-}
-
-frontend::FrontendParams loadParams(const Options& o) {
-  frontend::FrontendParams p = frontend::FrontendParams::loadDir(o.config_dir);
-  try {
-    p.odometry = frontend::parseOdometryKind(o.odometry);
-  } catch (const std::invalid_argument& e) { throw std::runtime_error(std::string("~") + e.what()); }
-  return p;
-}
-
-/// ~noise_models for the loop-closure colours; none: unlabelled (lockstep: the sequence's, once it is known).
-std::optional<NoiseModels> markerNoiseModels(const std::string& path) {
-  if (path.empty()) return std::nullopt;
-  return NoiseModels::load(path);
-}
-
 class FrontendNode {
  public:
-  FrontendNode(ros::NodeHandle& nh, Options options)
+  FrontendNode(ros::NodeHandle& nh, ros_glue::FrontendOptions options)
       : o_(std::move(options)),
-        params_(loadParams(o_)),
+        params_(ros_glue::frontendParams(o_)),
         recorder_(nh, o_.robot, !o_.lockstep, o_.recorder_wait),
-        out_(nh, o_.robot, o_.world_frame, recorder_, markerNoiseModels(o_.noise_models)),
+        out_(nh, o_.robot, o_.world_frame, recorder_, ros_glue::markerNoiseModels(o_)),
         pending_(toStampNs(o_.reference_wait), !o_.lockstep) {
     subscribe(nh);
-    ROS_INFO("frontend %c: odometry %s, config %s%s", o_.robot, o_.odometry.c_str(), o_.config_dir.c_str(),
-             o_.lockstep ? ", lockstep (reference from the player's sequence)" : "");
-    if (o_.lockstep && !ros::Time::isSimTime())
-      ROS_WARN("frontend %c: /use_sim_time was not set when this node started: it runs on this machine's clock, not "
-               "the player's /clock (start the base's launch first; the dataset does not depend on it)",
-               o_.robot);
+    ros_glue::logFrontendStart(o_);
   }
 
   /// At the end: what it processed and skipped, its queue's and its memory's peaks (docs/benchmarks.md).
-  void summary() const {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    std::printf("frontend %c: %zu scans processed, %u skipped, at most %zu waiting; %zu keyframes, %llu measurements "
-                "sent, %zu not acknowledged; peak memory %.0f MB\n",
-                o_.robot, frontend_ ? frontend_->scansProcessed() : 0, scansSkipped(), scans_ ? scans_->peak() : 0,
-                frontend_ ? frontend_->keyframes().size() : 0, static_cast<unsigned long long>(recorder_.lastSeq()),
-                recorder_.unacknowledged(), usage.ru_maxrss / 1024.0);
-    std::fflush(stdout);
-  }
+  void summary() const { out_.summary(frontend_.get(), scansSkipped(), scans_ ? scans_->peak() : 0); }
 
  private:
   void subscribe(ros::NodeHandle& nh) {
-    scans_.emplace(nh, "points", o_.lockstep ? 0 : static_cast<std::size_t>(o_.scan_queue),
-                   [this](const sensor_msgs::PointCloud2::ConstPtr& m) { onPoints(m); }, !o_.lockstep);
+    scans_.emplace(
+        nh, "points", o_.lockstep ? 0 : static_cast<std::size_t>(o_.scan_queue),
+        [this](const sensor_msgs::PointCloud2::ConstPtr& m) { onPoints(m); }, !o_.lockstep);
     recv_sub_ = nh.subscribe("received_scans", 100, &FrontendNode::onReceived, this);
     if (o_.odometry == "external") odom_sub_ = nh.subscribe("odom", 1000, &FrontendNode::onOdom, this);
     if (!o_.lockstep) {  // real time: the numbering decided (a restart?) before the first scan; acks every second
@@ -130,24 +69,8 @@ class FrontendNode {
   // player's sequence, whose registration keys apply, is resolved before anything is played). Inputs that come
   // earlier wait here, in order.
   void build(Trajectory reference) {
-    frontend::FrontendSetup setup;
-    setup.params = params_;
-    if (const std::optional<ros_glue::ResolvedSequence> sequence = ros_glue::resolvedSequence()) {
-      try {
-        setup.params.registration =
-            cosmo::sequence::registrationParamsWith(o_.config_dir, sequence->registration, sequence->path);
-        if (!sequence->registration.empty())
-          ROS_INFO("frontend %c: registration: %s's own keys over %s/registration.yaml", o_.robot,
-                   sequence->path.c_str(), o_.config_dir.c_str());
-      } catch (const std::exception& e) {
-        ROS_ERROR("frontend %c: the player's sequence: %s; registration stays %s/registration.yaml's", o_.robot,
-                  e.what(), o_.config_dir.c_str());
-      }
-    }
-    setup.reference = std::move(reference);
-    setup.reference_arrival = o_.lockstep ? frontend::ReferenceArrival::Whole : frontend::ReferenceArrival::PoseByPose;
-    setup.first_index = recorder_.continuation().first_index;
-    frontend_ = std::make_unique<frontend::RobotFrontend>(o_.robot, std::move(setup));
+    frontend_ = std::make_unique<frontend::RobotFrontend>(
+        o_.robot, ros_glue::frontendSetup(o_, params_, std::move(reference), recorder_.continuation().first_index));
     std::vector<std::function<void()>> early;
     early.swap(early_);
     for (const auto& input : early) input();
@@ -200,31 +123,21 @@ class FrontendNode {
     });
   }
 
-  // Lockstep: built with the sequence's reference trajectory (the player's, latched) before its first scan.
+  // Lockstep: built with the sequence's reference trajectory (the player's, latched) before its first scan. The
+  // markers' inlier / outlier colours use the noise models the recorder labels with: without ~noise_models, those
+  // the player's sequence names (none: the colours stay unlabelled).
   void onTrajectory(const cosmo::ReferenceTrajectory::ConstPtr& m) {
     if (frontend_) return;
     Trajectory reference;
     try {
       reference = ros_glue::trajectoryFromMsg(*m, trajectory_sub_.getTopic());
       if (!out_.map().hasNoiseModels()) {
-        if (std::optional<NoiseModels> noise = sequenceNoiseModels()) out_.map().setNoiseModels(std::move(*noise));
+        if (std::optional<NoiseModels> noise = ros_glue::sequenceNoiseModels(o_))
+          out_.map().setNoiseModels(std::move(*noise));
       }
       if (reference.empty()) ROS_WARN("frontend %c: the sequence has no reference for this robot", o_.robot);
     } catch (const std::exception& e) { ROS_ERROR("frontend %c: lockstep: %s; no reference", o_.robot, e.what()); }
     build(std::move(reference));
-  }
-
-  // The markers' inlier / outlier colours use the noise models the recorder labels with: without ~noise_models,
-  // those the player's sequence names (none: the colours stay unlabelled).
-  std::optional<NoiseModels> sequenceNoiseModels() const {
-    const std::optional<ros_glue::ResolvedSequence> sequence = ros_glue::resolvedSequence();
-    if (!sequence) return std::nullopt;
-    try {
-      return cosmo::sequence::loadSequenceNoiseModels(sequence->load(), o_.config_dir);
-    } catch (const std::exception& e) {
-      ROS_WARN("frontend %c: no noise models for the loop-closure colours: %s", o_.robot, e.what());
-      return std::nullopt;
-    }
   }
 
   void onPoints(const sensor_msgs::PointCloud2::ConstPtr& m) {
@@ -261,15 +174,9 @@ class FrontendNode {
 
   void received(const cosmo::Keyframe& m) {
     try {
-      if (m.robot.size() != 1 || m.robot[0] == o_.robot) throw std::runtime_error("bad robot field '" + m.robot + "'");
-      Scan scan = ros_glue::fromPointCloud2(m.cloud, true, recv_sub_.getTopic());
-      scan.stamp = m.header.stamp.toNSec();
-      // computed at the delivery's radio step (the offline driver's time); a broker without it: now
-      const StampNs at = m.received_at.isZero() ? ros::Time::now().toNSec() : m.received_at.toNSec();
-      const frontend::Step step = frontend_->add(frontend::TeammateScan::decoded(m.robot[0], m.index, scan, at));
-      std::optional<Pose3> reference;
-      if (m.has_reference) reference = ros_glue::poseFromMsg(m.reference);
-      out_.teammateScan(*frontend_, step, m.robot[0], m.index, reference);
+      const frontend::Step step =
+          frontend_->add(ros_glue::teammateScanFromMsg(m, o_.robot, recv_sub_.getTopic(), ros::Time::now().toNSec()));
+      out_.teammateScan(*frontend_, step, m);
     } catch (const std::exception& e) {
       ++received_dropped_;
       ROS_ERROR("frontend %c: %s: %s", o_.robot, recv_sub_.getTopic().c_str(), e.what());
@@ -281,7 +188,7 @@ class FrontendNode {
     out_.ack(frontend_.get(), stamp, received_dropped_, scans_ ? scans_->queued() : 0, scansSkipped());
   }
 
-  Options o_;
+  ros_glue::FrontendOptions o_;
   frontend::FrontendParams params_;
   ros_glue::RecorderLink recorder_;  ///< numbered measurements to the recorder, kept until acknowledged
   ros_glue::FrontendPublisher out_;  ///< what each step publishes
@@ -299,13 +206,11 @@ class FrontendNode {
 int main(int argc, char** argv) {
   cosmo::keepScanBuffersInProcess();
   // Ends with the process that started it (team_launcher, roslaunch): a front-end never outlives its launch.
-  const pid_t parent = getppid();
-  prctl(PR_SET_PDEATHSIG, SIGINT);
-  if (getppid() != parent) return 1;  // the parent ended before prctl
+  if (!ros_glue::endWithParent()) return 1;
   ros_glue::initNode(argc, argv, "frontend");
   return ros_glue::runNode("frontend", [] {
     ros::NodeHandle nh, pnh("~");
-    FrontendNode node(nh, readOptions(pnh));
+    FrontendNode node(nh, ros_glue::readFrontendOptions(pnh));
     ros::spin();  // single-threaded: scans and received scans are processed in arrival order
     node.summary();
   });

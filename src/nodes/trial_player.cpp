@@ -1,22 +1,18 @@
 // trial_player: one robot's trial read on the robot's machine (robot-side playback): announces its span and
 // reference, plays the scans the base's player asks for. Topics and parameters: docs/nodes.md.
 #include <ros/ros.h>
-#include <std_msgs/Empty.h>
-#include <std_msgs/String.h>
 
 #include <memory>
 
 #include "cosmo/common/allocator_tuning.hpp"
-#include "cosmo/frontend/frontend_params.hpp"
 #include "cosmo/sequence/scan_read_ahead.hpp"
-#include "cosmo/sequence/sequence_noise_models.hpp"
 #include "cosmo/trials/bag_scan_source.hpp"
 #include "cosmo/ros/node_main.hpp"
-#include "cosmo/ros/played_sequence.hpp"
 #include "cosmo/ros/point_cloud.hpp"
 #include "cosmo/ros/robot_list.hpp"
+#include "cosmo/ros/player_options.hpp"
 #include "cosmo/ros/robot_playback.hpp"
-#include "cosmo/trials/trial_probe.hpp"
+#include "cosmo/ros/run_stop.hpp"
 
 using namespace cosmo;
 
@@ -32,21 +28,11 @@ struct Options {
 Options readOptions(const ros::NodeHandle& pnh) {
   Options o;
   o.robot = ros_glue::nodeRobot(pnh);
-  pnh.param("sequence", o.sequence.sequence, o.sequence.sequence);
-  pnh.param("data_root", o.sequence.data_root, o.sequence.data_root);
-  pnh.param("simulate_config", o.sequence.simulate_config, o.sequence.simulate_config);
-  pnh.param("simulate_out", o.sequence.simulate_out, o.sequence.simulate_out);
+  o.sequence = ros_glue::readSequenceChoice(pnh);
   pnh.param("read_ahead", o.read_ahead, o.read_ahead);
   pnh.param("lockstep", o.lockstep, o.lockstep);
   if (o.read_ahead < 2) throw std::runtime_error("~read_ahead must be at least 2, got " + std::to_string(o.read_ahead));
   return o;
-}
-
-/// The pre-flight check of this robot's trial alone, as the player checks every trial.
-bool checkTrial(const sequence::SequenceConfig& config, const sequence::TrialConfig& trial, std::string& text) {
-  sequence::SequenceConfig alone = config;
-  alone.trials = {trial};
-  return trials::checkSequence(alone, sequence::chooseNoiseModels(config, cosmo::defaultConfigDir()), text);
 }
 
 class TrialPlayer {
@@ -54,7 +40,7 @@ class TrialPlayer {
   TrialPlayer(ros::NodeHandle& nh, const Options& o, std::unique_ptr<sequence::ScanSource> source)
       : robot_(o.robot),
         frame_(std::string(1, o.robot) + "/base_link"),
-        encoding_(o.lockstep ? ros_glue::PointTimeEncoding::RelativeSeconds : ros_glue::PointTimeEncoding::OusterNs),
+        encoding_(ros_glue::playedPointTimes(o.lockstep)),
         source_(std::move(source)),
         ahead_(static_cast<std::size_t>(o.read_ahead)) {
     points_pub_ = nh.advertise<sensor_msgs::PointCloud2>(std::string("/") + robot_ + "/points", 5);
@@ -133,31 +119,27 @@ int main(int argc, char** argv) {
     const Options o = readOptions(pnh);
     const sequence::SequenceConfig config = trials::loadSequence(o.sequence);
     const sequence::TrialConfig& trial = config.trial(o.robot);
-    std::string check;
-    const bool ok = checkTrial(config, trial, check);
-    ROS_INFO("trial_player %c: pre-flight check of trial %s:\n%s", o.robot, trial.name.c_str(), check.c_str());
-    sequence::TrialBasis basis;
-    if (ok) basis = trials::readTrialBasis(trial);
-    ros::Publisher trial_pub = nh.advertise<cosmo::PlayedTrial>(ros_glue::playedTrialTopic(o.robot), 1, true);
-    trial_pub.publish(ros_glue::playedTrialMsg(config.name, trial, basis, ok, check));
+    ros::Publisher trial_pub;  // latched
+    const bool ok = ros_glue::announcePlayedTrial(nh, config, o.robot, o.sequence.config_dir, trial_pub);
     std::unique_ptr<TrialPlayer> player;
     bool aborted = false;
-    ros::Subscriber abort_sub = nh.subscribe<std_msgs::String>(
-        "/player/abort", 1, boost::function<void(const std_msgs::String::ConstPtr&)>([&](const std_msgs::String::ConstPtr& m) {
-          ROS_ERROR("trial_player %c: the run stops: %s", o.robot, m->data.c_str());
+    const ros_glue::RunEndListener run_end = ros_glue::listenForRunEnd(
+        nh,
+        [&] {
+          ROS_INFO("trial_player %c: the player is done; %zu scans played here", o.robot,
+                   player ? player->played() : 0);
+          ros::shutdown();
+        },
+        [&](const std::string& why) {
+          ROS_ERROR("trial_player %c: the run stops: %s", o.robot, why.c_str());
           aborted = true;
           ros::shutdown();
-        }));
-    ros::Subscriber done_sub = nh.subscribe<std_msgs::Empty>(
-        "/player/done", 1, boost::function<void(const std_msgs::Empty::ConstPtr&)>([&](const std_msgs::Empty::ConstPtr&) {
-          ROS_INFO("trial_player %c: the player is done; %zu scans played here", o.robot, player ? player->played() : 0);
-          ros::shutdown();
-        }));
+        });
     if (ok) {
       player = std::make_unique<TrialPlayer>(nh, o, trials::openTrialSource(trial));
       player->readAhead();
-      ROS_INFO("trial_player %c: trial %s of sequence %s, read ahead; playing what the base's player asks for",
-               o.robot, trial.name.c_str(), config.name.c_str());
+      ROS_INFO("trial_player %c: trial %s of sequence %s, read ahead; playing what the base's player asks for", o.robot,
+               trial.name.c_str(), config.name.c_str());
     }
     ros::spin();  // one thread: requests are played in the order they come
     if (!ok) throw std::runtime_error("the pre-flight check of trial " + trial.name + " failed (above)");

@@ -4,8 +4,12 @@
 
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
+
 #include "cosmo/comm/comm_model.hpp"
+#include "cosmo/comm/radio_status.hpp"
 #include "cosmo/comm/radio_trace.hpp"
+#include "cosmo/comm/transfer_log.hpp"
 #include "cosmo/common/config.hpp"
 #include "cosmo/ros/robot_list.hpp"
 
@@ -41,6 +45,45 @@ CommBrokerOptions readCommBrokerOptions(const ros::NodeHandle& pnh) {
   }
   pnh.param("lockstep", o.lockstep, false);
   return o;
+}
+
+void logCommBrokerStart(const CommBrokerOptions& o) {
+  const RadioParams& p = o.radio;
+  ROS_INFO(
+      "comm_broker: %zu robots, B %.0f kB/s, d_init %.0f m, d_intf %.0f m, P_max %.2f, seed %s, sizes %s, "
+      "timeout %s%s",
+      o.robots.size(), p.bandwidth_kBps, p.d_init, p.d_intf, p.p_max,
+      o.lockstep ? "from the sequence" : std::to_string(o.seed).c_str(), toString(p.size_model).c_str(),
+      toString(p.timeout_mode).c_str(), o.lockstep ? ", lockstep (driven by the player)" : "");
+}
+
+std_msgs::String offeredMsg(const std::map<char, std::uint32_t>& next_index) {
+  nlohmann::json next = nlohmann::json::object();
+  for (const auto& [r, n] : next_index) next[std::string(1, r)] = n;
+  std_msgs::String m;
+  m.data = next.dump();
+  return m;
+}
+
+std_msgs::String radioStatsMsg(const RadioSimulator& radio, double time) {
+  std_msgs::String m;
+  m.data = radioStatus(radio, time).dump();
+  return m;
+}
+
+void TransferLogFile::write(const RadioSimulator& radio) const {
+  if (path_.empty()) return;
+  try {
+    writeTransferLog(path_, radio);
+  } catch (const std::exception& e) { ROS_ERROR("comm_broker: %s", e.what()); }
+}
+
+void TransferLogFile::writeEvery30s(const RadioSimulator& radio, double radio_time) {
+  if (path_.empty() || radio_time - last_write_ < 30.0) return;
+  last_write_ = radio_time;
+  try {
+    writeTransferLog(path_, radio);
+  } catch (const std::exception& ex) { ROS_ERROR_THROTTLE(30.0, "comm_broker: %s", ex.what()); }
 }
 
 }  // namespace cosmo::ros_glue

@@ -35,6 +35,16 @@ cosmo::RecorderLoopClosure recorderLoopClosureMsg(const frontend::LoopClosureAtt
   return m;
 }
 
+frontend::TeammateScan teammateScanFromMsg(const cosmo::Keyframe& offer, char self, const std::string& topic,
+                                           StampNs now) {
+  if (offer.robot.size() != 1 || offer.robot[0] == self)
+    throw std::runtime_error("bad robot field '" + offer.robot + "'");
+  Scan scan = fromPointCloud2(offer.cloud, true, topic);
+  scan.stamp = offer.header.stamp.toNSec();
+  const StampNs at = offer.received_at.isZero() ? now : static_cast<StampNs>(offer.received_at.toNSec());
+  return frontend::TeammateScan::decoded(offer.robot[0], offer.index, scan, at);
+}
+
 cosmo::Keyframe keyframeOfferMsg(const cosmo::RecorderKeyframe& keyframe, const Scan& scan,
                                  const std::string& scan_frame) {
   cosmo::Keyframe offer;

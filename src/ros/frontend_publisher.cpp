@@ -1,5 +1,9 @@
 #include "cosmo/ros/frontend_publisher.hpp"
 
+#include <sys/resource.h>
+
+#include <cstdio>
+
 #include "cosmo/FrontendAck.h"
 #include "cosmo/Keyframe.h"
 #include "cosmo/ros/frontend_msgs.hpp"
@@ -8,8 +12,8 @@
 
 namespace cosmo::ros_glue {
 
-FrontendPublisher::FrontendPublisher(ros::NodeHandle& nh, char robot, std::string world_frame,
-                                     RecorderLink& recorder, std::optional<NoiseModels> noise)
+FrontendPublisher::FrontendPublisher(ros::NodeHandle& nh, char robot, std::string world_frame, RecorderLink& recorder,
+                                     std::optional<NoiseModels> noise)
     : robot_(robot),
       world_frame_(std::move(world_frame)),
       odom_frame_(std::string(1, robot) + "/odom"),
@@ -36,11 +40,24 @@ void FrontendPublisher::ownScan(frontend::RobotFrontend& frontend, const fronten
   if (step.keyframe || !step.closures.empty()) markers(stamp);
 }
 
-void FrontendPublisher::teammateScan(frontend::RobotFrontend& frontend, const frontend::Step& step, char teammate,
-                                     std::size_t index, const std::optional<Pose3>& reference) {
-  if (reference) map_.addTeammateKeyframe(teammate, index, *reference);
+void FrontendPublisher::teammateScan(frontend::RobotFrontend& frontend, const frontend::Step& step,
+                                     const cosmo::Keyframe& offer) {
+  if (offer.has_reference) map_.addTeammateKeyframe(offer.robot.at(0), offer.index, poseFromMsg(offer.reference));
   closures(frontend, step);
   markers(ros::Time::now());
+}
+
+void FrontendPublisher::summary(const frontend::RobotFrontend* frontend, std::uint32_t skipped,
+                                std::size_t peak_waiting) const {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  std::printf(
+      "frontend %c: %zu scans processed, %u skipped, at most %zu waiting; %zu keyframes, %llu measurements "
+      "sent, %zu not acknowledged; peak memory %.0f MB\n",
+      robot_, frontend ? frontend->scansProcessed() : 0, skipped, peak_waiting,
+      frontend ? frontend->keyframes().size() : 0, static_cast<unsigned long long>(recorder_.lastSeq()),
+      recorder_.unacknowledged(), usage.ru_maxrss / 1024.0);
+  std::fflush(stdout);
 }
 
 void FrontendPublisher::closures(frontend::RobotFrontend& frontend, const frontend::Step& step) {
@@ -74,7 +91,8 @@ void FrontendPublisher::ack(const frontend::RobotFrontend* frontend, StampNs sta
   a.queued = static_cast<std::uint32_t>(queued);
   a.skipped = scans_skipped;
   ack_pub_.publish(a);
-  ROS_INFO_THROTTLE(5.0, "frontend %c: %u scans, %u keyframes, %u loop closures accepted of %zu tried, %u scans received",
+  ROS_INFO_THROTTLE(5.0,
+                    "frontend %c: %u scans, %u keyframes, %u loop closures accepted of %zu tried, %u scans received",
                     robot_, a.scans, a.keyframes, a.loop_closures,
                     frontend ? frontend->loopClosuresAccepted() + frontend->loopClosuresRejected() : 0, a.received);
 }

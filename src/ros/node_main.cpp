@@ -5,6 +5,10 @@
 #include <ros/master.h>
 #include <ros/xmlrpc_manager.h>
 
+#include <sys/prctl.h>
+#include <unistd.h>
+
+#include <csignal>
 #include <cstdlib>
 #include <exception>
 
@@ -26,6 +30,12 @@ std::string whereThisNodeIs() {
                                 : "the host name: set ROS_IP to this machine's address as the base reaches it";
   return "master " + ros::master::getURI() + ", this node " + ros::XMLRPCManager::instance()->getServerURI() + " (" +
          from + "): the player must run on that master and reach this node there";
+}
+
+bool endWithParent() {
+  const pid_t parent = getppid();
+  prctl(PR_SET_PDEATHSIG, SIGINT);
+  return getppid() == parent;  // else the parent ended before prctl
 }
 
 int runNode(const char* name, const std::function<void()>& body) {

@@ -84,4 +84,16 @@ std::uint64_t recorderAcked(const cosmo::RecorderProgress& m, char robot) {
   return i ? m.acked[*i] : 0;
 }
 
+cosmo::RecorderProgress recorderProgressMsg(const dataset::RecorderSession& s, const std::string& session,
+                                            const std::string& written) {
+  cosmo::RecorderProgress p = recorderProgressMsg(s.intake(), s.recorder());
+  for (std::size_t i = 0; i < p.robots.size(); ++i)
+    p.scans_skipped[i] = std::max(p.scans_skipped[i], s.scansSkipped(p.robots[i]));
+  p.run_id = s.run().run_id;
+  p.session = session;
+  p.incomplete = s.incomplete();
+  p.written = written;
+  return p;
+}
+
 }  // namespace cosmo::ros_glue

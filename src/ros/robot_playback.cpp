@@ -7,6 +7,8 @@
 #include "cosmo/ros/peer_probe.hpp"
 #include "cosmo/ros/pose_msg.hpp"
 #include "cosmo/ros/team_sequence_msg.hpp"
+#include "cosmo/trials/bag_scan_source.hpp"
+#include "cosmo/trials/trial_probe.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -40,6 +42,19 @@ cosmo::PlayedTrial playedTrialMsg(const std::string& sequence, const sequence::T
   return m;
 }
 
+bool announcePlayedTrial(ros::NodeHandle& nh, const sequence::SequenceConfig& config, char robot,
+                         const std::string& config_dir, ros::Publisher& pub) {
+  const sequence::TrialConfig& trial = config.trial(robot);
+  std::string check;
+  const bool ok = trials::checkTrial(config, robot, config_dir, check);
+  ROS_INFO("trial_player %c: pre-flight check of trial %s:\n%s", robot, trial.name.c_str(), check.c_str());
+  sequence::TrialBasis basis;
+  if (ok) basis = trials::readTrialBasis(trial);
+  pub = nh.advertise<cosmo::PlayedTrial>(playedTrialTopic(robot), 1, true);
+  pub.publish(playedTrialMsg(config.name, trial, basis, ok, check));
+  return ok;
+}
+
 sequence::TrialBasis trialBasisFromMsg(const cosmo::PlayedTrial& m) {
   const std::string topic = m.robot.size() == 1 ? playedTrialTopic(m.robot[0]) : "played_trial";
   if (m.robot.size() != 1) throw std::runtime_error(topic + ": robot '" + m.robot + "' is not one character");
@@ -69,7 +84,8 @@ class RobotPlayback::Source : public sequence::ScanSource {
         return true;
       }
       if (announced.exhausted()) return false;
-      if (!ros::ok()) throw std::runtime_error(std::string("ROS shut down while waiting for robot ") + robot_ + "'s scans");
+      if (!ros::ok())
+        throw std::runtime_error(std::string("ROS shut down while waiting for robot ") + robot_ + "'s scans");
       if (p_.check_) {
         lock.unlock();  // the check may take the peer monitor's lock
         p_.check_();
@@ -111,7 +127,8 @@ void RobotPlayback::onTrial(char robot, const cosmo::PlayedTrial& m) {
 void RobotPlayback::onAhead(char robot, const cosmo::ScansAhead& m) {
   std::lock_guard<std::mutex> lock(mutex_);
   try {
-    if (!m.error.empty()) throw std::runtime_error("robot " + std::string(1, robot) + "'s trial cannot go on: " + m.error);
+    if (!m.error.empty())
+      throw std::runtime_error("robot " + std::string(1, robot) + "'s trial cannot go on: " + m.error);
     announced_[robot].announce(std::vector<StampNs>(m.stamps.begin(), m.stamps.end()), m.end);
   } catch (const std::exception& e) { errors_.emplace(robot, scansAheadTopic(robot) + ": " + e.what()); }
   changed_.notify_all();
@@ -134,8 +151,8 @@ std::string RobotPlayback::describe(char robot, bool& alive) const {
   if (p.registered)
     return std::string("robot ") + robot + ": its trial player " + node + " registered at " + p.uri +
            " but does not answer (" + p.error + "): " + (p.hint.empty() ? "did it die?" : p.hint);
-  return std::string("robot ") + robot + ": its trial player " + node + " (robot.launch playback:=robot): " +
-         live::neverRegisteredHint(ros::master::getURI());
+  return std::string("robot ") + robot + ": its trial player " + node +
+         " (robot.launch playback:=robot): " + live::neverRegisteredHint(ros::master::getURI());
 }
 
 std::map<char, sequence::TrialBasis> RobotPlayback::trials(const sequence::SequenceConfig& config) {

@@ -1,5 +1,6 @@
 #include "cosmo/ros/run_stop.hpp"
 
+#include <std_msgs/Empty.h>
 #include <std_msgs/String.h>
 
 #include <fstream>
@@ -27,5 +28,14 @@ void RunStop::stopped(const std::string& reason) const {
 }
 
 void RunStop::failed() const { status("failed: see the player's log"); }
+
+RunEndListener listenForRunEnd(ros::NodeHandle& nh, std::function<void()> on_done,
+                               std::function<void(const std::string& reason)> on_abort) {
+  RunEndListener l;
+  l.done = nh.subscribe<std_msgs::Empty>("/player/done", 1, [on_done](const std_msgs::Empty::ConstPtr&) { on_done(); });
+  l.abort = nh.subscribe<std_msgs::String>("/player/abort", 1,
+                                           [on_abort](const std_msgs::String::ConstPtr& m) { on_abort(m->data); });
+  return l;
+}
 
 }  // namespace cosmo::ros_glue

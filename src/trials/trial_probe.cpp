@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <set>
 
+#include "cosmo/sequence/sequence_noise_models.hpp"
 #include "cosmo/trials/bag_scan_source.hpp"
 #include "cosmo/trials/bag_format.hpp"
 #include "cosmo/trials/ros1_bag.hpp"
@@ -90,6 +91,12 @@ bool checkSequence(const sequence::SequenceConfig& config, const std::string& no
   text = "sequence " + config.name + " (" + config.source + "), data root " + config.data_root + " (" +
          config.data_root_from + ")\n" + text + hint;
   return ok;
+}
+
+bool checkTrial(const sequence::SequenceConfig& config, char robot, const std::string& config_dir, std::string& text) {
+  sequence::SequenceConfig alone = config;
+  alone.trials = {config.trial(robot)};
+  return checkSequence(alone, sequence::chooseNoiseModels(config, config_dir), text);
 }
 
 }  // namespace cosmo::trials

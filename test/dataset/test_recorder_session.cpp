@@ -141,3 +141,24 @@ TEST(RecorderSession, ARunWithAPlayerThatNeverFinishedIsIncomplete) {
   live.end();  // no player: complete when it ends
   EXPECT_TRUE(live.incomplete().empty());
 }
+
+TEST(RecorderSession, TheWrittenLineSaysWhatWasWrittenWhatIsNotLabelledAndWhatIsPending) {
+  TempDir t;
+  RecorderSession s(t.dir.string(), run("run-5"), NoiseModels{}, OutlierRule::Fidelity);
+  BuildReport report;
+  report.entries = 3;
+  report.labelled = true;
+  const std::string plain = s.writtenLine("x.jrl", "end of run", report);
+  EXPECT_EQ(plain.rfind("wrote x.jrl (end of run): 3 entries; ", 0), 0u) << plain;
+  EXPECT_EQ(plain.find("pending"), std::string::npos) << plain;
+
+  report.labelled = false;
+  report.labels_note = "no ground truth";
+  report.keyframes_pending = 2;
+  report.loop_closures_pending = 1;
+  s.end();  // the player never finished: marked incomplete
+  const std::string line = s.writtenLine("x.jrl", "end of run", report);
+  EXPECT_EQ(line.rfind("wrote x.jrl (end of run, marked incomplete): 3 entries; ", 0), 0u) << line;
+  EXPECT_NE(line.find("; no ground truth"), std::string::npos) << line;
+  EXPECT_NE(line.find("; pending (not written yet): 2 keyframes, 1 loop closures"), std::string::npos) << line;
+}

@@ -65,6 +65,9 @@ class RecorderSession {
   MetadataLines metadata(const MetadataLines& sequence_lines) const;
   /// Writes the dataset with that metadata to `path` (atomically). Throws std::runtime_error when it cannot.
   BuildReport write(const std::string& path, const MetadataLines& sequence_lines, jrl::Dataset* built = nullptr);
+  /// The line a write is logged with: "wrote <path> (<why>[, marked incomplete]): <n> entries; <progress>", then
+  /// why it is not labelled and what is pending, when so.
+  std::string writtenLine(const std::string& path, const std::string& why, const BuildReport& report) const;
   /// After the last write: a complete dataset that was written removes the journal (true when it did).
   bool finish(bool written);
 

@@ -19,4 +19,10 @@ cosmo::RecorderLoopClosure recorderLoopClosureMsg(const frontend::LoopClosureAtt
 cosmo::Keyframe keyframeOfferMsg(const cosmo::RecorderKeyframe& keyframe, const Scan& scan,
                                  const std::string& scan_frame);
 
+/// A teammate's keyframe offer as delivered (cosmo/Keyframe, from the comm_broker) as the front-end's input: its
+/// scan stamped with the keyframe's stamp, received at the delivery's radio step (the offline driver's time; a
+/// broker without it: `now`). Throws std::runtime_error when its robot field is not one robot other than `self`.
+frontend::TeammateScan teammateScanFromMsg(const cosmo::Keyframe& offer, char self, const std::string& topic,
+                                           StampNs now);
+
 }  // namespace cosmo::ros_glue

@@ -12,6 +12,7 @@
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include "cosmo/Keyframe.h"
 #include "cosmo/dataset/noise_models.hpp"
 #include "cosmo/frontend/frontend_map.hpp"
 #include "cosmo/frontend/robot_frontend.hpp"
@@ -28,12 +29,15 @@ class FrontendPublisher {
   /// An own scan's step, published at `stamp`; `scans_skipped`: the robot's count so far (in its keyframe).
   void ownScan(frontend::RobotFrontend& frontend, const frontend::Step& step, const ros::Time& stamp,
                std::uint32_t scans_skipped);
-  /// A teammate scan's step; `reference`: the teammate keyframe's reference pose, when its message had one.
-  void teammateScan(frontend::RobotFrontend& frontend, const frontend::Step& step, char teammate, std::size_t index,
-                    const std::optional<Pose3>& reference);
+  /// A teammate scan's step; `offer`: its message (the teammate keyframe's reference pose, when it has one).
+  void teammateScan(frontend::RobotFrontend& frontend, const frontend::Step& step, const cosmo::Keyframe& offer);
   /// The ack at `stamp` (`frontend` nullptr: none built yet).
   void ack(const frontend::RobotFrontend* frontend, StampNs stamp, std::size_t received_dropped, std::size_t queued,
            std::uint32_t scans_skipped);
+
+  /// The end-of-run line on stdout: scans processed and `skipped`, the `peak_waiting` scans, keyframes,
+  /// measurements sent and not acknowledged, peak memory (docs/benchmarks.md).
+  void summary(const frontend::RobotFrontend* frontend, std::uint32_t skipped, std::size_t peak_waiting) const;
 
   /// The markers' labels, when they are known only later (lockstep: the player's sequence).
   frontend::FrontendMap& map() { return map_; }

@@ -17,6 +17,10 @@ void initNode(int& argc, char** argv, const std::string& name, std::uint32_t opt
 /// for others, what a user checks on a multi-machine team (README "A robot per machine").
 std::string whereThisNodeIs();
 
+/// This process gets SIGINT when the process that started it (team_launcher, roslaunch) ends, so that a node never
+/// outlives its launch; false when that parent already ended.
+bool endWithParent();
+
 /// Runs `body`: a std::exception it throws ends the node with ROS_FATAL "<name>: <what>"; returns the exit code.
 int runNode(const char* name, const std::function<void()>& body);
 

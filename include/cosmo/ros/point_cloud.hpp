@@ -31,6 +31,12 @@ enum class PointTimeEncoding {
                     ///< (every scan read from a bag with stamp_at_end), the player's lockstep mode
 };
 
+/// How a played scan's points carry their times: lockstep keeps the scan's own values (bit-exact, so the launch
+/// writes the offline driver's JRL), real time writes what an Ouster driver publishes.
+inline PointTimeEncoding playedPointTimes(bool lockstep) {
+  return lockstep ? PointTimeEncoding::RelativeSeconds : PointTimeEncoding::OusterNs;
+}
+
 /// x y z intensity t|time ring (stamped at the sweep end when the scan has times), only the fields the scan
 /// has; frame and stamp from the arguments.
 sensor_msgs::PointCloud2 toPointCloud2(const Scan& scan, const std::string& frame_id,

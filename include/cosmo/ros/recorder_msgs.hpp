@@ -10,6 +10,7 @@
 #include "cosmo/dataset/dataset_recorder.hpp"
 #include "cosmo/dataset/measurement_record.hpp"
 #include "cosmo/dataset/recorder_intake.hpp"
+#include "cosmo/dataset/recorder_session.hpp"
 #include "cosmo/live/frontend_continuation.hpp"
 
 namespace cosmo::ros_glue {
@@ -21,12 +22,17 @@ dataset::MeasurementRecord measurementFromMsg(const cosmo::RecorderKeyframe& msg
 dataset::MeasurementRecord measurementFromMsg(const cosmo::RecorderLoopClosure& msg, char topic_robot);
 
 /// The recorder's progress: per robot what `intake` holds and where `recorder`'s chain ends.
-cosmo::RecorderProgress recorderProgressMsg(const dataset::RecorderIntake& intake,
-                                            const DatasetRecorder& recorder);
+cosmo::RecorderProgress recorderProgressMsg(const dataset::RecorderIntake& intake, const DatasetRecorder& recorder);
 
 /// What `msg` says the recorder holds of `robot` (nothing when it does not list the robot).
 live::RecorderHolding recorderHolding(const cosmo::RecorderProgress& msg, char robot);
 /// The acknowledged seq of `robot` in `msg` (0 when it does not list the robot).
 std::uint64_t recorderAcked(const cosmo::RecorderProgress& msg, char robot);
+
+/// What the recorder publishes: the above for `s`, with each robot's skipped scans as its front-end last reported
+/// them, the run, this recorder's `session`, why the dataset is incomplete (empty: it is not) and the last
+/// `written` line.
+cosmo::RecorderProgress recorderProgressMsg(const dataset::RecorderSession& s, const std::string& session,
+                                            const std::string& written);
 
 }  // namespace cosmo::ros_glue

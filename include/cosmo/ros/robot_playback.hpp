@@ -32,6 +32,11 @@ std::string playScanTopic(char robot);
 /// The robot side's announcement of its trial.
 cosmo::PlayedTrial playedTrialMsg(const std::string& sequence, const sequence::TrialConfig& trial,
                                   const sequence::TrialBasis& basis, bool check_ok, const std::string& check);
+/// The robot side: checks `robot`'s trial alone (trials::checkTrial, noise models looked up in `config_dir`), logs
+/// the check, reads the trial's basis when it passed and announces both on `pub` (advertised here on
+/// playedTrialTopic, latched: keep it). True when the check passed.
+bool announcePlayedTrial(ros::NodeHandle& nh, const sequence::SequenceConfig& config, char robot,
+                         const std::string& config_dir, ros::Publisher& pub);
 /// Its basis; throws std::runtime_error naming the topic when the message is malformed.
 sequence::TrialBasis trialBasisFromMsg(const cosmo::PlayedTrial& msg);
 

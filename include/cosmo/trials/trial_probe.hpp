@@ -16,4 +16,8 @@ sequence::TrialProbe probeTrial(const sequence::TrialConfig& trial, std::size_t 
 /// run can produce a labelled dataset.
 bool checkSequence(const sequence::SequenceConfig& config, const std::string& noise_models, std::string& text);
 
+/// The check of `robot`'s trial alone (robot-side playback: each robot checks its own trial), with the noise
+/// models the whole sequence labels with (looked up in `config_dir`).
+bool checkTrial(const sequence::SequenceConfig& config, char robot, const std::string& config_dir, std::string& text);
+
 }  // namespace cosmo::trials
