@@ -33,6 +33,27 @@ std::vector<double> upperTriangle(const Matrix6& m) {
   return upper;
 }
 
+/// One robot's vertices: ids first .. first + count - 1.
+struct Block {
+  char robot = 0;
+  long first = 0, count = 0;
+};
+
+/// The graph's path without its ".g2o", the start of the files beside it.
+std::string g2oStem(const std::string& g2o_path) {
+  const std::string ext = ".g2o";
+  const bool has_ext =
+      g2o_path.size() > ext.size() && g2o_path.compare(g2o_path.size() - ext.size(), ext.size(), ext) == 0;
+  return has_ext ? g2o_path.substr(0, g2o_path.size() - ext.size()) : g2o_path;
+}
+
+void writeText(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error(path + ": cannot write");
+}
+
 }  // namespace
 
 Matrix6 g2oInformation(const Matrix6& covariance) {
@@ -47,15 +68,23 @@ Matrix6 g2oInformation(const Matrix6& covariance) {
   return out;
 }
 
-void exportG2o(const Dataset& dataset, const std::string& path) {
+std::string g2oBlocksPath(const std::string& g2o_path) { return g2oStem(g2o_path) + ".blocks.csv"; }
+
+std::string g2oIdsPath(const std::string& g2o_path) { return g2oStem(g2o_path) + ".ids.csv"; }
+
+std::vector<std::string> exportG2o(const Dataset& dataset, const std::string& path) {
   const PoseGraph g = poseGraph(dataset);
   if (g.initialization.empty()) throw std::runtime_error(dataset.name + ": no initialization to export");
   std::map<Key, long> id;
+  std::vector<Block> blocks;
   std::string header = "# " + dataset.name + " (cosmo_jrl export): vertex ids in JRL key order, first ids";
   for (const auto& [key, T] : g.initialization) {
     const long next = static_cast<long>(id.size());
-    if (id.empty() || robotOf(id.rbegin()->first) != robotOf(key))
+    if (id.empty() || robotOf(id.rbegin()->first) != robotOf(key)) {
       header += std::string(" ") + robotOf(key) + " " + std::to_string(next);
+      blocks.push_back({robotOf(key), next, 0});
+    }
+    ++blocks.back().count;
     id.emplace(key, next);
   }
   std::ofstream out(path);
@@ -74,6 +103,21 @@ void exportG2o(const Dataset& dataset, const std::string& path) {
   }
   out.close();
   if (!out) throw std::runtime_error(path + ": cannot write");
+
+  std::string text = "robot,first_id,count\n";
+  for (const Block& b : blocks)
+    text += std::string(1, b.robot) + "," + std::to_string(b.first) + "," + std::to_string(b.count) + "\n";
+  const std::string blocks_path = g2oBlocksPath(path);
+  writeText(blocks_path, text);
+  text = "g2o_id,robot,jrl_key,stamp\n";
+  for (const auto& [key, vertex] : id) {
+    const auto stamp = g.stamps.find(key);
+    text += std::to_string(vertex) + "," + std::string(1, robotOf(key)) + "," + std::to_string(key) + "," +
+            (stamp == g.stamps.end() ? "" : std::to_string(stamp->second)) + "\n";
+  }
+  const std::string ids_path = g2oIdsPath(path);
+  writeText(ids_path, text);
+  return {path, blocks_path, ids_path};
 }
 
 }  // namespace cosmo::jrl

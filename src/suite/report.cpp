@@ -6,6 +6,7 @@
 
 #include "cosmo/dataset/atomic_file.hpp"
 #include "report_rows.hpp"
+#include "report_table.hpp"
 
 namespace fs = std::filesystem;
 
@@ -13,67 +14,57 @@ namespace cosmo::suite {
 namespace {
 
 using report_rows::Row;
+using report_table::escapeHtml;
+using report_table::Table;
 
 std::string mdCell(const std::string& s) { return s.empty() ? "—" : s; }
 
 std::string firstLine(const std::string& s) { return s.substr(0, s.find('\n')); }
 
-std::string tableHeader() {
-  return "| dataset | status | duration (paper) | length (paper) | LC (paper) | IRLC (paper) | inliers solve ATE "
-         "(init) | wall, CPU, peak memory |\n|---|---|---|---|---|---|---|---|\n";
-}
-
-std::string tableRow(const Row& r) {
+/// The datasets table: one row per dataset (the first `count` rows), ours with the paper's in parentheses.
+Table datasetsTable(const std::vector<Row>& rows, std::size_t count) {
+  Table t{{"dataset", "status", "duration (paper)", "length (paper)", "LC (paper)", "IRLC (paper)",
+           "inliers solve ATE (init)", "wall, CPU, peak memory"},
+          {}};
   const auto both = [](const report_rows::Compared& c) {
     return mdCell(c.ours) + (c.paper.empty() ? "" : " (" + c.paper + ")");
   };
-  return "| " + r.name + " | " + firstLine(r.job->status) + " | " + both(report_rows::duration(r)) + " | " +
-         both(report_rows::length(r)) + " | " + both(report_rows::lc(r)) + " | " + both(report_rows::irlc(r)) + " | " +
-         mdCell(report_rows::solve(r)) + " | " + mdCell(report_rows::cost(r)) + " |\n";
+  for (std::size_t i = 0; i < rows.size() && i < count; ++i) {
+    const Row& r = rows[i];
+    t.rows.push_back({r.name, firstLine(r.job->status), both(report_rows::duration(r)), both(report_rows::length(r)),
+                      both(report_rows::lc(r)), both(report_rows::irlc(r)), mdCell(report_rows::solve(r)),
+                      mdCell(report_rows::cost(r))});
+  }
+  return t;
 }
 
-/// The per-dataset table (ours, the paper's, the difference), in markdown.
-std::string datasetTable(const Row& r) {
-  std::ostringstream out;
-  out << "| | ours | paper | difference |\n|---|---|---|---|\n";
+/// The per-dataset table (ours, the paper's, the difference).
+Table datasetTable(const Row& r) {
+  Table t{{"", "ours", "paper", "difference"}, {}};
   const std::vector<std::pair<std::string, report_rows::Compared>> lines{{"duration", report_rows::duration(r)},
-                                                                          {"length", report_rows::length(r)},
-                                                                          {"LC (outliers)", report_rows::lc(r)},
-                                                                          {"IRLC (outliers)", report_rows::irlc(r)}};
-  for (const auto& [what, c] : lines)
-    out << "| " << what << " | " << mdCell(c.ours) << " | " << mdCell(c.paper) << " | " << mdCell(c.diff) << " |\n";
-  out << "| inliers solve ATE (init) | " << mdCell(report_rows::solve(r)) << " | | |\n";
-  out << "| wall, CPU, peak memory | " << mdCell(report_rows::cost(r)) << " | | the run of all comm models |\n";
-  out << "| status | " << r.job->status << " | | |\n";
-  return out.str();
+                                                                         {"length", report_rows::length(r)},
+                                                                         {"LC (outliers)", report_rows::lc(r)},
+                                                                         {"IRLC (outliers)", report_rows::irlc(r)}};
+  for (const auto& [what, c] : lines) t.rows.push_back({what, mdCell(c.ours), mdCell(c.paper), mdCell(c.diff)});
+  t.rows.push_back({"inliers solve ATE (init)", mdCell(report_rows::solve(r)), "", ""});
+  t.rows.push_back({"wall, CPU, peak memory", mdCell(report_rows::cost(r)), "", "the run of all comm models"});
+  t.rows.push_back({"status", r.job->status, "", ""});
+  return t;
 }
 
 std::string variantsSection(const std::vector<Row>& rows, bool html) {
   const auto sums = report_rows::variantSummaries(rows);
   if (sums.empty()) return "";
-  std::ostringstream out;
-  out << (html ? "<h2>Variants of one sequence</h2>\n" : "## Variants of one sequence\n\n")
-      << (html ? "<p>" : "") << "Mean (min – max) over the datasets of each sequence and comm model."
-      << (html ? "</p>\n<table><tr><th>sequence</th><th>comm</th><th>datasets</th>" : "\n\n| sequence | comm | datasets |");
-  for (const auto& [what, v] : sums.front().cells) out << (html ? "<th>" + what + "</th>" : " " + what + " |");
-  out << (html ? "</tr>\n" : "\n|---|---|---|");
-  if (!html)
-    for (std::size_t i = 0; i < sums.front().cells.size(); ++i) out << "---|";
-  if (!html) out << "\n";
+  Table t{{"sequence", "comm", "datasets"}, {}};
+  for (const auto& [what, v] : sums.front().cells) t.header.push_back(what);
   for (const auto& s : sums) {
-    out << (html ? "<tr><td>" : "| ") << s.label << (html ? "</td><td>" : " | ") << s.comm << (html ? "</td><td>" : " | ")
-        << s.datasets << (html ? "</td>" : " |");
-    for (const auto& [what, v] : s.cells) out << (html ? "<td>" + v + "</td>" : " " + v + " |");
-    out << (html ? "</tr>\n" : "\n");
+    std::vector<std::string> row{s.label, s.comm, std::to_string(s.datasets)};
+    for (const auto& [what, v] : s.cells) row.push_back(v);
+    t.rows.push_back(row);
   }
-  out << (html ? "</table>\n" : "\n");
-  return out.str();
-}
-
-std::string escapeHtml(const std::string& s) {
-  std::string o;
-  for (const char c : s) o += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : c == '"' ? "&quot;" : std::string(1, c);
-  return o;
+  const std::string intro = "Mean (min – max) over the datasets of each sequence and comm model.";
+  if (html) return "<h2>Variants of one sequence</h2>\n<p>" + escapeHtml(intro) + "</p>\n" + report_table::html(t);
+  return "## Variants of one sequence\n\n" + intro + "\n\n" + report_table::markdown(t) + "\n";
 }
 
 std::string base64(const std::string& data) {
@@ -101,26 +92,6 @@ std::string readFile(const std::string& path) {
   return ss.str();
 }
 
-/// The markdown table as HTML (the per-dataset tables are small markdown tables).
-std::string tableHtml(const std::string& md) {
-  std::istringstream in(md);
-  std::string line, out = "<table>\n";
-  bool head = true;
-  while (std::getline(in, line)) {
-    if (line.rfind("|---", 0) == 0) continue;
-    out += "<tr>";
-    std::size_t a = 1, b;
-    while ((b = line.find(" |", a)) != std::string::npos) {
-      const std::string cell = line.substr(a + 1, b - a - 1);
-      out += (head ? "<th>" : "<td>") + escapeHtml(cell) + (head ? "</th>" : "</td>");
-      a = b + 2;
-    }
-    out += "</tr>\n";
-    head = false;
-  }
-  return out + "</table>\n";
-}
-
 std::string figureCard(const ReportInput& input, const Row& r) {
   std::string img;
   const std::string svg = report_rows::figurePath(r, false);
@@ -129,16 +100,14 @@ std::string figureCard(const ReportInput& input, const Row& r) {
           base64(readFile((fs::path(input.out_dir) / svg).string())) + "\">";
   else
     img = "<div class=\"nofig\">no figure</div>";
-  return "<div class=\"card\"><h3>" + escapeHtml(r.name) + "</h3>" + img + tableHtml(datasetTable(r)) + "</div>\n";
+  return "<div class=\"card\"><h3>" + escapeHtml(r.name) + "</h3>" + img + report_table::html(datasetTable(r)) +
+         "</div>\n";
 }
 
 }  // namespace
 
 std::string reportTableHead(const ReportInput& input, std::size_t rows) {
-  std::string out = tableHeader();
-  const auto all = report_rows::rows(input);
-  for (std::size_t i = 0; i < all.size() && i < rows; ++i) out += tableRow(all[i]);
-  return out;
+  return report_table::markdown(datasetsTable(report_rows::rows(input), rows));
 }
 
 std::string reportMarkdown(const ReportInput& input) {
@@ -148,9 +117,7 @@ std::string reportMarkdown(const ReportInput& input) {
       << input.note << " Paper values: the COSMO-Bench paper's Fig. 1 (config/paper/fig1.yaml); the "
       << "wall and CPU time and peak memory are those of the run that made a group (its comm models share one "
       << "odometry pass).\n\n## Datasets\n\n"
-      << tableHeader();
-  for (const auto& r : rows) out << tableRow(r);
-  out << "\n## Figures\n\n| | |\n|---|---|\n";
+      << report_table::markdown(datasetsTable(rows, rows.size())) << "\n## Figures\n\n| | |\n|---|---|\n";
   std::vector<std::string> cells;
   for (const auto& r : rows) {
     const std::string fig = report_rows::figurePath(r, true);
@@ -160,7 +127,7 @@ std::string reportMarkdown(const ReportInput& input) {
     out << "| " << cells[i] << " | " << (i + 1 < cells.size() ? cells[i + 1] : "") << " |\n";
   out << "\n## Per dataset\n\n";
   for (const auto& r : rows)
-    if (!r.comm.empty()) out << "### " << r.name << "\n\n" << datasetTable(r) << "\n";
+    if (!r.comm.empty()) out << "### " << r.name << "\n\n" << report_table::markdown(datasetTable(r)) << "\n";
   out << variantsSection(rows, false);
   return out.str();
 }
@@ -176,9 +143,7 @@ std::string reportHtml(const ReportInput& input) {
       << escapeHtml(input.suite_name) << "</h1>\n<p><code>" << escapeHtml(input.suite_path) << "</code> → <code>"
       << escapeHtml(input.out_dir) << "</code>. " << escapeHtml(input.note)
       << " Paper values: the COSMO-Bench paper's Fig. 1 (config/paper/fig1.yaml).</p>\n<h2>Datasets</h2>\n";
-  std::string md = tableHeader();
-  for (const auto& r : rows) md += tableRow(r);
-  out << tableHtml(md) << "<h2>Figures</h2>\n<div class=\"grid\">\n";
+  out << report_table::html(datasetsTable(rows, rows.size())) << "<h2>Figures</h2>\n<div class=\"grid\">\n";
   for (const auto& r : rows)
     if (!r.comm.empty()) out << figureCard(input, r);
   out << "</div>\n" << variantsSection(rows, true) << "</body></html>\n";

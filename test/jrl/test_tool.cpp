@@ -102,6 +102,10 @@ TEST(CosmoJrlTool, SolvePlotAndExport) {
                           (dir / "tum").string() + " --labels " + (dir / "labels.csv").string());
   EXPECT_EQ(rc, 0) << out;
   EXPECT_TRUE(fs::exists(dir / "g.g2o"));
+  for (const char* beside : {"g.blocks.csv", "g.ids.csv"}) {
+    EXPECT_TRUE(fs::exists(dir / beside)) << beside;
+    EXPECT_NE(out.find("wrote " + (dir / beside).string() + "\n"), std::string::npos) << out;
+  }
   EXPECT_TRUE(fs::exists(dir / "tum" / "tiny_example_b_groundtruth.tum"));
   EXPECT_TRUE(fs::exists(dir / "labels.csv"));
   EXPECT_EQ(run("export " + kTiny).first, 2);
@@ -124,7 +128,7 @@ TEST(CosmoJrlTool, InjectWritesAValidLabelledDatasetAndRejectsBadOptions) {
   EXPECT_NE(out.find("tiny_50_random"), std::string::npos) << out;
   const std::string first = out;
   EXPECT_EQ(run("inject " + kTiny + " " + out_jrl + " --rate 0.5 --kind random --seed 3").first, 0);
-  EXPECT_EQ(run("stats " + out_jrl).second, first);  // same seed, same dataset
+  EXPECT_EQ(run("stats " + out_jrl).second, first);                                        // same seed, same dataset
   EXPECT_EQ(run("inject " + kTiny + " " + out_jrl + " --kind random --seed 3").first, 2);  // no --rate
   EXPECT_EQ(run("inject " + kTiny + " " + out_jrl + " --rate 0.5 --kind wrong --seed 3").first, 2);
   EXPECT_EQ(run("inject " + kTiny + " " + out_jrl + " --rate 0.5 --intra --inter --seed 3").first, 2);

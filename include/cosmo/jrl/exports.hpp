@@ -9,6 +9,12 @@
 //   (g2oInformation): every BetweenFactorPose3 (odometry and every loop closure, outliers included). Priors
 //   are not written (g2o has no prior edge its readers share); they equal the ground truth of each robot's first
 //   pose, which the vertices hold.
+//   Beside OUT.g2o (its path without ".g2o", plus): OUT.blocks.csv, header robot,first_id,count, one row per robot
+//   in id order: its vertices are ids first_id .. first_id + count - 1 (contiguous blocks, as DPGO-style
+//   distributed solvers split a global graph; odometry edges are i -> i+1 within a block, loop closures may cross
+//   blocks); OUT.ids.csv, header g2o_id,robot,jrl_key,stamp, one row per vertex in id order: its robot, its JRL key
+//   (the integer of the file, e.g. 6989586621679009792 = a0) and the stamp (ns) of its owner's first entry that
+//   refers to it (empty when none does).
 // TUM: per robot <dir>/<name>_<r>_groundtruth.tum and <name>_<r>_initialization.tum, own poses in index order,
 //   `t x y z qx qy qz qw`, t = the stamp (s) of the entry that creates the pose.
 // labels CSV: one row per loop closure (intra and inter robot), header line
@@ -31,7 +37,11 @@ namespace cosmo::jrl {
 /// Ω = D^-1 P Σ^-1 P^T D^-1: Σ^-1 with the blocks swapped, the rotation block times 4, the cross blocks times 2.
 Matrix6 g2oInformation(const Matrix6& covariance);
 
-void exportG2o(const Dataset& dataset, const std::string& path);
+/// Writes `path` and the two files beside it (g2oBlocksPath, g2oIdsPath); returns the three paths.
+std::vector<std::string> exportG2o(const Dataset& dataset, const std::string& path);
+/// "OUT.g2o" -> "OUT.blocks.csv", "OUT.ids.csv" (a path not ending in ".g2o": the whole path, plus).
+std::string g2oBlocksPath(const std::string& g2o_path);
+std::string g2oIdsPath(const std::string& g2o_path);
 /// Returns the paths written.
 std::vector<std::string> exportTum(const Dataset& dataset, const std::string& dir);
 void exportLabelsCsv(const Dataset& dataset, const std::string& path);

@@ -123,8 +123,7 @@ int exportFiles(const Args& a) {
   return perFile(a.files, [&](const std::string& f) {
     const cosmo::jrl::Dataset d = cosmo::jrl::readJrl(f);
     if (!a.g2o.empty()) {
-      cosmo::jrl::exportG2o(d, a.g2o);
-      std::cout << "wrote " << a.g2o << "\n";
+      for (const auto& p : cosmo::jrl::exportG2o(d, a.g2o)) std::cout << "wrote " << p << "\n";
     }
     if (!a.tum.empty())
       for (const auto& p : cosmo::jrl::exportTum(d, a.tum)) std::cout << "wrote " << p << "\n";
@@ -225,7 +224,8 @@ void declareWriteCommands(CLI::App& app, Args& a, InjectArgs& inject_args, Comma
   c.export_files
       ->add_option("--g2o", a.g2o,
                    "one global graph (VERTEX_SE3:QUAT / EDGE_SE3:QUAT, ids in key order, information matrices "
-                   "in g2o's convention)")
+                   "in g2o's convention), and beside it OUT.blocks.csv (robot,first_id,count: each robot's "
+                   "contiguous ids) and OUT.ids.csv (g2o_id,robot,jrl_key,stamp: every vertex)")
       ->type_name("OUT.g2o");
   c.export_files->add_option("--tum", a.tum, "ground truth and initialization per robot as TUM files in DIR")
       ->type_name("DIR");
@@ -247,9 +247,7 @@ bool isCommand(CLI::App& app, const std::string& name) {
   try {
     app.get_subcommand(name);
     return true;
-  } catch (const CLI::OptionNotFound&) {
-    return false;
-  }
+  } catch (const CLI::OptionNotFound&) { return false; }
 }
 
 }  // namespace
