@@ -3,6 +3,8 @@
 #include <cstring>
 #include <type_traits>
 
+#include "cosmo/common/byte_cursor.hpp"
+
 namespace cosmo::nebula {
 
 namespace {
@@ -14,70 +16,59 @@ constexpr std::size_t kCovarianceBytes = 36 * 8;
 constexpr std::size_t kNodeMinBytes = kHeaderMinBytes + 8 + 4 + kPoseBytes + kCovarianceBytes;
 constexpr std::size_t kEdgeBytes = 8 + 8 + 4 + kPoseBytes + kCovarianceBytes + 8 + 8;
 
+/// A malformed PoseGraph, named with the element, the field and the byte offset.
+struct PoseGraphFail {
+  const std::string* context;
+  [[noreturn]] void operator()(const char* field, const std::string& problem, std::size_t at) const {
+    throw DecodeError("PoseGraph." + *context + (context->empty() ? "" : ".") + field + " at byte " +
+                      std::to_string(at) + ": " + problem);
+  }
+};
+
 /// Reads little-endian fields in order; `field` names what is being read for error messages.
 class Reader {
  public:
-  Reader(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
+  Reader(const std::uint8_t* data, std::size_t size) : in_(data, size, PoseGraphFail{&context_}, 0, "message ends") {}
+  Reader(const Reader&) = delete;
+  Reader& operator=(const Reader&) = delete;
 
   /// The element being read ("nodes[3]"), prefixed to field names in errors.
   void setContext(std::string context) { context_ = std::move(context); }
 
   template <typename T>
   T scalar(const char* field) {
-    static_assert(std::is_arithmetic_v<T>);
-    T value;
-    std::memcpy(&value, take(sizeof(T), field), sizeof(T));  // x86/ARM little-endian hosts, as ROS 1
-    return value;
+    return in_.template value<T>(field);
   }
   bool boolean(const char* field) {
     const std::uint8_t v = scalar<std::uint8_t>(field);
-    if (v > 1) fail(field, "bool byte is " + std::to_string(v) + ", not 0 or 1", offset_ - 1);
+    if (v > 1) in_.failAt(field, "bool byte is " + std::to_string(v) + ", not 0 or 1", in_.offset() - 1);
     return v == 1;
   }
-  std::string string(const char* field) {
-    const std::uint32_t n = scalar<std::uint32_t>(field);
-    const std::uint8_t* p = take(n, field);
-    return std::string(reinterpret_cast<const char*>(p), n);
-  }
+  std::string string(const char* field) { return in_.string(field); }
   template <std::size_t N>
   void doubles(std::array<double, N>& out, const char* field) {
-    std::memcpy(out.data(), take(N * sizeof(double), field), N * sizeof(double));
+    std::memcpy(out.data(), in_.bytes(N * sizeof(double), field), N * sizeof(double));
   }
   /// A variable array's length, checked against the bytes left (each element needs at least min_bytes).
   std::uint32_t arrayLength(const char* field, std::size_t min_bytes) {
-    const std::size_t at = offset_;
+    const std::size_t at = in_.offset();
     const std::uint32_t n = scalar<std::uint32_t>(field);
-    if (std::uint64_t{n} * min_bytes > size_ - offset_)
-      fail(field,
-           "array length " + std::to_string(n) + " needs at least " + std::to_string(n * min_bytes) + " bytes, " +
-               std::to_string(size_ - offset_) + " left",
-           at);
+    if (std::uint64_t{n} * min_bytes > in_.left())
+      in_.failAt(field,
+                 "array length " + std::to_string(n) + " needs at least " + std::to_string(n * min_bytes) + " bytes, " +
+                     std::to_string(in_.left()) + " left",
+                 at);
     return n;
   }
   void finish() const {
-    if (offset_ != size_)
-      throw DecodeError("PoseGraph: " + std::to_string(size_ - offset_) + " trailing bytes after the message (" +
-                        std::to_string(offset_) + " of " + std::to_string(size_) + " bytes decoded)");
+    if (in_.left() != 0)
+      throw DecodeError("PoseGraph: " + std::to_string(in_.left()) + " trailing bytes after the message (" +
+                        std::to_string(in_.offset()) + " of " + std::to_string(in_.size()) + " bytes decoded)");
   }
 
  private:
-  const std::uint8_t* take(std::size_t n, const char* field) {
-    if (n > size_ - offset_)
-      fail(field, "message ends (needs " + std::to_string(n) + " bytes, " + std::to_string(size_ - offset_) + " left)",
-           offset_);
-    const std::uint8_t* p = data_ + offset_;
-    offset_ += n;
-    return p;
-  }
-  [[noreturn]] void fail(const char* field, const std::string& problem, std::size_t at) const {
-    throw DecodeError("PoseGraph." + context_ + (context_.empty() ? "" : ".") + field + " at byte " +
-                      std::to_string(at) + ": " + problem);
-  }
-
-  const std::uint8_t* data_;
-  std::size_t size_;
-  std::size_t offset_ = 0;
-  std::string context_;
+  std::string context_;  // before in_, which points to it
+  ByteCursor<PoseGraphFail> in_;
 };
 
 Header readHeader(Reader& in) {

@@ -10,7 +10,7 @@
 #include "cosmo/ros/node_main.hpp"
 #include "cosmo/ros/point_cloud.hpp"
 #include "cosmo/ros/robot_list.hpp"
-#include "cosmo/ros/player_options.hpp"
+#include "cosmo/ros/resolved_sequence.hpp"
 #include "cosmo/ros/robot_playback.hpp"
 #include "cosmo/ros/run_stop.hpp"
 

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <numeric>
 
-#include "cosmo/odometry/voxel_filter.hpp"
+#include "cosmo/common/voxel_grid.hpp"
 
 namespace cosmo {
 

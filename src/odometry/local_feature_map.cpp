@@ -1,6 +1,6 @@
 #include "cosmo/odometry/local_feature_map.hpp"
 
-#include "cosmo/odometry/voxel_filter.hpp"
+#include "cosmo/common/voxel_grid.hpp"
 
 namespace cosmo {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "cosmo/common/voxel_key.hpp"
-#include "cosmo/registration/radix_sort.hpp"
+#include "cosmo/common/radix_sort.hpp"
 #include "cosmo/registration/float4.hpp"
 #include "cosmo/registration/neighbour_pairs.hpp"
 #include "cosmo/registration/stage_observer.hpp"

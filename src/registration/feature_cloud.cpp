@@ -2,7 +2,7 @@
 
 #include "cosmo/registration/fast_features.hpp"
 #include "cosmo/registration/stage_observer.hpp"
-#include "cosmo/registration/voxel_downsample.hpp"
+#include "cosmo/common/voxel_grid.hpp"
 
 namespace cosmo {
 

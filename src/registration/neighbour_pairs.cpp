@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "cosmo/common/voxel_key.hpp"
-#include "cosmo/registration/radix_sort.hpp"
+#include "cosmo/common/radix_sort.hpp"
 
 namespace cosmo {
 

@@ -4,7 +4,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "cosmo/common/config_dir.hpp"
+#include "cosmo/ros/resolved_sequence.hpp"
 
 namespace cosmo::ros_glue {
 namespace {
@@ -18,21 +18,6 @@ std::string forRobot(std::string name, char robot) {
 
 std::string PlayerOptions::frontendNode(char robot) const { return forRobot(frontend_node, robot); }
 std::string PlayerOptions::trialPlayerNode(char robot) const { return forRobot(trial_player_node, robot); }
-
-trials::SequenceChoice readSequenceChoice(const ros::NodeHandle& pnh) {
-  trials::SequenceChoice c;
-  int seed = -1;  // -1: the config's
-  pnh.param("sequence", c.sequence, c.sequence);
-  pnh.param("data_root", c.data_root, c.data_root);
-  pnh.param("seed", seed, seed);
-  if (seed >= 0) c.seed = static_cast<unsigned long long>(seed);
-  pnh.param("max_seconds", c.max_seconds, c.max_seconds);
-  pnh.param("simulate_config", c.simulate_config, c.simulate_config);
-  pnh.param("simulate_out", c.simulate_out, c.simulate_out);
-  pnh.param("noise_models", c.noise_models, c.noise_models);
-  pnh.param("config_dir", c.config_dir, cosmo::defaultConfigDir());
-  return c;
-}
 
 PlayerOptions readPlayerOptions(const ros::NodeHandle& pnh) {
   PlayerOptions o;

@@ -8,7 +8,6 @@
 #include <stdexcept>
 
 #include "cosmo/TeamSequence.h"
-#include "cosmo/common/config_dir.hpp"
 #include "cosmo/ros/resolved_sequence.hpp"
 #include "cosmo/ros/robot_list.hpp"
 #include "cosmo/ros/team_sequence_msg.hpp"
@@ -20,20 +19,16 @@ namespace cosmo::ros_glue {
 std::string RecorderOptions::jrlPath() const { return (std::filesystem::path(output_dir) / (name + ".jrl")).string(); }
 
 NoiseModels RecorderOptions::noiseModels() const {
-  return sequence::loadRunNoiseModels(noise_models, sequence, simulate_config, config_dir);
+  return sequence::loadRunNoiseModels(sequence.noise_models, sequence.sequence, sequence.simulate_config,
+                                      sequence.config_dir);
 }
 
 RecorderOptions readRecorderOptions(const ros::NodeHandle& pnh) {
   RecorderOptions o;
   std::string rule = "fidelity";
-  o.config_dir = cosmo::defaultConfigDir();
   pnh.param("name", o.name, o.name);
   pnh.param("output_dir", o.output_dir, o.output_dir);
-  pnh.param("noise_models", o.noise_models, o.noise_models);
-  pnh.param("sequence", o.sequence, o.sequence);
-  pnh.param("data_root", o.data_root, o.data_root);
-  pnh.param("simulate_config", o.simulate_config, o.simulate_config);
-  pnh.param("config_dir", o.config_dir, o.config_dir);
+  o.sequence = readSequenceChoice(pnh);
   pnh.param("outlier_rule", rule, rule);
   pnh.param("autosave_period", o.autosave_period, o.autosave_period);
   pnh.param("progress_period", o.progress_period, o.progress_period);
@@ -72,7 +67,7 @@ RecorderRun waitForRun(ros::NodeHandle& nh, const ros::NodeHandle& pnh, const st
 }
 
 std::optional<dataset::MetadataLines> sequenceMetadataLines(const RecorderOptions& o) {
-  ResolvedSequence sequence{o.sequence, o.data_root, {}};
+  ResolvedSequence sequence{o.sequence.sequence, o.sequence.data_root, {}};
   if (const auto resolved = resolvedSequence()) sequence = *resolved;
   if (sequence.path.empty()) return std::nullopt;
   try {

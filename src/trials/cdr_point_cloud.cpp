@@ -1,7 +1,9 @@
 #include "cosmo/trials/cdr_point_cloud.hpp"
 
-#include <cstring>
 #include <stdexcept>
+
+#include "cloud_members.hpp"
+#include "cosmo/common/byte_cursor.hpp"
 
 namespace cosmo::trials {
 
@@ -9,55 +11,41 @@ namespace {
 
 constexpr std::size_t kEncapsulation = 4;
 
-/// Reads little-endian CDR values in order, checking every read against the end of the buffer.
-class CdrReader {
+/// A malformed CDR PointCloud2, named with the member and the byte offset.
+struct CdrCloudFail {
+  const std::string& source;
+  std::size_t size;
+  [[noreturn]] void operator()(const char* what, const std::string& why, std::size_t at) const {
+    throw std::runtime_error(source + ": malformed CDR PointCloud2 at " + what + " (byte " + std::to_string(at) +
+                             " of " + std::to_string(size) + "): " + why);
+  }
+};
+
+/// Reads CDR members in order: each value aligned to its size from the end of the encapsulation header, strings
+/// with their NUL.
+class CdrIn {
  public:
-  CdrReader(const std::uint8_t* p, std::size_t size, const std::string& source) : p_(p), size_(size), source_(source) {}
+  CdrIn(const std::uint8_t* p, std::size_t size, const std::string& source)
+      : in_(p, size, CdrCloudFail{source, size}, kEncapsulation) {}
 
   template <typename T>
   T value(const char* what) {
-    align(sizeof(T), what);
-    need(sizeof(T), what);
-    T v;
-    std::memcpy(&v, p_ + pos_, sizeof(T));
-    pos_ += sizeof(T);
-    return v;
+    in_.align(sizeof(T), kEncapsulation, what);
+    return in_.template value<T>(what);
   }
   std::string string(const char* what) {
     const auto len = value<std::uint32_t>(what);
-    if (len == 0) fail(what, "string length 0 (CDR strings hold at least their NUL)");
-    need(len, what);
-    const char* s = reinterpret_cast<const char*>(p_ + pos_);
-    if (s[len - 1] != '\0') fail(what, "string is not NUL-terminated");
-    pos_ += len;
+    if (len == 0) in_.fail(what, "string length 0 (CDR strings hold at least their NUL)");
+    const std::size_t at = in_.offset();
+    const char* s = reinterpret_cast<const char*>(in_.bytes(len, what));
+    if (s[len - 1] != '\0') in_.failAt(what, "string is not NUL-terminated", at);
     return std::string(s, len - 1);
   }
-  const std::uint8_t* bytes(std::size_t n, const char* what) {
-    need(n, what);
-    const std::uint8_t* b = p_ + pos_;
-    pos_ += n;
-    return b;
-  }
-  [[noreturn]] void fail(const char* what, const std::string& why) const {
-    throw std::runtime_error(source_ + ": malformed CDR PointCloud2 at " + what + " (byte " + std::to_string(pos_) +
-                             " of " + std::to_string(size_) + "): " + why);
-  }
+  const std::uint8_t* bytes(std::size_t n, const char* what) { return in_.bytes(n, what); }
+  [[noreturn]] void fail(const char* what, const std::string& why) const { in_.fail(what, why); }
 
  private:
-  void align(std::size_t a, const char* what) {
-    const std::size_t rel = pos_ - kEncapsulation;
-    pos_ += (a - rel % a) % a;
-    if (pos_ > size_) fail(what, "truncated");
-  }
-  void need(std::size_t n, const char* what) const {
-    if (n > size_ - pos_)
-      fail(what, "truncated (needs " + std::to_string(n) + " bytes, " + std::to_string(size_ - pos_) + " left)");
-  }
-
-  const std::uint8_t* p_;
-  std::size_t size_;
-  const std::string& source_;
-  std::size_t pos_ = kEncapsulation;
+  ByteCursor<CdrCloudFail> in_;
 };
 
 /// Appends little-endian CDR values with the same alignment rule.
@@ -90,44 +78,30 @@ class CdrWriter {
 
 }  // namespace
 
-CdrCloudView parseCdrPointCloud2(const std::uint8_t* message, std::size_t size, const std::string& source) {
+CloudView parseCdrPointCloud2(const std::uint8_t* message, std::size_t size, const std::string& source) {
   if (size < kEncapsulation)
     throw std::runtime_error(source + ": malformed CDR PointCloud2: " + std::to_string(size) +
                              " bytes, shorter than the encapsulation header");
   if (message[0] != 0x00 || message[1] != 0x01)
     throw std::runtime_error(source + ": CDR encapsulation " + std::to_string(message[0]) + " " +
                              std::to_string(message[1]) + " is not little-endian CDR (0 1)");
-  CdrReader in(message, size, source);
-  CdrCloudView view;
+  CdrIn in(message, size, source);
+  CloudView view;
   CloudLayout& L = view.layout;
   const auto sec = in.value<std::int32_t>("header.stamp.sec");
   const auto nanosec = in.value<std::uint32_t>("header.stamp.nanosec");
   if (sec < 0 || nanosec >= 1000000000u) in.fail("header.stamp", "invalid stamp");
   L.stamp = static_cast<StampNs>(sec) * 1000000000ULL + nanosec;
   L.frame_id = in.string("header.frame_id");
-  L.height = in.value<std::uint32_t>("height");
-  L.width = in.value<std::uint32_t>("width");
-  const auto nfields = in.value<std::uint32_t>("fields");
-  if (nfields > (size - kEncapsulation) / 13) in.fail("fields", std::to_string(nfields) + " fields cannot fit");
-  L.fields.resize(nfields);
-  for (auto& f : L.fields) {
-    f.name = in.string("fields[].name");
-    f.offset = in.value<std::uint32_t>("fields[].offset");
-    f.datatype = in.value<std::uint8_t>("fields[].datatype");
-    f.count = in.value<std::uint32_t>("fields[].count");
-  }
-  L.is_bigendian = in.value<std::uint8_t>("is_bigendian") != 0;
-  L.point_step = in.value<std::uint32_t>("point_step");
-  L.row_step = in.value<std::uint32_t>("row_step");
-  view.bytes = in.value<std::uint32_t>("data");
-  view.data = in.bytes(view.bytes, "data");
-  L.is_dense = in.value<std::uint8_t>("is_dense") != 0;
+  readCloudMembers(in, view, [&](std::uint32_t nfields) {
+    if (nfields > (size - kEncapsulation) / 13) in.fail("fields", std::to_string(nfields) + " fields cannot fit");
+  });
   return view;
 }
 
 DecodeCounts decodeCdrPointCloud2(const std::uint8_t* message, std::size_t size, bool stamp_at_end,
                                   const std::string& source, Scan& scan) {
-  const CdrCloudView v = parseCdrPointCloud2(message, size, source);
+  const CloudView v = parseCdrPointCloud2(message, size, source);
   return decodeCloud(v.layout, v.data, v.bytes, stamp_at_end, source, scan);
 }
 

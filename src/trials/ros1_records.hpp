@@ -5,11 +5,11 @@
 // and the field.
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "cosmo/common/byte_cursor.hpp"
 #include "cosmo/trials/ros1_bag.hpp"
 
 namespace cosmo::trials::ros1 {
@@ -67,13 +67,6 @@ struct Record {
   std::uint32_t data_len = 0;
   std::uint64_t end() const { return data_offset + data_len; }
 };
-
-/// Little-endian uint32 at `p` (the caller checked the bounds).
-inline std::uint32_t le32(const std::uint8_t* p) {
-  std::uint32_t v;
-  std::memcpy(&v, p, 4);
-  return v;
-}
 
 /// The record at `place.offset` of `bytes[0, size)` (a decompressed chunk). Throws when its header or its data
 /// runs past `size`.

@@ -43,7 +43,7 @@ Ros2ScanSource::Ros2ScanSource(const std::string& bag_path, const std::string& t
 bool Ros2ScanSource::next(Scan& scan) {
   Ros2BagReader::Message m;
   if (!reader_.next(m)) return false;
-  const CdrCloudView view = parseCdrPointCloud2(m.data, m.size, reader_.where());
+  const CloudView view = parseCdrPointCloud2(m.data, m.size, reader_.where());
   layout_ = view.layout;
   counts_ = decodeCloud(view.layout, view.data, view.bytes, stamp_at_end_, reader_.where(), scan);
   return true;

@@ -16,29 +16,17 @@
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/pose_graph.hpp"
 #include "cosmo/jrl/synthetic.hpp"
+#include "export_fixture.hpp"
 
 using namespace cosmo;
 using namespace cosmo::jrl;
 namespace fs = std::filesystem;
+using jrl_test::kTiny;
+using jrl_test::splitBy;
 
 namespace {
 
-const std::string kTiny = std::string(COSMO_SOURCE_DIR) + "/test/jrl/data/tiny_example.jrl";
-
-fs::path tempDir(const std::string& name) {
-  const fs::path p = fs::temp_directory_path() / ("cosmo_test_exports_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p;
-}
-
-std::vector<std::string> splitBy(const std::string& line, char sep) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  std::string f;
-  while (std::getline(ss, f, sep)) out.push_back(f);
-  return out;
-}
+fs::path tempDir(const std::string& name) { return jrl_test::tempDir("exports_" + name); }
 
 struct G2oEdge {
   long a = 0, b = 0;

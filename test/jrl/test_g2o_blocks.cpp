@@ -17,32 +17,25 @@
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/pose_graph.hpp"
 #include "cosmo/jrl/synthetic.hpp"
+#include "export_fixture.hpp"
 
 using namespace cosmo;
 using namespace cosmo::jrl;
 namespace fs = std::filesystem;
+using jrl_test::kTiny;
 
 namespace {
 
-const std::string kTiny = std::string(COSMO_SOURCE_DIR) + "/test/jrl/data/tiny_example.jrl";
-
-fs::path tempDir(const std::string& name) {
-  const fs::path p = fs::temp_directory_path() / ("cosmo_test_g2o_blocks_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p;
-}
+fs::path tempDir(const std::string& name) { return jrl_test::tempDir("g2o_blocks_" + name); }
 
 std::string readText(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
+/// A CSV line's fields (an empty last one after a trailing comma).
 std::vector<std::string> csvFields(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  std::string f;
-  while (std::getline(ss, f, ',')) out.push_back(f);
+  auto out = jrl_test::splitBy(line, ',');
   if (!line.empty() && line.back() == ',') out.emplace_back();
   return out;
 }
@@ -132,9 +125,7 @@ void expectDpgoLayout(const Dataset& d, const fs::path& dir) {
     EXPECT_EQ(g.blocks[i].first, next) << g.blocks[i].robot;
     EXPECT_GT(g.blocks[i].count, 0) << g.blocks[i].robot;
     EXPECT_EQ(g.blocks[i].robot.size(), 1u);
-    if (i > 0) {
-      EXPECT_LT(g.blocks[i - 1].robot, g.blocks[i].robot);
-    }
+    if (i > 0) { EXPECT_LT(g.blocks[i - 1].robot, g.blocks[i].robot); }
     next += g.blocks[i].count;
   }
   EXPECT_EQ(next, n);

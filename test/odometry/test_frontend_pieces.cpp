@@ -10,7 +10,7 @@
 #include "cosmo/common/shared_data.hpp"
 #include "cosmo/odometry/dewarp.hpp"
 #include "cosmo/odometry/keyframer.hpp"
-#include "cosmo/odometry/voxel_filter.hpp"
+#include "cosmo/common/voxel_grid.hpp"
 #include "cosmo/odometry/loam_params.hpp"
 #include "cosmo/odometry/scan_lines.hpp"
 #include "cosmo/odometry/synthetic_scene.hpp"

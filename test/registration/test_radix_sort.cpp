@@ -6,7 +6,7 @@
 #include <random>
 
 #include "cosmo/common/voxel_key.hpp"
-#include "cosmo/registration/radix_sort.hpp"
+#include "cosmo/common/radix_sort.hpp"
 
 using namespace cosmo;
 

@@ -7,7 +7,7 @@
 #include <random>
 #include <tuple>
 
-#include "cosmo/registration/voxel_downsample.hpp"
+#include "cosmo/common/voxel_grid.hpp"
 
 using namespace cosmo;
 

@@ -1,12 +1,14 @@
 #pragma once
 // A temporary folder with small sequence configs (their "bags" are placeholder files, their references TUM files
-// of a given length) and suite files, for the suite module's tests: nothing here runs a program.
+// of a given length), suite files and a report's jobs and records, for the suite module's tests: nothing here runs a
+// program.
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "cosmo/suite/job_record.hpp"
 #include "cosmo/suite/plan.hpp"
 
 namespace suite_test {
@@ -61,6 +63,40 @@ inline cosmo::suite::PlanOptions planOptions(const Folder& f) {
   o.default_config_dir = std::string(COSMO_SOURCE_DIR) + "/config";
   o.simulate = [](const cosmo::suite::SequenceEntry&) -> std::string { throw std::runtime_error("no simulation"); };
   return o;
+}
+
+/// A group job of the paper sequence tuhh_r3_01 with both comm models, for the report's tests.
+inline cosmo::suite::Job group(const std::string& id, const std::string& label) {
+  cosmo::suite::Job j;
+  j.id = id;
+  j.label = label;
+  j.sequence_name = "tuhh_r3_01";
+  j.comms = {"wifi", "proradio"};
+  return j;
+}
+
+/// Its record: two datasets (wifi, proradio) with `lc` loop closures and an inliers-solve ATE of `ate`.
+inline cosmo::suite::JobRecord record(const std::string& id, std::size_t lc, double ate) {
+  cosmo::suite::JobRecord r;
+  r.job = id;
+  r.wall_s = 730;
+  r.cpu_s = 1400;
+  r.peak_rss_mb = 512;
+  for (const char* comm : {"wifi", "proradio"}) {
+    cosmo::suite::DatasetSummary d;
+    d.name = id + "_" + comm;
+    d.comm = comm;
+    d.duration_s = 727.2;
+    d.length_m = 2150;
+    d.lc = lc;
+    d.lc_outliers = lc / 10;
+    d.irlc = 300;
+    d.irlc_outliers = 30;
+    d.inliers_ate_m = ate;
+    d.init_ate_m = 25.7;
+    r.datasets.push_back(d);
+  }
+  return r;
 }
 
 }  // namespace suite_test

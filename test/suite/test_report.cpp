@@ -10,42 +10,12 @@
 
 using namespace cosmo::suite;
 using suite_test::Folder;
+using suite_test::group;
+using suite_test::record;
 
 namespace {
 
 PaperTable paper() { return PaperTable::load(std::string(COSMO_SOURCE_DIR) + "/config/paper/fig1.yaml"); }
-
-Job group(const std::string& id, const std::string& label) {
-  Job j;
-  j.id = id;
-  j.label = label;
-  j.sequence_name = "tuhh_r3_01";
-  j.comms = {"wifi", "proradio"};
-  return j;
-}
-
-JobRecord record(const std::string& id, std::size_t lc, double ate) {
-  JobRecord r;
-  r.job = id;
-  r.wall_s = 730;
-  r.cpu_s = 1400;
-  r.peak_rss_mb = 512;
-  for (const char* comm : {"wifi", "proradio"}) {
-    DatasetSummary d;
-    d.name = id + "_" + comm;
-    d.comm = comm;
-    d.duration_s = 727.2;
-    d.length_m = 2150;
-    d.lc = lc;
-    d.lc_outliers = lc / 10;
-    d.irlc = 300;
-    d.irlc_outliers = 30;
-    d.inliers_ate_m = ate;
-    d.init_ate_m = 25.7;
-    r.datasets.push_back(d);
-  }
-  return r;
-}
 
 }  // namespace
 

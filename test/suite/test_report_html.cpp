@@ -13,6 +13,8 @@
 
 using namespace cosmo::suite;
 using suite_test::Folder;
+using suite_test::group;
+using suite_test::record;
 
 namespace {
 
@@ -122,38 +124,6 @@ std::vector<std::string> markdownCells(const std::string& line) {
   return cells;
 }
 
-Job group(const std::string& id) {
-  Job j;
-  j.id = id;
-  j.label = "tuhh_r3_01";
-  j.sequence_name = "tuhh_r3_01";
-  j.comms = {"wifi", "proradio"};
-  return j;
-}
-
-JobRecord record(const std::string& id, std::size_t lc, double ate) {
-  JobRecord r;
-  r.job = id;
-  r.wall_s = 730;
-  r.cpu_s = 1400;
-  r.peak_rss_mb = 512;
-  for (const char* comm : {"wifi", "proradio"}) {
-    DatasetSummary d;
-    d.name = id + "_" + comm;
-    d.comm = comm;
-    d.duration_s = 727.2;
-    d.length_m = 2150;
-    d.lc = lc;
-    d.lc_outliers = lc / 10;
-    d.irlc = 300;
-    d.irlc_outliers = 30;
-    d.inliers_ate_m = ate;
-    d.init_ate_m = 25.7;
-    r.datasets.push_back(d);
-  }
-  return r;
-}
-
 const char* kFailed = "failed: cosmo_generate failed (exit code 1)\nlast lines: <stderr> & \"quoted\" | piped";
 
 /// Three groups of two datasets (two figures, one group failed with a status of two lines, markup in it) and an
@@ -161,7 +131,7 @@ const char* kFailed = "failed: cosmo_generate failed (exit code 1)\nlast lines: 
 struct Fixture {
   Folder f;
   PaperTable paper = PaperTable::load(std::string(COSMO_SOURCE_DIR) + "/config/paper/fig1.yaml");
-  std::vector<Job> jobs{group("s1"), group("s2"), group("s3"), Job{}};
+  std::vector<Job> jobs{group("s1", "tuhh_r3_01"), group("s2", "tuhh_r3_01"), group("s3", "tuhh_r3_01"), Job{}};
   ReportInput in;
 
   Fixture() {

@@ -55,7 +55,7 @@ TEST(CdrPointCloud, EncodeParseRoundTripKeepsTheLayout) {
   ASSERT_GE(cdr.size(), 4u);
   EXPECT_EQ(cdr[0], 0x00);
   EXPECT_EQ(cdr[1], 0x01);
-  const CdrCloudView v = parseCdrPointCloud2(cdr.data(), cdr.size(), "test");
+  const CloudView v = parseCdrPointCloud2(cdr.data(), cdr.size(), "test");
   EXPECT_EQ(v.layout.stamp, cloud.layout.stamp);
   EXPECT_EQ(v.layout.frame_id, "os_sensor");
   EXPECT_EQ(v.layout.height, 4u);

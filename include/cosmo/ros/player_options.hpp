@@ -26,9 +26,6 @@ struct PlayerOptions {
   std::string trialPlayerNode(char robot) const;
 };
 
-/// ~sequence, ~data_root, ~seed (-1: the config's), ~max_seconds, ~simulate_config, ~simulate_out, ~noise_models,
-/// ~config_dir: which sequence a node plays.
-trials::SequenceChoice readSequenceChoice(const ros::NodeHandle& pnh);
 /// Every parameter; throws std::runtime_error naming the one that is out of range.
 PlayerOptions readPlayerOptions(const ros::NodeHandle& pnh);
 /// The peers the player watches: a front-end per robot (and its trial player with robot-side playback), the

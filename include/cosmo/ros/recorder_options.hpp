@@ -12,11 +12,13 @@
 #include "cosmo/dataset/outlier_rule.hpp"
 #include "cosmo/dataset/recorder_session.hpp"
 #include "cosmo/live/peer_watch.hpp"
+#include "cosmo/trials/sequence_resolution.hpp"
 
 namespace cosmo::ros_glue {
 
 struct RecorderOptions {
-  std::string name = "cosmo", output_dir = ".", noise_models, sequence, data_root, simulate_config, config_dir;
+  std::string name = "cosmo", output_dir = ".";
+  trials::SequenceChoice sequence;  ///< ~sequence, ~data_root, ~simulate_config, ~noise_models, ~config_dir
   std::string player_node = "/player", run_id;
   OutlierRule rule = OutlierRule::Fidelity;
   double autosave_period = 30.0, progress_period = 5.0;

@@ -7,7 +7,10 @@
 #include <optional>
 #include <string>
 
+#include <ros/node_handle.h>
+
 #include "cosmo/sequence/sequence_config.hpp"
+#include "cosmo/trials/sequence_resolution.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -36,5 +39,9 @@ std::optional<ResolvedSequence> resolvedSequence();
 /// Sets the parameters (the player); the path last, once the others are set.
 void publishResolvedSequence(const std::string& path, unsigned long long seed, const std::string& data_root = "",
                              const std::map<std::string, std::string>& registration = {});
+
+/// ~sequence, ~data_root, ~seed (-1: the config's), ~max_seconds, ~simulate_config, ~simulate_out, ~noise_models,
+/// ~config_dir: the sequence a node plays (player, trial_player) or records (recorder), as its parameters name it.
+trials::SequenceChoice readSequenceChoice(const ros::NodeHandle& pnh);
 
 }  // namespace cosmo::ros_glue

@@ -15,14 +15,7 @@
 
 namespace cosmo::trials {
 
-/// A parsed message: its layout and where its point bytes lie inside the serialized buffer.
-struct CdrCloudView {
-  CloudLayout layout;
-  const std::uint8_t* data = nullptr;
-  std::size_t bytes = 0;
-};
-
-CdrCloudView parseCdrPointCloud2(const std::uint8_t* message, std::size_t size, const std::string& source);
+CloudView parseCdrPointCloud2(const std::uint8_t* message, std::size_t size, const std::string& source);
 
 /// Parses and decodes into `scan` (see decodeCloud).
 DecodeCounts decodeCdrPointCloud2(const std::uint8_t* message, std::size_t size, bool stamp_at_end,

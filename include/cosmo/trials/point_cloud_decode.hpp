@@ -61,6 +61,13 @@ struct CloudLayout {
   std::size_t points() const { return static_cast<std::size_t>(width) * height; }
 };
 
+/// A parsed message (ROS 1 or CDR): its layout and where its point bytes lie inside the serialized buffer.
+struct CloudView {
+  CloudLayout layout;
+  const std::uint8_t* data = nullptr;
+  std::size_t bytes = 0;
+};
+
 /// "x:float32@0 y:float32@4 ..." (for pre-flight checks and error messages).
 std::string describeFields(const CloudLayout& layout);
 

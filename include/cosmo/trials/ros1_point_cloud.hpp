@@ -13,14 +13,7 @@
 
 namespace cosmo::trials {
 
-/// A parsed message: its layout and where its point bytes lie inside the serialized buffer.
-struct Ros1CloudView {
-  CloudLayout layout;
-  const std::uint8_t* data = nullptr;
-  std::size_t bytes = 0;
-};
-
-Ros1CloudView parseRos1PointCloud2(const std::uint8_t* message, std::size_t size, const std::string& source);
+CloudView parseRos1PointCloud2(const std::uint8_t* message, std::size_t size, const std::string& source);
 
 /// Parses and decodes into `scan` (see decodeCloud); `layout` receives the message's layout.
 DecodeCounts decodeRos1PointCloud2(const std::uint8_t* message, std::size_t size, bool stamp_at_end,

@@ -14,7 +14,7 @@
 #include "cosmo/registration/global_registration.hpp"
 #include "cosmo/registration/neighbour_pairs.hpp"
 #include "cosmo/bench/stage_timer.hpp"
-#include "cosmo/registration/voxel_downsample.hpp"
+#include "cosmo/common/voxel_grid.hpp"
 
 using namespace cosmo;
 

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/bench/sim_trial.hpp"
 #include "cosmo/common/command_line.hpp"
 #include "cosmo/ros/bag_io.hpp"
 #include "cosmo/sim/scan_simulator.hpp"
@@ -36,22 +37,6 @@ using namespace cosmo;
 namespace fs = std::filesystem;
 
 namespace {
-
-double cpuMs() { return 1e3 * static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
-
-sim::PlannedSequence plan(const sim::LidarModel& lidar) {
-  sim::SimulationParams p;
-  p.world.blocks_x = 2;
-  p.world.blocks_y = 2;
-  p.lidar = lidar;
-  sim::TrialParams t;
-  t.name = "bench";
-  t.motion = sim::MotionParams::preset("atv");
-  t.length = 200;
-  t.start_node = 0;
-  p.trials.push_back(t);
-  return sim::planSequence(p);
-}
 
 /// A digest of every scan's bytes (FNV-1a), to compare the variants' outputs.
 struct Digest {
@@ -85,11 +70,11 @@ Result inChild(const std::function<Digest()>& read) {
   if (pid == 0) {
     ::close(pipefd[0]);
     Result r;
-    const double c0 = cpuMs();
+    const double c0 = bench::processCpuMs();
     bench::Stopwatch sw;
     const Digest d = read();
     r.wall_ms = sw.elapsedMs();
-    r.cpu_ms = cpuMs() - c0;
+    r.cpu_ms = bench::processCpuMs() - c0;
     r.digest = d.h;
     r.scans = d.scans;
     if (::write(pipefd[1], &r, sizeof r) != sizeof r) ::_exit(1);
@@ -100,7 +85,7 @@ Result inChild(const std::function<Digest()>& read) {
   const bool got = ::read(pipefd[0], &r, sizeof r) == sizeof r;
   ::close(pipefd[0]);
   int status = 0;
-  struct rusage usage{};
+  struct rusage usage {};
   ::wait4(pid, &status, 0, &usage);
   if (!got || !WIFEXITED(status) || WEXITSTATUS(status) != 0) throw std::runtime_error("a reader failed");
   r.rss_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;
@@ -124,8 +109,7 @@ void checkEveryRecord(const std::string& bag_path) {
   trials::Ros1MessageStream stream(bag, bag->messages(ids), 0);
   trials::Ros1MessageRef m;
   trials::Ros1Bag::Bytes bytes;
-  while (stream.next(m, bytes)) {
-  }
+  while (stream.next(m, bytes)) {}
 }
 
 Digest readOwn(const std::string& bag, int workers) {
@@ -146,7 +130,9 @@ int main(int argc, char** argv) {
                   "Reads simulated MCD-layout bags (chunks bz2, none, lz4) with librosbag, with a record check before "
                   "librosbag, and with cosmo's own reader on N decompression workers: ms per scan, peak RSS.");
   app.add_option("--scans", scans, "scans per bag")->capture_default_str()->check(Positive);
-  app.add_option("--beams", beam_counts, "LiDAR beams (64 or 128), comma separated")->delimiter(',')->capture_default_str();
+  app.add_option("--beams", beam_counts, "LiDAR beams (64 or 128), comma separated")
+      ->delimiter(',')
+      ->capture_default_str();
   app.add_option("--workers", workers, "decompression workers of the own reader, comma separated")
       ->delimiter(',')
       ->capture_default_str();
@@ -158,13 +144,13 @@ int main(int argc, char** argv) {
   for (int beams : beam_counts) {
     sim::LidarModel lidar = beams == 128 ? sim::LidarModel::os1_128() : sim::LidarModel::os1_64();
     lidar.beams = beams;
-    const auto seq = plan(lidar);
+    const auto seq = bench::benchTrialPlan(lidar);
     const auto& t = seq.trials.at(0);
     sim::ScanSimulator simulator(*seq.world, lidar);
     const auto sweep = trials::mcdSweep(beams, lidar.columns, lidar.rate_hz);
-    std::vector<std::pair<std::string, ros_glue::BagCompression>> kinds{
-        {"bz2", ros_glue::BagCompression::Bz2}, {"none", ros_glue::BagCompression::None},
-        {"lz4", ros_glue::BagCompression::Lz4}};
+    std::vector<std::pair<std::string, ros_glue::BagCompression>> kinds{{"bz2", ros_glue::BagCompression::Bz2},
+                                                                        {"none", ros_glue::BagCompression::None},
+                                                                        {"lz4", ros_glue::BagCompression::Lz4}};
     for (const auto& [kind, compression] : kinds) {
       const fs::path bag = dir / ("os1_" + std::to_string(beams) + "_" + kind + ".bag");
       {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/bench/sim_trial.hpp"
 #include "cosmo/common/command_line.hpp"
 #include "cosmo/ros/bag_io.hpp"
 #include "cosmo/trials/bag_scan_source.hpp"
@@ -30,22 +31,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-double cpuMs() { return 1e3 * static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
-
-sim::PlannedSequence plan(const sim::LidarModel& lidar) {
-  sim::SimulationParams p;
-  p.world.blocks_x = 2;
-  p.world.blocks_y = 2;
-  p.lidar = lidar;
-  sim::TrialParams t;
-  t.name = "bench";
-  t.motion = sim::MotionParams::preset("atv");
-  t.length = 200;
-  t.start_node = 0;
-  p.trials.push_back(t);
-  return sim::planSequence(p);
-}
-
 struct ReadCost {
   double cpu_ms_per_scan = 0.0;
   double points_per_scan = 0.0;
@@ -55,12 +40,13 @@ ReadCost readAll(const sequence::TrialConfig& trial) {
   auto src = trials::openTrialScanSource(trial);
   Scan s;
   std::size_t n = 0, points = 0;
-  const double c0 = cpuMs();
+  const double c0 = bench::processCpuMs();
   while (src->next(s)) {
     ++n;
     points += s.size();
   }
-  return {(cpuMs() - c0) / std::max<std::size_t>(1, n), static_cast<double>(points) / std::max<std::size_t>(1, n)};
+  return {(bench::processCpuMs() - c0) / std::max<std::size_t>(1, n),
+          static_cast<double>(points) / std::max<std::size_t>(1, n)};
 }
 
 double megabytes(const fs::path& p) {
@@ -94,7 +80,7 @@ int main(int argc, char** argv) {
   for (int beams : beam_counts) {
     sim::LidarModel lidar = beams == 128 ? sim::LidarModel::os1_128() : sim::LidarModel::os1_64();
     lidar.beams = beams;
-    const auto seq = plan(lidar);
+    const auto seq = bench::benchTrialPlan(lidar);
     const auto& t = seq.trials.at(0);
     sim::ScanSimulator simulator(*seq.world, lidar);
     const auto mcd_sweep = trials::mcdSweep(beams, lidar.columns, lidar.rate_hz);
