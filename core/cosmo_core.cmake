@@ -133,7 +133,7 @@ endfunction()
 set(COSMO_ROS_GTESTS fuzz/test_fuzz_inputs multihost/test_netns_team nebula/test_conversion
     nebula/test_message_definition ros/test_loopback_alias ros/test_markers ros/test_point_cloud
     ros/test_team_sequence_msg sim/test_sim_bag tools/test_suite_end_to_end tools/test_tools_on_fixtures
-    trials/test_layouts_end_to_end trials/test_ros1_bag trials/test_trial_layouts workspace/test_commands_on_path)
+    trials/test_conformance trials/test_layouts_end_to_end trials/test_ros1_bag trials/test_trial_layouts workspace/test_commands_on_path)
 # The core's own gtests: only where COSMO_BUILD_TESTING is on (core/CMakeLists.txt; the catkin package leaves them
 # to it and builds the ones above).
 if(NOT COSMO_BUILD_TESTING)

@@ -42,8 +42,15 @@ TrialCheck checkTrial(const TrialConfig& trial, const TrialProbe& probe, const T
   c.robot = trial.robot;
   std::ostringstream line;
   line << "robot " << trial.robot << "  " << trial.name << ": ";
-  if (!probe.bag_found) {
-    line << "bag NOT FOUND " << trial.bag;
+  if (probe.bag != BagState::Ok) {
+    switch (probe.bag) {
+      case BagState::Missing: line << "bag NOT FOUND " << trial.bag; break;
+      case BagState::Unreadable: line << "bag UNREADABLE " << trial.bag; break;
+      case BagState::NotABag: line << "NOT A BAG " << trial.bag; break;
+      case BagState::Damaged: line << "bag DAMAGED " << trial.bag; break;
+      case BagState::Empty: line << "bag EMPTY " << trial.bag << " (a recording of no messages)"; break;
+      case BagState::Ok: break;
+    }
     c.errors.push_back(trial.name + ": " + (probe.error.empty() ? "bag not found: " + trial.bag : probe.error));
     c.line = line.str();
     return c;
@@ -62,6 +69,13 @@ TrialCheck checkTrial(const TrialConfig& trial, const TrialProbe& probe, const T
   if (!probe.error.empty()) {
     line << ", UNREADABLE: " << probe.error;
     c.errors.push_back(trial.name + ": " + probe.error);
+    c.line = line.str();
+    return c;
+  }
+  if (probe.messages == 0) {
+    line << ": EMPTY";
+    c.errors.push_back(trial.name + ": topic " + trial.topic + " of " + trial.bag +
+                       " holds no messages (record the trial again or name the topic that holds its scans)");
     c.line = line.str();
     return c;
   }

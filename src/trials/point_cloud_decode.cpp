@@ -49,6 +49,33 @@ std::string describeFields(const CloudLayout& layout) {
   return s;
 }
 
+PointConventions pointConventions(const CloudLayout& L) {
+  PointConventions c;
+  using Time = PointConventions::Time;
+  if ((c.time = L.field("t"))) {
+    c.time_kind = Time::Nanoseconds;
+  } else if ((c.time = L.field("time")) || (c.time = L.field("timestamp"))) {
+    c.time_kind = Time::Seconds;
+  } else if ((c.time = L.field("time_sec")) && (c.time_nsec = L.field("time_nsec"))) {
+    c.time_kind = Time::SplitAbsolute;
+  } else {
+    c.time = c.time_nsec = nullptr;
+  }
+  c.ring = L.field("ring") ? L.field("ring") : L.field("line");
+  return c;
+}
+
+std::string PointConventions::describe() const {
+  std::string s;
+  switch (time_kind) {
+    case Time::None: s = "no per-point time (not dewarped)"; break;
+    case Time::Nanoseconds: s = "time " + time->name + " (ns from the sweep start)"; break;
+    case Time::Seconds: s = "time " + time->name + " (s; absolute ns above 1e15)"; break;
+    case Time::SplitAbsolute: s = "time " + time->name + " + " + time_nsec->name + " (absolute)"; break;
+  }
+  return s + (ring ? ", ring " + ring->name : ", no ring");
+}
+
 namespace {
 
 /// Passes one field of every point to store(i, value) as a double (every stored type converts exactly, so a
@@ -109,27 +136,36 @@ void readPoints(const CloudLayout& L, const std::uint8_t* data, std::size_t n, S
 }
 
 /// Per-point times relative to the message stamp (see the header for the conventions).
-void readTimes(const CloudLayout& L, const std::uint8_t* data, std::size_t n, bool stamp_at_end, Scan& scan) {
-  const PointField* ft = L.field("t");
-  double scale = 1e-9;  // Ouster `t`: ns
-  if (!ft) {
-    ft = L.field("time");
-    if (!ft) ft = L.field("timestamp");
-    scale = 1.0;
-  }
-  scan.time.resize(ft ? n : 0);
-  if (!ft || n == 0) return;
+void readTimes(const CloudLayout& L, const PointConventions& c, const std::uint8_t* data, std::size_t n,
+               bool stamp_at_end, Scan& scan) {
+  using Time = PointConventions::Time;
+  scan.time.resize(c.time ? n : 0);
+  if (!c.time || n == 0) return;
   // In double until made relative: absolute epoch seconds (Velodyne `time`) would lose minutes in float.
   std::vector<double> t(n);
-  readColumn(data, n, L.point_step, *ft, [&](std::size_t i, double v) { t[i] = v * scale; });
+  if (c.time_kind == Time::SplitAbsolute) {  // relative to the stamp from the start: no precision lost
+    const double stamp_sec = static_cast<double>(scan.stamp / 1000000000ULL);
+    const double stamp_nsec = static_cast<double>(scan.stamp % 1000000000ULL);
+    readColumn(data, n, L.point_step, *c.time, [&](std::size_t i, double v) { t[i] = v - stamp_sec; });
+    readColumn(data, n, L.point_step, *c.time_nsec, [&](std::size_t i, double v) { t[i] += (v - stamp_nsec) * 1e-9; });
+    for (std::size_t i = 0; i < n; ++i) scan.time[i] = static_cast<float>(t[i]);
+    return;
+  }
+  const double scale = c.time_kind == Time::Nanoseconds ? 1e-9 : 1.0;
+  readColumn(data, n, L.point_step, *c.time, [&](std::size_t i, double v) { t[i] = v * scale; });
   double t_max = -std::numeric_limits<double>::infinity(), t_min = -t_max;
   for (double ti : t)
     if (std::isfinite(ti)) {
       t_max = std::max(t_max, ti);
       t_min = std::min(t_min, ti);
     }
+  if (c.time_kind == Time::Seconds && t_min > 1e15) {  // absolute nanoseconds (Livox): no clock reads 1e15 s
+    for (double& ti : t) ti *= 1e-9;
+    t_max *= 1e-9;
+    t_min *= 1e-9;
+  }
   const bool absolute = t_min > 1e6;
-  const bool organised_ouster = ft->name == "t" && L.height > 1 && L.width > 1;
+  const bool organised_ouster = c.time_kind == Time::Nanoseconds && L.height > 1 && L.width > 1;
   // The sweep end relative to its start: one period for an organised Ouster cloud, else the latest point.
   const double sweep = organised_ouster ? t_max * L.width / (L.width - 1.0) : t_max;
   double ref = sweep;
@@ -178,9 +214,10 @@ DecodeCounts decodeCloud(const CloudLayout& L, const std::uint8_t* data, std::si
     throw std::runtime_error(source + ": PointCloud2 data holds " + std::to_string(bytes) + " bytes, expected " +
                              std::to_string(L.width) + " x " + std::to_string(L.height) + " points of " +
                              std::to_string(L.point_step) + " bytes (width*height*point_step)");
-  const PointField *fi = L.field("intensity"), *fr = L.field("ring"), *frange = L.field("range");
-  const PointField* ft = L.field("t") ? L.field("t") : L.field("time") ? L.field("time") : L.field("timestamp");
-  for (const PointField* f : {fx, fy, fz, fi, fr, ft, frange}) checkInside(L, f, source);
+  const PointConventions conventions = pointConventions(L);
+  const PointField *fi = L.field("intensity"), *fr = conventions.ring, *frange = L.field("range");
+  for (const PointField* f : {fx, fy, fz, fi, fr, conventions.time, conventions.time_nsec, frange})
+    checkInside(L, f, source);
 
   scan.stamp = L.stamp;
   readPoints(L, data, n, scan);
@@ -193,7 +230,7 @@ DecodeCounts decodeCloud(const CloudLayout& L, const std::uint8_t* data, std::si
       // A float ring field may hold NaN: line 0, never UB.
       scan.ring[i] = static_cast<std::uint16_t>(std::isfinite(d) ? std::clamp(d, 0.0, 65535.0) : 0.0);
     });
-  readTimes(L, data, n, stamp_at_end, scan);
+  readTimes(L, conventions, data, n, stamp_at_end, scan);
 
   DecodeCounts counts;
   counts.points = n;

@@ -76,6 +76,7 @@ void Ros1Bag::readIndex() {
   const std::uint32_t conn_count = header.fields.u32("conn_count");
   const std::uint32_t chunk_count = header.fields.u32("chunk_count");
   if (index_pos == 0) fail(head, "bag header", "index_pos is 0: the bag has no index (its recording was not closed)");
+  if (index_pos == file_size_ && conn_count == 0 && chunk_count == 0) return;  // an empty index: a recording of nothing
   if (index_pos < header.end() || index_pos >= file_size_)
     fail(head, "bag header",
          "index_pos " + std::to_string(index_pos) + " lies outside the file's records (bytes " +

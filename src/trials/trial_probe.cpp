@@ -1,6 +1,9 @@
 #include "cosmo/trials/trial_probe.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <set>
 
 #include "cosmo/sequence/sequence_noise_models.hpp"
@@ -39,25 +42,63 @@ std::vector<std::string> listTopics(const sequence::TrialConfig& trial, bool& ha
 }  // namespace
 
 sequence::TrialProbe probeTrial(const sequence::TrialConfig& trial, std::size_t scans) {
+  using sequence::BagState;
   sequence::TrialProbe probe;
-  if (!std::filesystem::exists(trial.bag)) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(trial.bag, ec)) {
     probe.error = "bag not found: " + trial.bag;
+    return probe;
+  }
+  if (!fs::is_directory(trial.bag, ec)) {
+    if (!fs::is_regular_file(trial.bag, ec)) {
+      probe.bag = BagState::Unreadable;
+      probe.error = trial.bag + ": not a regular file (a bag is a file, or a ROS 2 bag's folder)";
+      return probe;
+    }
+    if (!std::ifstream(trial.bag, std::ios::binary)) {
+      probe.bag = BagState::Unreadable;
+      probe.error = trial.bag + ": cannot be read (" + std::strerror(errno) + "): check its permissions";
+      return probe;
+    }
+    if (fs::file_size(trial.bag, ec) == 0) {
+      probe.bag = BagState::NotABag;
+      probe.error = trial.bag + ": an empty file (0 bytes), not a bag: its recording never started or was not copied";
+      return probe;
+    }
+  }
+  try {
+    trials::detectBagFormat(trial.bag);
+  } catch (const std::exception& e) {
+    probe.bag = BagState::NotABag;
+    probe.error = e.what();
     return probe;
   }
   try {
     probe.topics = listTopics(trial, probe.topic_found);
-    probe.bag_found = true;
   } catch (const std::exception& e) {
+    probe.bag = BagState::Damaged;
     probe.error = trial.bag + ": cannot open bag: " + e.what();
     return probe;
   }
+  if (probe.topics.empty()) {
+    probe.bag = BagState::Empty;
+    probe.error = trial.bag +
+                  ": a valid bag that records nothing (no connections, no messages): record the trial "
+                  "again or name the bag that holds it";
+    return probe;
+  }
+  probe.bag = BagState::Ok;
   if (!probe.topic_found) return probe;
   try {
     auto source = openTrialScanSource(trial);
     probe.messages = source->size();
+    if (probe.messages == 0) return probe;  // an empty topic: the check says so
     Scan scan;
     while (probe.first_scans.size() < scans && source->next(scan)) {
-      if (probe.fields.empty()) probe.fields = trials::describeFields(source->lastLayout());
+      if (probe.fields.empty())
+        probe.fields = trials::describeFields(source->lastLayout()) + " (" +
+                       trials::pointConventions(source->lastLayout()).describe() + ")";
       probe.points_in_messages += source->lastCounts().points;
       probe.first_scans.push_back(scan);
     }

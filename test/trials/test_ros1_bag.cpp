@@ -246,3 +246,69 @@ TEST(Ros1Bag, AMissingTopicListsTheBagsTopics) {
         << e.what();
   }
 }
+
+TEST(Ros1Bag, ABagThatRecordsNothingReadsAsARecordingOfNothing) {
+  TempDir dir;
+  const std::string path = (dir.path / "empty.bag").string();
+  {
+    rosbag::Bag bag(path, rosbag::bagmode::Write);  // closed without a message, as `rosbag record` stopped at once
+  }
+  const trials::Ros1Bag ours(path);
+  EXPECT_TRUE(ours.connections().empty());
+  sequence::TrialConfig trial;
+  trial.bag = path;
+  trial.topic = kTopic;
+  const sequence::TrialProbe probe = trials::probeTrial(trial);
+  EXPECT_EQ(probe.bag, sequence::BagState::Empty) << probe.error;
+  EXPECT_NE(probe.error.find("records nothing"), std::string::npos) << probe.error;
+
+  // index_pos at the end of the file but connections announced: the index is missing, the bag damaged.
+  std::string bytes = slurp(path);
+  const std::size_t conn_count = bytes.find("conn_count=") + 11;
+  bytes[conn_count] = 1;
+  const std::string announced = (dir.path / "announced.bag").string();
+  spit(announced, bytes);
+  EXPECT_NE(readError(announced).find("the file is truncated"), std::string::npos) << readError(announced);
+  trial.bag = announced;
+  EXPECT_EQ(trials::probeTrial(trial).bag, sequence::BagState::Damaged);
+}
+
+TEST(Ros1Bag, TheCheckNamesWhatIsWrongWithATrialsBag) {
+  TempDir dir;
+  sequence::TrialConfig trial;
+  trial.name = "t";
+  trial.topic = kTopic;
+  auto check = [&](const std::string& bag) {
+    trial.bag = bag;
+    const sequence::TrialProbe probe = trials::probeTrial(trial);
+    return std::make_pair(probe.bag, sequence::checkTrial(trial, probe, {}, "", "").line);
+  };
+  const auto missing = check((dir.path / "nowhere.bag").string());
+  EXPECT_EQ(missing.first, sequence::BagState::Missing);
+  EXPECT_NE(missing.second.find("bag NOT FOUND"), std::string::npos) << missing.second;
+
+  const std::string empty_file = (dir.path / "zero.bag").string();
+  spit(empty_file, "");
+  const auto zero = check(empty_file);
+  EXPECT_EQ(zero.first, sequence::BagState::NotABag);
+  EXPECT_NE(zero.second.find("NOT A BAG"), std::string::npos) << zero.second;
+
+  const std::string text = (dir.path / "text.bag").string();
+  spit(text, "hello, not a bag");
+  EXPECT_EQ(check(text).first, sequence::BagState::NotABag);
+
+  const std::string good = writeBag(dir.path, "good.bag", ros_glue::BagCompression::None, 2);
+  const std::string truncated = (dir.path / "truncated.bag").string();
+  const std::string bytes = slurp(good);
+  spit(truncated, bytes.substr(0, bytes.size() / 2));
+  const auto damaged = check(truncated);
+  EXPECT_EQ(damaged.first, sequence::BagState::Damaged);
+  EXPECT_NE(damaged.second.find("bag DAMAGED"), std::string::npos) << damaged.second;
+
+  const auto folder = check(dir.path.string());  // a folder without .db3 files
+  EXPECT_EQ(folder.first, sequence::BagState::NotABag);
+
+  const auto ok = check(good);
+  EXPECT_EQ(ok.first, sequence::BagState::Ok);
+  EXPECT_NE(ok.second.find("bag ok"), std::string::npos) << ok.second;
+}

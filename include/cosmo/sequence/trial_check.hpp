@@ -11,14 +11,25 @@
 
 namespace cosmo::sequence {
 
+/// What a trial's `bag:` turned out to be.
+enum class BagState {
+  Missing,     ///< no such file or folder
+  Unreadable,  ///< there, but it cannot be read (not a regular file, permissions)
+  NotABag,     ///< readable, but neither a ROS 1 bag nor a ROS 2 sqlite3 bag (an empty file among them)
+  Damaged,     ///< a bag whose header, records or index cannot be read
+  Empty,       ///< a valid bag that records nothing (no connections or topics)
+  Ok,
+};
+
 /// What a reader found at the start of a trial's bag.
 struct TrialProbe {
-  bool bag_found = false;
+  BagState bag = BagState::Missing;
   std::string error;  ///< why the bag or the topic could not be read ("" when it could)
   bool topic_found = false;
-  std::vector<std::string> topics;          ///< "name (type)" of every topic of the bag (shown when `topic` is missing)
-  std::string fields;                       ///< the cloud's point fields, e.g. "x:float32 y:float32 z:float32 t:uint32"
-  std::size_t messages = 0;                 ///< messages on the topic
+  std::vector<std::string> topics;  ///< "name (type)" of every topic of the bag (shown when `topic` is missing)
+  /// The cloud's point fields and which hold time and ring: "x:float32@0 ... (time t (ns ...), ring ring)".
+  std::string fields;
+  std::size_t messages = 0;                 ///< messages on the topic (0: an empty topic, no error)
   StampNs first_stamp = 0, last_stamp = 0;  ///< sweep-end stamps of the first and the last message
   std::vector<Scan> first_scans;       ///< the first few scans, decoded with the trial's convention, at the sweep end
   std::size_t points_in_messages = 0;  ///< width * height of those messages (invalid returns included)

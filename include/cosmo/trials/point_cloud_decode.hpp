@@ -2,9 +2,12 @@
 // A PointCloud2 as plain data (no ROS types), and its decoding into a Scan: the one place where point fields
 // become a Scan, for ROS 1 messages (src/ros/point_cloud.cpp) and ROS 2 CDR messages (cdr_point_cloud.hpp).
 //
-// Fields x y z (float32 or float64) are required; intensity, ring (any numeric type) and a per-point time are
-// used when present. The time is `t` (uint32 ns from the sweep start, Ouster) or `time` / `timestamp` (float
-// seconds, Velodyne/Hesai). Every scan comes out stamped at its sweep end, times <= 0 relative to it:
+// Fields x y z (float32 or float64) are required; intensity, a ring (any numeric type) and a per-point time are
+// used when present (pointConventions() names which field is which, the one place that decides it). The time is
+// `t` (ns from the sweep start, Ouster), `time` / `timestamp` (seconds, relative (Velodyne) or absolute (Hesai,
+// Robosense); absolute nanoseconds when its values exceed 1e15 (Livox's PointCloud2)), or `time_sec` + `time_nsec`
+// (absolute, split); the ring is `ring`, else Livox's `line`. Every scan comes out stamped at its sweep end, times
+// <= 0 relative to it:
 //  - the sweep lasts t_max * width / (width - 1) in an organised Ouster cloud (height > 1, `t` in ns: the
 //    columns are evenly spaced), else up to the latest point (t_max); time = t - that duration;
 //  - stamp at the sweep end (`stamp_at_end`, MCD): the stamp is kept, i.e. a point's time is stamp - period + t;
@@ -70,6 +73,24 @@ struct CloudView {
 
 /// "x:float32@0 y:float32@4 ..." (for pre-flight checks and error messages).
 std::string describeFields(const CloudLayout& layout);
+
+/// Which fields of a cloud hold each point's time and ring.
+struct PointConventions {
+  enum class Time {
+    None,           ///< no usable per-point time: the sweep is not dewarped
+    Nanoseconds,    ///< `t`: ns from the sweep start (Ouster)
+    Seconds,        ///< `time` / `timestamp`: s, relative or absolute; absolute ns above 1e15 (Livox)
+    SplitAbsolute,  ///< `time_sec` + `time_nsec`: absolute, split in two integers
+  };
+  Time time_kind = Time::None;
+  const PointField* time = nullptr;       ///< t, time, timestamp or time_sec
+  const PointField* time_nsec = nullptr;  ///< with SplitAbsolute
+  const PointField* ring = nullptr;       ///< ring, else line (Livox)
+
+  /// "time t (ns from the sweep start), ring ring", "no per-point time (not dewarped), no ring", ...
+  std::string describe() const;
+};
+PointConventions pointConventions(const CloudLayout& layout);
 
 /// A cloud with its point bytes (what the simulator writes).
 struct RawCloud {
