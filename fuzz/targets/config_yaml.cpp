@@ -27,7 +27,7 @@ void tryRead(Read read) {
 COSMO_FUZZ_TARGET(config_yaml) {
   const ConfigNode node = ConfigNode::load(fuzz::inputFile(data, size, "config.yaml"));
   tryRead([&] { LoamParams::fromConfig(node); });
-  tryRead([&] { PlaceRecognitionParams::fromConfig(node); });
+  tryRead([&] { place_recognition::PlaceRecognitionParams::fromConfig(node); });
   tryRead([&] { RegistrationParams::fromConfig(node); });
   tryRead([&] { frontend::FrontendParams::fromConfig(node); });
   tryRead([&] { RadioParams::fromConfig(node); });

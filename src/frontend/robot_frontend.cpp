@@ -132,7 +132,7 @@ void RobotFrontend::afterOdometry(StampNs stamp, OdometryResult odometry,
   step.keyframe = kf;
 
   std::shared_ptr<const Scan> kf_scan = take_keyframe();
-  const std::vector<LoopCandidate> candidates = recognizer_.addOwnKeyframe(kf.index, *kf_scan);
+  const std::vector<place_recognition::LoopCandidate> candidates = recognizer_.addOwnKeyframe(kf.index, *kf_scan);
   own_scans_[kf.index] = std::make_shared<const KeptScan>(kf_scan, spill_);
   latest_scan_ = std::move(kf_scan);
   for (const auto& c : candidates) step.closures.push_back(registerPair(c, stamp));
@@ -151,7 +151,7 @@ Step RobotFrontend::add(const TeammateScan& in) {
   // `in.scan` stays in use meanwhile: not read back
   std::shared_ptr<const KeptScan> kept = in.kept ? in.kept : std::make_shared<const KeptScan>(in.scan, spill_);
   ++received_;
-  const std::vector<LoopCandidate> candidates = recognizer_.addTeammateScan(in.robot, in.index, *kept->get());
+  const std::vector<place_recognition::LoopCandidate> candidates = recognizer_.addTeammateScan(in.robot, in.index, *kept->get());
   teammate_scans_[in.robot][in.index] = std::move(kept);
   Step step;
   for (const auto& c : candidates) step.closures.push_back(registerPair(c, in.received_at));
@@ -180,7 +180,7 @@ bool PendingLoopClosure::ready() const {
   return result.valid() && result.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
 }
 
-PendingLoopClosure RobotFrontend::registerPair(const LoopCandidate& c, StampNs computed_at) {
+PendingLoopClosure RobotFrontend::registerPair(const place_recognition::LoopCandidate& c, StampNs computed_at) {
   // key1 = the own pose: the query when the query is an own keyframe, else the matched own keyframe.
   PendingLoopClosure p;
   LoopClosureAttempt& a = p.attempt;
@@ -238,10 +238,10 @@ LoopClosureAttempt RobotFrontend::complete(const PendingLoopClosure& pending) {
 namespace cosmo::frontend {
 
 namespace {
-std::size_t descriptorBytes(const ScanContextDatabase& db) {
+std::size_t descriptorBytes(const place_recognition::ScanContextDatabase& db) {
   std::size_t bytes = 0;
   for (std::size_t i = 0; i < db.size(); ++i) {
-    const ScanContext& d = db.entry(i).descriptor;
+    const place_recognition::ScanContext& d = db.entry(i).descriptor;
     bytes += sizeof(float) * static_cast<std::size_t>(d.descriptor.size() + d.ring_key.size() + d.sector_key.size());
   }
   return bytes;
@@ -272,7 +272,7 @@ FrontendFootprint RobotFrontend::footprint(std::set<const void*>& seen) const {
     for (const auto& [i, s] : scans) count(s, f.teammate_scans);
   f.descriptor_bytes = descriptorBytes(recognizer_.ownDatabase());
   for (const auto& [r, scans] : teammate_scans_)
-    if (const ScanContextDatabase* db = recognizer_.teammateDatabase(r)) f.descriptor_bytes += descriptorBytes(*db);
+    if (const place_recognition::ScanContextDatabase* db = recognizer_.teammateDatabase(r)) f.descriptor_bytes += descriptorBytes(*db);
   return f;
 }
 

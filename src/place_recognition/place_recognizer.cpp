@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-namespace cosmo {
+namespace cosmo::place_recognition {
 
 PlaceRecognitionParams PlaceRecognitionParams::fromConfig(const ConfigNode& root) {
   ConfigNode node = root;
@@ -104,4 +104,4 @@ std::vector<LoopCandidate> PlaceRecognizer::addTeammateScan(char robot, std::siz
   return addTeammateDescriptor(robot, index, scan.stamp, makeScanContext(scan, params_.sc));
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::place_recognition

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace cosmo {
+namespace cosmo::place_recognition {
 namespace {
 
 double nearestAmong(const std::vector<Eigen::Vector3d>& positions, std::size_t end, const Eigen::Vector3d& p) {
@@ -93,4 +93,4 @@ std::vector<PrPoint> precisionRecall(const std::vector<QueryOutcome>& outcomes, 
   return out;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::place_recognition

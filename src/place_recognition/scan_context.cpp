@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace cosmo {
+namespace cosmo::place_recognition {
 namespace {
 
 /// atan2 in [0, 2*pi) from a minimax polynomial for atan on [-1, 1] (max error about 1e-5 rad, far below the
@@ -93,4 +93,4 @@ ScanContext makeScanContext(const Scan& scan, const ScanContextParams& p) {
   return sc;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::place_recognition

@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-namespace cosmo {
+namespace cosmo::place_recognition {
 namespace {
 
 /// nanoflann's dataset interface over the first `count` ring keys of a flat array.
@@ -131,4 +131,4 @@ std::vector<DatabaseMatch> ScanContextDatabase::query(const ScanContext& query, 
   return matches;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::place_recognition

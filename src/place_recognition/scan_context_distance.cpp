@@ -6,7 +6,7 @@
 
 #include "cosmo/place_recognition/scan_context.hpp"
 
-namespace cosmo {
+namespace cosmo::place_recognition {
 namespace {
 
 void checkComparable(const ScanContext& a, const ScanContext& b) {
@@ -113,4 +113,4 @@ DescriptorMatch scanContextDistance(const ScanContext& query, const ScanContext&
   return scanContextDistance(query, candidate, EmptyColumnPolicy::kPenalizeOneSided, -1);
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::place_recognition

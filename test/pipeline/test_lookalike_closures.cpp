@@ -16,6 +16,7 @@
 #include "../support/synthetic_team.hpp"
 
 using namespace cosmo;
+using namespace cosmo::place_recognition;
 using namespace cosmo::pipeline;
 using namespace cosmo::sequence;
 

@@ -20,6 +20,7 @@
 namespace {
 
 using namespace cosmo;
+using namespace cosmo::place_recognition;
 
 ConfigNode shippedSection(const std::string& file, const std::vector<std::string>& path) {
   ConfigNode node = ConfigNode::load(std::string(COSMO_SOURCE_DIR) + "/config/" + file);

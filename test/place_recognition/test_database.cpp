@@ -9,7 +9,7 @@
 #include "cosmo/place_recognition/scan_context_database.hpp"
 #include "synthetic_scene.hpp"
 
-namespace cosmo {
+namespace cosmo::place_recognition {
 namespace {
 
 const test::SyntheticScene& scene() {
@@ -180,4 +180,4 @@ TEST(PlaceRecognizer, ParamsFromConfig) {
 }
 
 }  // namespace
-}  // namespace cosmo
+}  // namespace cosmo::place_recognition

@@ -9,7 +9,7 @@
 #include "cosmo/common/shared_data.hpp"
 #include "cosmo/place_recognition/scan_context.hpp"
 
-namespace cosmo {
+namespace cosmo::place_recognition {
 namespace {
 
 Scan turnSensor(const Scan& scan, double yaw) {
@@ -62,4 +62,4 @@ TEST(RealScans, RotatedRealScanGivesItsYaw) {
 }
 
 }  // namespace
-}  // namespace cosmo
+}  // namespace cosmo::place_recognition

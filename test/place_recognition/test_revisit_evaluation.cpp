@@ -3,7 +3,7 @@
 
 #include "cosmo/place_recognition/revisit_evaluation.hpp"
 
-namespace cosmo {
+namespace cosmo::place_recognition {
 namespace {
 
 QueryOutcome outcome(bool has, double distance, double match_sep, double nearest) {
@@ -59,4 +59,4 @@ TEST(RevisitEvaluation, IncrementalSearchExcludesRecentEntries) {
 }
 
 }  // namespace
-}  // namespace cosmo
+}  // namespace cosmo::place_recognition

@@ -7,7 +7,7 @@
 #include "cosmo/place_recognition/scan_context.hpp"
 #include "synthetic_scene.hpp"
 
-namespace cosmo {
+namespace cosmo::place_recognition {
 namespace {
 
 const test::SyntheticScene& scene() {
@@ -162,4 +162,4 @@ TEST(ScanContext, ParamsFromConfigAndValidation) {
 }
 
 }  // namespace
-}  // namespace cosmo
+}  // namespace cosmo::place_recognition

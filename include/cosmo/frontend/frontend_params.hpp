@@ -35,7 +35,7 @@ struct FrontendParams {
   OdometryKind odometry = OdometryKind::Loam;
 
   LoamParams loam;
-  PlaceRecognitionParams place;
+  place_recognition::PlaceRecognitionParams place;
   RegistrationParams registration;
 
   /// The front-end's own keys (root or `frontend` section of config/frontend.yaml).

@@ -212,7 +212,7 @@ class RobotFrontend {
   void afterOdometry(StampNs stamp, OdometryResult odometry,
                      const std::function<std::shared_ptr<const Scan>()>& take_keyframe, Step& step);
   /// Starts the registration of candidate `c` on the pool.
-  PendingLoopClosure registerPair(const LoopCandidate& c, StampNs computed_at);
+  PendingLoopClosure registerPair(const place_recognition::LoopCandidate& c, StampNs computed_at);
   std::shared_ptr<const KeptScan> storedScan(char robot, std::size_t index) const;
 
   char robot_;
@@ -221,7 +221,7 @@ class RobotFrontend {
   OdometrySource odometry_source_;
   LoamOdometry odometry_;
   KeyframeTaker taker_;
-  PlaceRecognizer recognizer_;
+  place_recognition::PlaceRecognizer recognizer_;
   GlobalRegistration registration_;
 
   std::vector<KeyframeRecord> keyframes_;

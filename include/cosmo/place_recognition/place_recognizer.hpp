@@ -18,7 +18,7 @@
 #include "cosmo/place_recognition/scan_context.hpp"
 #include "cosmo/place_recognition/scan_context_database.hpp"
 
-namespace cosmo {
+namespace cosmo::place_recognition {
 
 struct PlaceRecognitionParams {
   ScanContextParams sc;
@@ -98,4 +98,4 @@ class PlaceRecognizer {
   std::map<char, std::set<std::size_t>> teammate_ids_;
 };
 
-}  // namespace cosmo
+}  // namespace cosmo::place_recognition

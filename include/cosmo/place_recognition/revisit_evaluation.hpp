@@ -12,7 +12,7 @@
 
 #include "cosmo/place_recognition/scan_context_database.hpp"
 
-namespace cosmo {
+namespace cosmo::place_recognition {
 
 struct QueryOutcome {
   bool has_candidate = false;
@@ -43,4 +43,4 @@ PrPoint precisionRecallAt(const std::vector<QueryOutcome>& outcomes, double thre
 std::vector<PrPoint> precisionRecall(const std::vector<QueryOutcome>& outcomes, const std::vector<double>& thresholds,
                                      double revisit_radius);
 
-}  // namespace cosmo
+}  // namespace cosmo::place_recognition

@@ -16,7 +16,7 @@
 #include "cosmo/common/config.hpp"
 #include "cosmo/common/scan.hpp"
 
-namespace cosmo {
+namespace cosmo::place_recognition {
 
 /// How column pairs with an empty column enter the descriptor distance (an empty column has no occupied bin).
 enum class EmptyColumnPolicy {
@@ -91,4 +91,4 @@ DescriptorMatch scanContextDistance(const ScanContext& query, const ScanContext&
 /// Column shift that best aligns the sector keys (minimum L1 difference), the coarse step of the search.
 int sectorKeyShift(const ScanContext& query, const ScanContext& candidate);
 
-}  // namespace cosmo
+}  // namespace cosmo::place_recognition

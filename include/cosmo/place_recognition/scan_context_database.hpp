@@ -14,7 +14,7 @@
 #include "cosmo/common/time.hpp"
 #include "cosmo/place_recognition/scan_context.hpp"
 
-namespace cosmo {
+namespace cosmo::place_recognition {
 
 struct ScanContextDatabaseParams {
   /// Ring-key nearest neighbours that get the full distance (paper / Kim's code: 10).
@@ -72,4 +72,4 @@ class ScanContextDatabase {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace cosmo
+}  // namespace cosmo::place_recognition

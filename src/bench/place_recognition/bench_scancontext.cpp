@@ -26,6 +26,7 @@
 #include "cosmo/place_recognition/revisit_evaluation.hpp"
 
 using namespace cosmo;
+using namespace cosmo::place_recognition;
 
 namespace {
 

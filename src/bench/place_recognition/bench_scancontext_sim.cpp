@@ -34,6 +34,7 @@
 
 namespace fs = std::filesystem;
 using namespace cosmo;
+using namespace cosmo::place_recognition;
 
 namespace {
 

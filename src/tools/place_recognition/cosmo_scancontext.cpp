@@ -74,9 +74,10 @@ std::optional<int> parseArgs(int argc, char** argv, Options& o) {
   return app.parseOrExit(argc, argv);
 }
 
-cosmo::PlaceRecognitionParams placeParams(const Options& o) {
-  cosmo::PlaceRecognitionParams params;
-  if (!o.config.empty()) params = cosmo::PlaceRecognitionParams::fromConfig(cosmo::ConfigNode::load(o.config));
+cosmo::place_recognition::PlaceRecognitionParams placeParams(const Options& o) {
+  cosmo::place_recognition::PlaceRecognitionParams params;
+  if (!o.config.empty())
+    params = cosmo::place_recognition::PlaceRecognitionParams::fromConfig(cosmo::ConfigNode::load(o.config));
   if (o.exclude >= 0) params.exclude_recent = o.exclude;
   if (o.stride > 0) params.sc.point_stride = o.stride;
   return params;
@@ -84,15 +85,16 @@ cosmo::PlaceRecognitionParams placeParams(const Options& o) {
 
 /// Every scan's descriptor (timed) and reference position.
 struct Described {
-  std::vector<cosmo::ScanContext> descriptors;
+  std::vector<cosmo::place_recognition::ScanContext> descriptors;
   std::vector<Eigen::Vector3d> positions;
   std::vector<std::size_t> pose_index;
   std::vector<double> descriptor_ms;
   std::size_t points = 0;
 };
 
-Described describeScans(const Options& o, const cosmo::PlaceRecognitionParams& params) {
+Described describeScans(const Options& o, const cosmo::place_recognition::PlaceRecognitionParams& params) {
   using namespace cosmo;
+  using namespace cosmo::place_recognition;
   std::vector<Pose3> poses = readKittiPoses(o.positional[1]);
   if (!o.calib.empty()) poses = kittiPosesToLidar(poses, readKittiCalibTr(o.calib));
   const std::vector<std::string> files = listScanFiles(o.positional[0]);
@@ -114,7 +116,7 @@ Described describeScans(const Options& o, const cosmo::PlaceRecognitionParams& p
   return d;
 }
 
-void printOutcome(const Described& d, std::size_t i, const cosmo::QueryOutcome& o) {
+void printOutcome(const Described& d, std::size_t i, const cosmo::place_recognition::QueryOutcome& o) {
   if (o.has_candidate)
     std::printf("scan %zu: top %zu distance %.4f yaw %.1f deg  separation %.2f m (nearest %.2f m)\n", d.pose_index[i],
                 d.pose_index[o.match], o.distance, o.yaw * 180.0 / M_PI, o.match_separation, o.nearest_separation);
@@ -124,9 +126,11 @@ void printOutcome(const Described& d, std::size_t i, const cosmo::QueryOutcome& 
 
 /// Incremental search (each scan against the earlier ones, the most recent excluded), timed per query (search +
 /// insertion): the top candidate of each.
-std::vector<cosmo::QueryOutcome> searchIncrementally(const Described& d, const cosmo::PlaceRecognitionParams& params,
-                                                     bool list, std::vector<double>& query_ms) {
+std::vector<cosmo::place_recognition::QueryOutcome> searchIncrementally(
+    const Described& d, const cosmo::place_recognition::PlaceRecognitionParams& params, bool list,
+    std::vector<double>& query_ms) {
   using namespace cosmo;
+  using namespace cosmo::place_recognition;
   std::vector<QueryOutcome> outcomes;
   ScanContextDatabase db(params.databaseParams());
   const auto excluded = static_cast<std::size_t>(params.exclude_recent);
@@ -154,9 +158,11 @@ std::vector<cosmo::QueryOutcome> searchIncrementally(const Described& d, const c
   return outcomes;
 }
 
-void printReport(const Options& o, const cosmo::PlaceRecognitionParams& params, const Described& d,
-                 const std::vector<cosmo::QueryOutcome>& outcomes, const std::vector<double>& query_ms) {
+void printReport(const Options& o, const cosmo::place_recognition::PlaceRecognitionParams& params, const Described& d,
+                 const std::vector<cosmo::place_recognition::QueryOutcome>& outcomes,
+                 const std::vector<double>& query_ms) {
   using namespace cosmo;
+  using namespace cosmo::place_recognition;
   std::printf("%zu scans (%.0f points on average) from %s, exclude_recent %d, revisit radius %.1f m\n",
               d.descriptors.size(), static_cast<double>(d.points) / d.descriptors.size(), o.positional[0].c_str(),
               params.exclude_recent, o.radius);
@@ -182,10 +188,11 @@ int main(int argc, char** argv) {
   try {
     Options o;
     if (const std::optional<int> exit_code = parseArgs(argc, argv, o)) return *exit_code;
-    const cosmo::PlaceRecognitionParams params = placeParams(o);
+    const cosmo::place_recognition::PlaceRecognitionParams params = placeParams(o);
     const Described described = describeScans(o, params);
     std::vector<double> query_ms;
-    const std::vector<cosmo::QueryOutcome> outcomes = searchIncrementally(described, params, o.list, query_ms);
+    const std::vector<cosmo::place_recognition::QueryOutcome> outcomes =
+        searchIncrementally(described, params, o.list, query_ms);
     printReport(o, params, described, outcomes, query_ms);
   } catch (const std::exception& e) {
     std::cerr << "cosmo_scancontext: " << e.what() << "\n";
