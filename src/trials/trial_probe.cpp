@@ -17,14 +17,15 @@ namespace cosmo::trials {
 
 namespace {
 
-/// "name (type)" of every topic of the bag; `has` = whether `topic` is one of them (with or without its slash).
-std::vector<std::string> listTopics(const sequence::TrialConfig& trial, bool& has) {
+/// "name (type)" of every topic of the bag (of `format`); `has` = whether `topic` is one of them (with or without
+/// its slash).
+std::vector<std::string> listTopics(const sequence::TrialConfig& trial, trials::BagFormat format, bool& has) {
   std::set<std::string> out;
   has = false;
   auto match = [&](const std::string& name) {
     if (name == trial.topic || "/" + name == trial.topic || name == "/" + trial.topic) has = true;
   };
-  if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1) {
+  if (format == trials::BagFormat::Ros1) {
     const trials::Ros1Bag bag(trial.bag);
     for (const auto& c : bag.connections()) {
       out.insert(c.topic + " (" + c.type + ")");
@@ -67,15 +68,16 @@ sequence::TrialProbe probeTrial(const sequence::TrialConfig& trial, std::size_t 
       return probe;
     }
   }
+  trials::BagFormat format{};
   try {
-    trials::detectBagFormat(trial.bag);
+    format = trials::detectBagFormat(trial.bag);
   } catch (const std::exception& e) {
     probe.bag = BagState::NotABag;
     probe.error = e.what();
     return probe;
   }
   try {
-    probe.topics = listTopics(trial, probe.topic_found);
+    probe.topics = listTopics(trial, format, probe.topic_found);
   } catch (const std::exception& e) {
     probe.bag = BagState::Damaged;
     probe.error = trial.bag + ": cannot open bag: " + e.what();
