@@ -59,6 +59,13 @@ foreach(m ${COSMO_MODULES})
   target_link_libraries(cosmo_core PUBLIC cosmo_${m})
 endforeach()
 
+# Synthetic inputs of the tests and benchmarks, not part of cosmo_core (include/cosmo/test_support): the analytic
+# street and corridor a spinning LiDAR sweeps with motion (odometry), the pillar field (place recognition), an
+# organized room scan.
+file(GLOB _test_support_src CONFIGURE_DEPENDS ${COSMO_ROOT}/src/test_support/*.cpp)
+add_library(cosmo_test_support ${_test_support_src})
+target_link_libraries(cosmo_test_support PUBLIC cosmo_common)
+
 # A program: src/<KIND>/<module>/<name>.cpp, executable <name>, linked with LIBS (its module's library and what
 # it includes beyond that). Tools are also commands on the PATH of the catkin workspace (cosmo_command, defined by
 # ../CMakeLists.txt). Every program is named in one such list, here or in ../CMakeLists.txt (ROS glue users).
@@ -100,11 +107,11 @@ cosmo_program(bench dataset/bench_closure_errors LIBS cosmo_dataset)
 cosmo_program(bench dataset/bench_outlier_sweep LIBS cosmo_dataset cosmo_backend)
 cosmo_program(bench dataset/bench_recorder LIBS cosmo_dataset)
 cosmo_program(bench jrl/bench_jrl_io LIBS cosmo_jrl)
-cosmo_program(bench odometry/bench_kd_trees LIBS cosmo_odometry)
-cosmo_program(bench odometry/bench_odometry LIBS cosmo_odometry)
+cosmo_program(bench common/bench_kd_trees LIBS cosmo_common cosmo_test_support)
+cosmo_program(bench odometry/bench_odometry LIBS cosmo_odometry cosmo_test_support)
 cosmo_program(bench pipeline/bench_keyframe_memory LIBS cosmo_pipeline cosmo_dataset)
 cosmo_program(bench pipeline/bench_sequence_speed LIBS cosmo_pipeline)
-cosmo_program(bench place_recognition/bench_scancontext LIBS cosmo_place_recognition)
+cosmo_program(bench place_recognition/bench_scancontext LIBS cosmo_place_recognition cosmo_test_support)
 cosmo_program(bench place_recognition/bench_scancontext_sim LIBS cosmo_place_recognition cosmo_odometry cosmo_trials)
 cosmo_program(bench registration/bench_features LIBS cosmo_registration)
 cosmo_program(bench registration/bench_registration LIBS cosmo_registration)
@@ -161,7 +168,7 @@ foreach(d ${_test_dirs})
         if(TARGET cosmo_${_module})
           set(_lib cosmo_${_module})
         endif()
-        cosmo_gtest(${_module}_${_name} ${t} LIBS ${_lib} ${COSMO_TEST_LIBS_${_module}_${_name}})
+        cosmo_gtest(${_module}_${_name} ${t} LIBS ${_lib} cosmo_test_support ${COSMO_TEST_LIBS_${_module}_${_name}})
       endif()
     endforeach()
   endif()

@@ -198,7 +198,7 @@ void journalSeeds(const fs::path& out) {
       k.scans_skipped = i;
       bytes += dataset::encodeJournalRecord({robot, ++seq, k});
     }
-  LoopClosureMeasurement lc;
+  dataset::LoopClosureMeasurement lc;
   lc.owner = 'a';
   lc.computed_at = 2500000000ull;
   lc.key1 = 1;

@@ -26,11 +26,11 @@ void tryRead(Read read) {
 
 COSMO_FUZZ_TARGET(config_yaml) {
   const ConfigNode node = ConfigNode::load(fuzz::inputFile(data, size, "config.yaml"));
-  tryRead([&] { LoamParams::fromConfig(node); });
+  tryRead([&] { odometry::LoamParams::fromConfig(node); });
   tryRead([&] { place_recognition::PlaceRecognitionParams::fromConfig(node); });
-  tryRead([&] { RegistrationParams::fromConfig(node); });
+  tryRead([&] { registration::RegistrationParams::fromConfig(node); });
   tryRead([&] { frontend::FrontendParams::fromConfig(node); });
-  tryRead([&] { RadioParams::fromConfig(node); });
-  tryRead([&] { NoiseModels::fromConfig(node); });
+  tryRead([&] { comm::RadioParams::fromConfig(node); });
+  tryRead([&] { dataset::NoiseModels::fromConfig(node); });
   tryRead([&] { sim::SimulationParams::fromConfig(node); });
 }

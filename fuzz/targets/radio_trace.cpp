@@ -9,11 +9,11 @@ using namespace cosmo;
 
 COSMO_FUZZ_TARGET(radio_trace) {
   std::istringstream in(std::string(reinterpret_cast<const char*>(data), size));
-  const RadioTrace trace = RadioTrace::parse(in, "input.csv");
-  for (const TraceWindow& w : trace.windows()) trace.find(w.robot_b, w.robot_a, w.start + w.duration / 2);
+  const comm::RadioTrace trace = comm::RadioTrace::parse(in, "input.csv");
+  for (const comm::TraceWindow& w : trace.windows()) trace.find(w.robot_b, w.robot_a, w.start + w.duration / 2);
   std::ostringstream out;
   trace.write(out);
   std::istringstream again(out.str());
-  RadioTrace::parse(again, "written.csv");
+  comm::RadioTrace::parse(again, "written.csv");
   trace.checkTeam({'a', 'b', 'c', 'd'});
 }

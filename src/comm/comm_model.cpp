@@ -8,7 +8,7 @@
 
 namespace fs = std::filesystem;
 
-namespace cosmo {
+namespace cosmo::comm {
 
 namespace {
 
@@ -44,4 +44,4 @@ CommModel resolveCommModel(const std::string& comm, const std::string& config_di
   return m;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

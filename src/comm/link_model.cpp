@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace cosmo {
+namespace cosmo::comm {
 
 const TraceWindow* LinkModel::window(char a, char b, double t) const {
   return params_.trace ? params_.trace->find(a, b, t - 0.5 * params_.step - trace_origin_) : nullptr;
@@ -28,4 +28,4 @@ LinkSample LinkModel::sample(char a, char b, double t, double distance, double u
   return s;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

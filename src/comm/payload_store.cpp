@@ -5,7 +5,7 @@
 
 #include "cosmo/comm/scan_compression.hpp"
 
-namespace cosmo {
+namespace cosmo::comm {
 
 PayloadStore::PayloadStore(bool compress, std::uint32_t xz_preset) : compress_(compress), xz_preset_(xz_preset) {
   if (xz_preset > 9)
@@ -43,4 +43,4 @@ std::shared_ptr<const Scan> PayloadStore::deliver(char sender, std::size_t index
   return std::make_shared<const Scan>(std::move(received));
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

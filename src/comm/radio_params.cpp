@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-namespace cosmo {
+namespace cosmo::comm {
 
 double RadioParams::phi(double d) const {
   const double p = std::min(p_max, alpha * (std::pow(beta, d / r_max) - beta));
@@ -101,4 +101,4 @@ RadioParams RadioParams::fromConfig(const ConfigNode& root) {
   return p;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace cosmo::radio_random {
+namespace cosmo::comm::radio_random {
 
 double normal(std::mt19937_64& rng, double mean, double stddev) {
   double u1 = uniform01(rng);
@@ -24,4 +24,4 @@ std::uint64_t mixSeed(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
   return splitmix(splitmix(splitmix(a) ^ b) ^ c);
 }
 
-}  // namespace cosmo::radio_random
+}  // namespace cosmo::comm::radio_random

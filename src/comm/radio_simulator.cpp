@@ -7,7 +7,7 @@
 
 #include "cosmo/comm/radio_random.hpp"
 
-namespace cosmo {
+namespace cosmo::comm {
 
 namespace {
 std::string robotName(char id) { return std::string("'") + id + "'"; }
@@ -287,4 +287,4 @@ std::vector<Transfer> RadioSimulator::terminateCommunications(double t) {
   return ended;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

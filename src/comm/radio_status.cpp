@@ -5,7 +5,7 @@
 
 #include "cosmo/comm/transfer_log.hpp"
 
-namespace cosmo {
+namespace cosmo::comm {
 
 nlohmann::json radioStatus(const RadioSimulator& radio, double t) {
   nlohmann::json j = transferSummary(radio.stats(), radio.params());
@@ -39,4 +39,4 @@ std::map<std::pair<char, char>, ActiveCommunication> lastStepLinks(const RadioSi
   return links;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

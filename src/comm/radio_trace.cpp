@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace cosmo {
+namespace cosmo::comm {
 
 namespace {
 
@@ -200,4 +200,4 @@ void RadioTrace::write(std::ostream& out) const {
   }
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

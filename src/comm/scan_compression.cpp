@@ -5,7 +5,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace cosmo {
+namespace cosmo::comm {
 
 namespace {
 static_assert(sizeof(float) == 4, "float32 payload");
@@ -89,4 +89,4 @@ Scan decompressScan(const std::vector<std::uint8_t>& bytes) {
   return scan;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

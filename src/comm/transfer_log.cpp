@@ -11,7 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace cosmo {
+namespace cosmo::comm {
 
 void writeTransferCsv(std::ostream& out, const std::vector<Transfer>& transfers) {
   out << "sender,receiver,keyframe,start,end,bytes,outcome,received,bytes_sent,link\n";
@@ -98,4 +98,4 @@ void writeTransferLog(const std::string& csv_path, const RadioSimulator& radio) 
   writeLogFiles(csv_path, radio.transferLog(), transferSummary(radio));
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

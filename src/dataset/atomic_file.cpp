@@ -6,7 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
-namespace cosmo {
+namespace cosmo::dataset {
 
 void writeFileAtomically(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
@@ -27,4 +27,4 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
   }
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::dataset

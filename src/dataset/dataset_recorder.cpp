@@ -11,7 +11,7 @@
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/stats.hpp"
 
-namespace cosmo {
+namespace cosmo::dataset {
 namespace {
 
 bool finitePose(const Pose3& T) { return T.matrix().allFinite(); }
@@ -379,4 +379,4 @@ std::string DatasetRecorder::progressLine() const {
   return out.str();
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::dataset

@@ -5,7 +5,7 @@
 
 #include "cosmo/dataset/outlier_rule.hpp"
 
-namespace cosmo {
+namespace cosmo::dataset {
 
 CovarianceEstimate estimateCovariance(const std::vector<MeasurementWithTruth>& measurements,
                                       const NoiseModelEstimationParams& params, bool apply_thresholds,
@@ -87,4 +87,4 @@ MeasurementSets collectMeasurements(const jrl::Dataset& dataset, std::optional<c
   return sets;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::dataset

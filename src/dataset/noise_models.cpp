@@ -10,7 +10,7 @@
 
 #include "cosmo/dataset/atomic_file.hpp"
 
-namespace cosmo {
+namespace cosmo::dataset {
 namespace {
 
 Matrix6 fromRowMajor(const double (&v)[36]) {
@@ -213,4 +213,4 @@ void NoiseModels::save(const std::string& yaml_path, const std::string& header_c
   writeFileAtomically(yaml_path, toYaml(header_comment));
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::dataset

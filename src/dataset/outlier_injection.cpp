@@ -6,7 +6,7 @@
 #include <set>
 #include <stdexcept>
 
-namespace cosmo {
+namespace cosmo::dataset {
 
 namespace {
 
@@ -143,4 +143,4 @@ std::string formatInjection(const InjectionReport& r, OutlierKind kind) {
   return buf;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::dataset

@@ -6,7 +6,7 @@
 
 #include <Eigen/Cholesky>
 
-namespace cosmo {
+namespace cosmo::dataset {
 
 namespace {
 constexpr int kPickAttempts = 1000;  // rejection sampling of one pose pair
@@ -168,4 +168,4 @@ std::vector<WrongClosure> OutlierDrawer::draw(OutlierKind kind, bool inter, std:
                            (inter ? "two robots" : "one robot, 2 indices apart") + ")");
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::dataset

@@ -6,7 +6,7 @@
 
 #include <Eigen/Cholesky>
 
-namespace cosmo {
+namespace cosmo::dataset {
 
 const char* outlierRuleName(OutlierRule rule) { return rule == OutlierRule::Squared ? "squared" : "fidelity"; }
 
@@ -39,4 +39,4 @@ bool isOutlier(const Pose3& measurement, const Pose3& truth, const Matrix6& cov,
   return exceedsRule(chi2Distance(measurement, truth, cov), rule, critical_value);
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::dataset

@@ -2,7 +2,7 @@
 
 #include <set>
 
-namespace cosmo {
+namespace cosmo::dataset {
 
 std::vector<const jrl::PoseFactor*> TeamPoses::closures(bool inter) const {
   std::vector<const jrl::PoseFactor*> out;
@@ -33,4 +33,4 @@ TeamPoses teamPoses(const jrl::PoseGraph& graph) {
   return team;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::dataset

@@ -2,7 +2,7 @@
 
 namespace cosmo::frontend {
 
-ClosureLabeller::ClosureLabeller(std::optional<NoiseModels> noise, OutlierRule rule)
+ClosureLabeller::ClosureLabeller(std::optional<dataset::NoiseModels> noise, dataset::OutlierRule rule)
     : noise_(std::move(noise)), rule_(rule) {}
 
 void ClosureLabeller::addReference(char robot, std::size_t index, const Pose3& reference) {

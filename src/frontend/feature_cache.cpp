@@ -15,12 +15,12 @@ namespace {
 constexpr std::size_t kHeader = 6 * sizeof(std::uint64_t);
 }  // namespace
 
-std::size_t featureCloudBytes(const FeatureCloud& f) {
+std::size_t featureCloudBytes(const registration::FeatureCloud& f) {
   return sizeof(Eigen::Vector3f) * (f.points.size() + f.normals.size()) + sizeof(int) * f.keypoints.size() +
          sizeof(float) * static_cast<std::size_t>(f.features.size());
 }
 
-std::vector<char> serializeFeatureCloud(const FeatureCloud& f) {
+std::vector<char> serializeFeatureCloud(const registration::FeatureCloud& f) {
   const std::uint64_t h[6] = {f.points.size(),    f.normals.size(),
                               f.keypoints.size(), static_cast<std::uint64_t>(f.features.cols()),
                               f.input_points,     f.downsampled_points};
@@ -38,15 +38,15 @@ std::vector<char> serializeFeatureCloud(const FeatureCloud& f) {
   return out;
 }
 
-FeatureCloud deserializeFeatureCloud(const std::vector<char>& bytes) {
+registration::FeatureCloud deserializeFeatureCloud(const std::vector<char>& bytes) {
   if (bytes.size() < kHeader) throw std::runtime_error("feature cache: spilled block too short");
   std::uint64_t h[6];
   std::memcpy(h, bytes.data(), kHeader);
-  FeatureCloud f;
+  registration::FeatureCloud f;
   f.points.resize(h[0]);
   f.normals.resize(h[1]);
   f.keypoints.resize(h[2]);
-  f.features.resize(kFpfhDim, static_cast<Eigen::Index>(h[3]));
+  f.features.resize(registration::kFpfhDim, static_cast<Eigen::Index>(h[3]));
   f.input_points = h[4];
   f.downsampled_points = h[5];
   if (bytes.size() != kHeader + featureCloudBytes(f))
@@ -63,17 +63,17 @@ FeatureCloud deserializeFeatureCloud(const std::vector<char>& bytes) {
   return f;
 }
 
-std::shared_ptr<const FeatureCloud> FeatureCache::load(const Entry& e) const {
+std::shared_ptr<const registration::FeatureCloud> FeatureCache::load(const Entry& e) const {
   std::vector<char> block(e.extent.size);
   spill_->read(e.extent, block.data());
-  return std::make_shared<const FeatureCloud>(deserializeFeatureCloud(block));
+  return std::make_shared<const registration::FeatureCloud>(deserializeFeatureCloud(block));
 }
 
-std::shared_ptr<const FeatureCloud> FeatureCache::get(const std::shared_ptr<const KeptScan>& scan,
-                                                      const Prepare& prepare) {
+std::shared_ptr<const registration::FeatureCloud> FeatureCache::get(const std::shared_ptr<const KeptScan>& scan,
+                                                                    const Prepare& prepare) {
   if (!scan) throw std::invalid_argument("feature cache: null scan");
-  std::promise<std::shared_ptr<const FeatureCloud>> computed;
-  std::shared_future<std::shared_ptr<const FeatureCloud>> waiting;
+  std::promise<std::shared_ptr<const registration::FeatureCloud>> computed;
+  std::shared_future<std::shared_ptr<const registration::FeatureCloud>> waiting;
   bool mine = false;
   {
     std::unique_lock<std::mutex> lock(mutex_);
@@ -88,7 +88,8 @@ std::shared_ptr<const FeatureCloud> FeatureCache::get(const std::shared_ptr<cons
       return it->second.held;
     } else if (it->second.spilled) {
       if (auto f = it->second.in_use.lock()) return f;
-      std::shared_ptr<const FeatureCloud> f = load(it->second);  // under the lock: one copy in memory at a time
+      std::shared_ptr<const registration::FeatureCloud> f =
+          load(it->second);  // under the lock: one copy in memory at a time
       it->second.in_use = f;
       return f;
     } else {
@@ -96,9 +97,9 @@ std::shared_ptr<const FeatureCloud> FeatureCache::get(const std::shared_ptr<cons
     }
   }
   if (!mine) return waiting.get();
-  std::shared_ptr<const FeatureCloud> features;
+  std::shared_ptr<const registration::FeatureCloud> features;
   try {
-    features = std::make_shared<const FeatureCloud>(prepare(*scan->get()));
+    features = std::make_shared<const registration::FeatureCloud>(prepare(*scan->get()));
     SpillFile::Extent extent;
     if (spill_) {
       const std::vector<char> block = serializeFeatureCloud(*features);

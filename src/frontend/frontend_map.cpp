@@ -2,7 +2,8 @@
 
 namespace cosmo::frontend {
 
-FrontendMap::FrontendMap(char robot, std::optional<NoiseModels> noise) : robot_(robot), labeller_(std::move(noise)) {}
+FrontendMap::FrontendMap(char robot, std::optional<dataset::NoiseModels> noise)
+    : robot_(robot), labeller_(std::move(noise)) {}
 
 void FrontendMap::addKeyframe(const KeyframeRecord& kf) {
   if (trajectory_.empty() && kf.reference) world_T_odom_ = *kf.reference * kf.odom_pose.inverse();

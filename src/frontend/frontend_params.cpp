@@ -21,11 +21,12 @@ FrontendParams FrontendParams::loadDir(const std::string& dir) {
   auto file = [&](const char* name) { return (fs::path(dir) / name).string(); };
   FrontendParams p;
   if (fs::exists(file("frontend.yaml"))) p = fromConfig(ConfigNode::load(file("frontend.yaml")));
-  if (fs::exists(file("odometry.yaml"))) p.loam = LoamParams::fromConfig(ConfigNode::load(file("odometry.yaml")));
+  if (fs::exists(file("odometry.yaml")))
+    p.loam = odometry::LoamParams::fromConfig(ConfigNode::load(file("odometry.yaml")));
   if (fs::exists(file("place_recognition.yaml")))
     p.place = place_recognition::PlaceRecognitionParams::fromConfig(ConfigNode::load(file("place_recognition.yaml")));
   if (fs::exists(file("registration.yaml")))
-    p.registration = RegistrationParams::fromConfig(ConfigNode::load(file("registration.yaml")));
+    p.registration = registration::RegistrationParams::fromConfig(ConfigNode::load(file("registration.yaml")));
   return p;
 }
 

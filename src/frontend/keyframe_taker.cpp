@@ -11,7 +11,7 @@ KeyframeTaker::KeyframeTaker(const FrontendParams& params)
       dewarp_with_reference_(params.dewarp_with_reference),
       keyframer_(params.keyframe_distance) {}
 
-KeyframeDecision KeyframeTaker::update(StampNs stamp, const Pose3& odom_pose) {
+odometry::KeyframeDecision KeyframeTaker::update(StampNs stamp, const Pose3& odom_pose) {
   // The odometry track for dewarping: the previous pose and this one cover the sweep.
   std::vector<StampedPose> track;
   if (!recent_odometry_.empty() && recent_odometry_.endStamp() < stamp)
@@ -30,7 +30,8 @@ Scan KeyframeTaker::keyframeScan(const Scan& scan, const Trajectory& reference) 
     return out;
   }
   const Trajectory& track = dewarp_with_reference_ && !reference.empty() ? reference : recent_odometry_;
-  out.points = removeInvalidPoints(dewarp(scan, [&track](StampNs t) { return track.atClamped(t); }), min_range).points;
+  out.points =
+      removeInvalidPoints(odometry::dewarp(scan, [&track](StampNs t) { return track.atClamped(t); }), min_range).points;
   return out;
 }
 

@@ -31,9 +31,9 @@ RegistrationPool::~RegistrationPool() {
   for (auto& t : threads_) t.join();
 }
 
-std::shared_future<RegistrationResult> RegistrationPool::submit(Job job) {
+std::shared_future<registration::RegistrationResult> RegistrationPool::submit(Job job) {
   Queued q{std::move(job), {}};
-  std::shared_future<RegistrationResult> f = q.result.get_future().share();
+  std::shared_future<registration::RegistrationResult> f = q.result.get_future().share();
   if (threads_.empty()) {  // zero threads: inline
     try {
       q.result.set_value(q.job());
@@ -70,7 +70,7 @@ void RegistrationPool::run(std::size_t slot) {
       q = std::move(queue_.front());
       queue_.pop_front();
     }
-    std::optional<RegistrationResult> result;
+    std::optional<registration::RegistrationResult> result;
     std::exception_ptr error;
     try {
       result = q.job();

@@ -44,14 +44,14 @@ Step RobotFrontend::add(const OdometryPose& pose) {
   return {};
 }
 
-std::optional<OdometryResult> RobotFrontend::odometryOf(const OwnScan& scan, Step& step) {
+std::optional<odometry::OdometryResult> RobotFrontend::odometryOf(const OwnScan& scan, Step& step) {
   const OdometryChoice choice = odometry_source_.choose(scan.stamp, reference_);
   if (!choice.notice.empty()) step.notices.push_back(choice.notice);
   switch (choice.use) {
     case OdometryChoice::Use::Drop: return std::nullopt;
     case OdometryChoice::Use::Loam: {
       if (scan.loam) return *scan.loam;
-      OdometryResult r = odometry_.update(*scan.points);
+      odometry::OdometryResult r = odometry_.update(*scan.points);
       if (!r.ok) step.notices.push_back("odometry: " + r.warning);
       return r;
     }
@@ -60,7 +60,7 @@ std::optional<OdometryResult> RobotFrontend::odometryOf(const OwnScan& scan, Ste
   if (!scan.points)
     throw std::logic_error(std::string("robot ") + robot_ + ": a prepared scan carries LOAM odometry, but this " +
                            "front-end takes its odometry from " + odometryKindName(odometry_source_.kind()));
-  OdometryResult r;
+  odometry::OdometryResult r;
   r.pose = choice.pose;
   r.delta = scans_ == 0 ? Pose3::Identity() : last_pose_.inverse() * choice.pose;
   r.initial_guess = "external";
@@ -83,7 +83,7 @@ Step RobotFrontend::add(const OwnScan& scan) {
     step.notices.push_back("stamp not increasing, scan dropped");
     return step;
   }
-  std::optional<OdometryResult> odometry = odometryOf(scan, step);
+  std::optional<odometry::OdometryResult> odometry = odometryOf(scan, step);
   if (!odometry) {
     step.dropped = true;
     return step;
@@ -111,14 +111,14 @@ Step RobotFrontend::add(const OwnScan& scan) {
   return step;
 }
 
-void RobotFrontend::afterOdometry(StampNs stamp, OdometryResult odometry,
+void RobotFrontend::afterOdometry(StampNs stamp, odometry::OdometryResult odometry,
                                   const std::function<std::shared_ptr<const Scan>()>& take_keyframe, Step& step) {
   ++scans_;
   last_pose_ = odometry.pose;
   last_stamp_ = stamp;
   step.odometry = odometry;
 
-  const KeyframeDecision kd = taker_.update(stamp, odometry.pose);
+  const odometry::KeyframeDecision kd = taker_.update(stamp, odometry.pose);
   if (!kd.is_keyframe) return;
 
   KeyframeRecord kf;
@@ -205,11 +205,11 @@ PendingLoopClosure RobotFrontend::registerPair(const place_recognition::LoopCand
   // The job holds copies of all it reads, so it runs the same on any thread (and after this front-end is gone).
   std::shared_ptr<FeatureCache> cache = params_.cache_features ? feature_cache_ : nullptr;
   auto job = [registration = registration_, cache = std::move(cache), target = std::move(target),
-              source = std::move(source)]() -> RegistrationResult {
+              source = std::move(source)]() -> registration::RegistrationResult {
     if (!cache) return registration.align(*source->get(), *target->get());
     const auto prepare = [&registration](const Scan& s) { return registration.prepare(s); };
-    const std::shared_ptr<const FeatureCloud> target_features = cache->get(target, prepare);
-    const std::shared_ptr<const FeatureCloud> source_features = cache->get(source, prepare);
+    const std::shared_ptr<const registration::FeatureCloud> target_features = cache->get(target, prepare);
+    const std::shared_ptr<const registration::FeatureCloud> source_features = cache->get(source, prepare);
     return registration.align(*source_features, *target_features);
   };
   p.result = pool_->submit(std::move(job));
@@ -219,7 +219,7 @@ PendingLoopClosure RobotFrontend::registerPair(const place_recognition::LoopCand
 LoopClosureAttempt RobotFrontend::complete(const PendingLoopClosure& pending) {
   if (pending.attempt.owner != robot_)
     throw std::invalid_argument(std::string("robot ") + robot_ + ": completing another robot's loop closure");
-  const RegistrationResult& r = pending.result.get();
+  const registration::RegistrationResult& r = pending.result.get();
   LoopClosureAttempt a = pending.attempt;
   a.measurement = r.T_target_source;
   a.inliers = r.final_inliers;

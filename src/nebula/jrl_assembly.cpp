@@ -62,12 +62,12 @@ Pose3 truthBetween(const std::map<jrl::Key, Pose3>& reference, jrl::Key a, jrl::
   return reference.at(a).inverse() * reference.at(b);
 }
 
-std::optional<NoiseModels> constantModels(const NebulaGraph& graph, const std::vector<PlacedClosure>& closures,
-                                          const std::map<jrl::Key, Pose3>& reference, const ConversionParams& params,
-                                          ConversionReport& report) {
+std::optional<dataset::NoiseModels> constantModels(const NebulaGraph& graph, const std::vector<PlacedClosure>& closures,
+                                                   const std::map<jrl::Key, Pose3>& reference,
+                                                   const ConversionParams& params, ConversionReport& report) {
   if (params.noise == NoiseSource::Recorded) return std::nullopt;
   if (params.noise == NoiseSource::Given) return params.models;
-  std::vector<MeasurementWithTruth> odometry, loop_closures;
+  std::vector<dataset::MeasurementWithTruth> odometry, loop_closures;
   for (const auto& [c, robot] : graph.robots)
     for (const Between& o : robot.odometry)
       odometry.push_back({o.measurement, truthBetween(reference, o.key1, o.key2)});
@@ -79,15 +79,15 @@ std::optional<NoiseModels> constantModels(const NebulaGraph& graph, const std::v
 }
 
 Matrix6 recordedCovariance(const Between& b) {
-  checkCovariance(b.covariance, "recorded covariance of " + edgeTypeName(b.type) + " " + jrl::keyName(b.key1) + " -> " +
-                                    jrl::keyName(b.key2) + " (" + b.source +
-                                    "; give --noise-models or --estimate-noise-models to replace it)");
+  dataset::checkCovariance(b.covariance, "recorded covariance of " + edgeTypeName(b.type) + " " + jrl::keyName(b.key1) +
+                                             " -> " + jrl::keyName(b.key2) + " (" + b.source +
+                                             "; give --noise-models or --estimate-noise-models to replace it)");
   return b.covariance;
 }
 
 /// Entries, labels, groundtruth and initialization of one robot.
 void addRobot(const RobotGraph& robot, const std::vector<const PlacedClosure*>& closures,
-              const std::map<jrl::Key, Pose3>& reference, const std::optional<NoiseModels>& models,
+              const std::map<jrl::Key, Pose3>& reference, const std::optional<dataset::NoiseModels>& models,
               const ConversionParams& params, jrl::Dataset& ds, ConversionReport& report) {
   const char c = robot.character;
   auto& entries = ds.measurements[c];
@@ -99,7 +99,7 @@ void addRobot(const RobotGraph& robot, const std::vector<const PlacedClosure*>& 
   entries.resize(robot.stamps.size());
   for (std::size_t i = 0; i < robot.stamps.size(); ++i) entries[i].stamp = robot.stamps[i];
   const jrl::Key first = jrl::symbol(c, 0);
-  entries[0].factors.push_back(jrl::Factor::priorPose3(first, reference.at(first), priorCovariance()));
+  entries[0].factors.push_back(jrl::Factor::priorPose3(first, reference.at(first), dataset::priorCovariance()));
   jrl::insertPose3(truth, first, reference.at(first));
   jrl::insertPose3(init, first, reference.at(first));
 
@@ -139,7 +139,7 @@ jrl::Dataset assembleJrl(const NebulaGraph& graph, const std::map<jrl::Key, Pose
   ConversionReport report;
   checkReference(graph, reference);
   const std::vector<PlacedClosure> closures = placeClosures(graph, report);
-  const std::optional<NoiseModels> models = constantModels(graph, closures, reference, params, report);
+  const std::optional<dataset::NoiseModels> models = constantModels(graph, closures, reference, params, report);
   report.models = models;
 
   jrl::Dataset ds;

@@ -49,7 +49,7 @@ class CommBroker {
   }
 
  private:
-  const RadioSimulator& radio() const { return radio_.radio(); }
+  const comm::RadioSimulator& radio() const { return radio_.radio(); }
 
   void connectRobots(ros::NodeHandle& nh) {
     for (char r : radio().robots()) {
@@ -80,7 +80,7 @@ class CommBroker {
     const std::string topic = std::string("/") + r + "/keyframe_scans";
     if (!m.robot.empty() && m.robot != std::string(1, r))
       ROS_WARN_THROTTLE(5.0, "comm_broker: %s: message says robot '%s'; using '%c'", topic.c_str(), m.robot.c_str(), r);
-    PayloadStore::Payload payload;
+    comm::PayloadStore::Payload payload;
     try {
       auto scan = std::make_shared<Scan>();  // only x y z travel
       scan->points = ros_glue::fromPointCloud2(m.cloud, true, topic).points;
@@ -195,7 +195,7 @@ class CommBroker {
 
   // Called with the mutex held. `when`: the step the transfer ended in. True when the scan was published.
   bool deliver(const RadioBroker::Delivery& d, const ros::Time& when) {
-    const Transfer& x = d.transfer;
+    const comm::Transfer& x = d.transfer;
     if (!d.delivered()) {
       ROS_DEBUG("comm_broker: %c -> %c keyframe %zu timed out", x.sender, x.receiver, x.keyframe);
       return false;

@@ -132,7 +132,7 @@ class FrontendNode {
     try {
       reference = ros_glue::trajectoryFromMsg(*m, trajectory_sub_.getTopic());
       if (!out_.map().hasNoiseModels()) {
-        if (std::optional<NoiseModels> noise = ros_glue::sequenceNoiseModels(o_))
+        if (std::optional<dataset::NoiseModels> noise = ros_glue::sequenceNoiseModels(o_))
           out_.map().setNoiseModels(std::move(*noise));
       }
       if (reference.empty()) ROS_WARN("frontend %c: the sequence has no reference for this robot", o_.robot);

@@ -28,7 +28,7 @@ class RecorderNode {
  public:
   RecorderNode(ros::NodeHandle& nh, ros::NodeHandle& pnh)
       : o_(cosmo::ros_glue::readRecorderOptions(pnh)), path_(o_.jrlPath()) {
-    const cosmo::NoiseModels noise = o_.noiseModels();
+    const cosmo::dataset::NoiseModels noise = o_.noiseModels();
     const auto run = cosmo::ros_glue::waitForRun(nh, pnh, o_.run_id, [] { return g_stop != 0; });
     session_.emplace(o_.output_dir, cosmo::dataset::JournalHeader{run.id, o_.name, run.robots, run.with_player}, noise,
                      o_.rule);
@@ -36,7 +36,7 @@ class RecorderNode {
     subscribe(nh, pnh);
     if (run.with_player && !o_.player_node.empty()) watchPlayer(o_.player_node);
     ROS_INFO("recorder: run %s, session %s, %zu robots, noise models %s, outlier rule %s, writing %s", run.id.c_str(),
-             session_id_.c_str(), run.robots.size(), noise.describe().c_str(), cosmo::outlierRuleName(o_.rule),
+             session_id_.c_str(), run.robots.size(), noise.describe().c_str(), cosmo::dataset::outlierRuleName(o_.rule),
              path_.c_str());
   }
 
@@ -149,7 +149,7 @@ class RecorderNode {
     try {
       if (!sequence_lines_) sequence_lines_ = cosmo::ros_glue::sequenceMetadataLines(o_);  // once it can be read
       cosmo::jrl::Dataset ds;
-      const cosmo::BuildReport report =
+      const cosmo::dataset::BuildReport report =
           session_->write(path_, sequence_lines_.value_or(cosmo::dataset::MetadataLines{}), &ds);
       changed_ = false;
       written_ = session_->writtenLine(path_, why, report);

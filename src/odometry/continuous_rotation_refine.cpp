@@ -5,7 +5,7 @@
 
 #include "cosmo/odometry/solution_remapping.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 FeatureRegistrationResult refineContinuousRotation(const LoamFeatures& features, FeatureRegistrationResult previous,
                                                    const LoamParams& params, const Pose3& previous_pose,
@@ -63,4 +63,4 @@ FeatureRegistrationResult refineContinuousRotation(const LoamFeatures& features,
   return res;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace cosmo {
+namespace cosmo::odometry {
 namespace {
 constexpr int kBins = 2048;
 
@@ -81,4 +81,4 @@ void deskewConstantVelocity(const std::vector<Eigen::Vector3d>& points, const st
   }
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

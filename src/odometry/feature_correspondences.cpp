@@ -5,7 +5,7 @@
 
 #include "cosmo/odometry/symmetric_eigen3.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 namespace {
 void meanAndScatter(const std::vector<Eigen::Vector3d>& pts, Eigen::Vector3d& mean, Eigen::Matrix3d& scatter) {
   double mx = 0.0, my = 0.0, mz = 0.0;
@@ -232,4 +232,4 @@ void associateFeatures(const std::vector<Eigen::Vector3d>& edges, const std::vec
   }
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -8,7 +8,7 @@
 
 #include "cosmo/common/voxel_grid.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 std::vector<float> computeCurvature(const ScanLine& line, const LoamParams& params) {
   const int n = static_cast<int>(line.points.size());
@@ -165,4 +165,4 @@ void thinPlanarFeatures(LoamFeatures& f, double voxel_size) {
   if (timed) f.planar_time.resize(keep.size());
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

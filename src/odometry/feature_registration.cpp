@@ -7,7 +7,7 @@
 #include "cosmo/odometry/dewarp.hpp"
 #include "cosmo/odometry/solution_remapping.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 Pose3 applyCentredUpdate(const Vector6& dx, const Pose3& T) {
   Pose3 to_centre = Pose3::Identity();
@@ -201,4 +201,4 @@ double inlierFraction(const std::vector<FeatureConstraint>& constraints, const P
   return num_features ? static_cast<double>(good) / static_cast<double>(num_features) : 0.0;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

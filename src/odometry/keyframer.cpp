@@ -1,6 +1,6 @@
 #include "cosmo/odometry/keyframer.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 Keyframer::Keyframer(double distance) : distance_(distance) {}
 
@@ -26,4 +26,4 @@ KeyframeDecision Keyframer::update(const Pose3& odom_pose) {
   return d;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -9,7 +9,7 @@
 #include "cosmo/odometry/motion_model.hpp"
 #include "cosmo/odometry/scan_lines.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
@@ -308,4 +308,4 @@ void LoamOdometry::insertIntoMap(const ScanMotion& m, const FeatureRegistrationR
   last_insert_pose_ = pose_;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -1,7 +1,7 @@
 #include "cosmo/odometry/loam_params.hpp"
 #include "cosmo/common/param_list.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 LoamParams LoamParams::fromConfig(const ConfigNode& root) {
   const ConfigNode c = root.has("odometry") ? root["odometry"] : root;
@@ -10,4 +10,4 @@ LoamParams LoamParams::fromConfig(const ConfigNode& root) {
   return p;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -2,7 +2,7 @@
 
 #include "cosmo/common/voxel_grid.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 void LocalFeatureMap::add(std::vector<Eigen::Vector3d> edges, std::vector<Eigen::Vector3d> planes) {
   // The union is newest scan first. Without thinning, a tree is built with its points in the previous tree's
@@ -80,4 +80,4 @@ void LocalFeatureMap::nearestPlanes(const Eigen::Vector3d& q, int k, double max_
   nearestIn(plane_tree_, q, k, max_dist, out);
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 Pose3 predictMotion(const Pose3& last_delta, double last_period, double period) {
   if (!(last_period > 0.0) || !(period > 0.0)) return last_delta;
@@ -10,4 +10,4 @@ Pose3 predictMotion(const Pose3& last_delta, double last_period, double period) 
   return expSE3(s * logSE3(last_delta));
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numeric>
 
-namespace cosmo {
+namespace cosmo::odometry {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
@@ -226,4 +226,4 @@ ScanLines organizeScanLines(const Scan& scan, const LoamParams& params) {
   return out;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -5,7 +5,7 @@
 
 #include <Eigen/Geometry>  // cross()
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 Eigen::Vector3d symmetricEigenvalues3(const Eigen::Matrix3d& a) {
   const double a00 = a(0, 0), a11 = a(1, 1), a22 = a(2, 2), a01 = a(0, 1), a02 = a(0, 2), a12 = a(1, 2);
@@ -56,4 +56,4 @@ Eigen::Vector3d anyPerpendicular(const Eigen::Vector3d& u) {
   return u.cross(axis).normalized();
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

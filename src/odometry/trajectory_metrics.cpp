@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 Pose3 umeyamaAlignment(const std::vector<Eigen::Vector3d>& source, const std::vector<Eigen::Vector3d>& target) {
   if (source.size() != target.size()) throw std::invalid_argument("umeyamaAlignment: size mismatch");
@@ -118,4 +118,4 @@ std::vector<ConstantMotionRun> findConstantMotionRuns(const std::vector<Pose3>& 
   return runs;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

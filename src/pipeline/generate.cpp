@@ -43,7 +43,7 @@ void say(const GenerateLog& log, const std::string& text) {
   if (log.line) log.line(text);
 }
 
-std::string sigmas(const char* what, const CovarianceEstimate& e) {
+std::string sigmas(const char* what, const dataset::CovarianceEstimate& e) {
   return format("  %s: %zu used, %zu over the thresholds; sigmas rx ry rz %.3g %.3g %.3g rad, tx ty tz %.3g %.3g %.3g "
                 "m\n",
                 what, e.used, e.rejected, std::sqrt(e.covariance(0, 0)), std::sqrt(e.covariance(1, 1)),
@@ -52,7 +52,7 @@ std::string sigmas(const char* what, const CovarianceEstimate& e) {
 }
 
 /// The paper's step on one trial of the sequence, written to `out_path`, then read back.
-NoiseModels estimateFirst(const sequence::SequenceConfig& config, const GenerateRequest& r, const TeamRunParams& params,
+dataset::NoiseModels estimateFirst(const sequence::SequenceConfig& config, const GenerateRequest& r, const TeamRunParams& params,
                           const std::string& out_path, const GenerateLog& log) {
   const sequence::TrialConfig& trial = sequence::findTrial(config, r.estimate_trial);
   sequence::SequenceConfig alone = config;
@@ -85,7 +85,7 @@ NoiseModels estimateFirst(const sequence::SequenceConfig& config, const Generate
   say(log, format("noise models: wrote the estimate to %s (this run uses it; other runs of the environment: "
                   "--noise-models %s)\n",
                   out_path.c_str(), out_path.c_str()));
-  return NoiseModels::load(out_path);
+  return dataset::NoiseModels::load(out_path);
 }
 
 trials::SequenceChoice sequenceChoice(const GenerateRequest& r) {
@@ -119,7 +119,7 @@ TeamRunParams teamRunParams(const GenerateRequest& r, const sequence::SequenceCo
   params.frontend = frontend::FrontendParams::loadDir(configDir(r));
   params.frontend.registration = config.registrationParams(configDir(r));  // the sequence's `registration:` keys
   params.frontend.odometry = frontend::parseOdometryKind(r.odometry);
-  params.outlier_rule = *parseOutlierRule(r.outlier_rule);
+  params.outlier_rule = *dataset::parseOutlierRule(r.outlier_rule);
   params.metadata = trials::sequenceMetadata(config);
   params.registration_threads = r.registration_threads ? *r.registration_threads
                                 : r.serial_odometry    ? 0u
@@ -127,7 +127,7 @@ TeamRunParams teamRunParams(const GenerateRequest& r, const sequence::SequenceCo
   return params;
 }
 
-std::string sequenceLines(const trials::ResolvedSequence& seq, const NoiseModels& noise) {
+std::string sequenceLines(const trials::ResolvedSequence& seq, const dataset::NoiseModels& noise) {
   const sequence::SequenceConfig& config = seq.config;
   std::string out = format("sequence %s (%s, seed %llu): %zu trials, %.1f s, noise models %s\n", config.name.c_str(),
                            config.source.c_str(), config.seed, config.trials.size(), seq.timing.durationSeconds(),
@@ -142,7 +142,7 @@ std::string sequenceLines(const trials::ResolvedSequence& seq, const NoiseModels
 /// One comm model's run: the team fed, finished at the end, its dataset and transfer log written.
 GeneratedDataset runComm(const std::string& comm, const GenerateRequest& r, const trials::ResolvedSequence& seq,
                          TeamRunParams params, ComputedScans& computed, const GenerateLog& log) {
-  const CommModel model = resolveCommModel(comm, configDir(r));
+  const comm::CommModel model = comm::resolveCommModel(comm, configDir(r));
   if (log.run_starts) log.run_starts(model.label);
   params.radio = model.params;
   const StampNs origin = radioGridOrigin(seq.timing.start(), params.radio.step);
@@ -180,7 +180,7 @@ GenerateResult generate(const GenerateRequest& r, const GenerateLog& log) {
   if (log.resolved) log.resolved(seq);
   TeamRunParams params = teamRunParams(r, seq.config);
   // the single-trial run of the estimate uses the first comm model (no transfers alone)
-  params.radio = resolveCommModel(r.comms.front(), configDir(r)).params;
+  params.radio = comm::resolveCommModel(r.comms.front(), configDir(r)).params;
   params.noise = seq.noise ? *seq.noise
                            : estimateFirst(seq.config, r, params,
                                            r.noise_models_out.empty()

@@ -11,7 +11,7 @@ namespace cosmo::pipeline {
 
 void GenerateRequest::validate() const {
   if (comms.empty()) throw std::runtime_error("--comm: no comm model given");
-  if (!parseOutlierRule(outlier_rule))
+  if (!dataset::parseOutlierRule(outlier_rule))
     throw std::runtime_error("--outlier-rule: expected fidelity or squared, got '" + outlier_rule + "'");
   if (odometry != "loam" && odometry != "reference")
     throw std::runtime_error("--odometry: expected loam or reference, got '" + odometry + "'");

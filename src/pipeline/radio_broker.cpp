@@ -10,14 +10,14 @@
 
 namespace cosmo::pipeline {
 
-RadioBroker::RadioBroker(const RadioParams& params, std::vector<char> robots, std::uint64_t seed, bool lockstep,
+RadioBroker::RadioBroker(const comm::RadioParams& params, std::vector<char> robots, std::uint64_t seed, bool lockstep,
                          bool compress, std::uint32_t xz_preset)
     : lockstep_(lockstep),
-      radio_(std::make_unique<RadioSimulator>(params, std::move(robots), seed)),
+      radio_(std::make_unique<comm::RadioSimulator>(params, std::move(robots), seed)),
       payloads_(compress, xz_preset) {}
 
-void RadioBroker::offer(char robot, std::uint32_t index, PayloadStore::Payload payload) {
-  const PayloadStore::Sizes sizes = payloads_.store(robot, index, std::move(payload));
+void RadioBroker::offer(char robot, std::uint32_t index, comm::PayloadStore::Payload payload) {
+  const comm::PayloadStore::Sizes sizes = payloads_.store(robot, index, std::move(payload));
   radio_->offerKeyframe(robot, index, sizes.payload, sizes.raw);
   std::uint32_t& next = next_index_[robot];
   next = std::max(next, index + 1);
@@ -60,7 +60,7 @@ std::uint64_t RadioBroker::start() {
   if (!readyToStart()) throw std::logic_error("radio broker: started before the sequence and references arrived");
   origin_ = radioGridOrigin(sequence_->first, radio_->params().step);
   const std::uint64_t seed = sequence::deriveSeed(sequence_->second, "radio");
-  radio_ = std::make_unique<RadioSimulator>(radio_->params(), radio_->robots(), seed);
+  radio_ = std::make_unique<comm::RadioSimulator>(radio_->params(), radio_->robots(), seed);
   radio_->setTimeOrigin(origin_);
   for (const EarlyOffer& o : early_offers_) radio_->offerKeyframe(o.robot, o.index, o.sizes.payload, o.sizes.raw);
   early_offers_.clear();
@@ -84,7 +84,7 @@ RadioBroker::StepDone RadioBroker::runStep(const QueuedRadioStep& request, const
                                last == last_position_.end() ? Eigen::Vector3d::Zero() : last->second);
     return s;
   };
-  const auto on_transfer = [&](StampNs step_stamp, const Transfer& x) {
+  const auto on_transfer = [&](StampNs step_stamp, const comm::Transfer& x) {
     deliver(x, toSeconds(step_stamp - origin_), step_stamp, on_delivery);
   };
   StepDone done;
@@ -110,14 +110,14 @@ RadioBroker::StepBatch RadioBroker::stepRealTime(double now, const DeliveryFn& o
   }
   while (radio_->nextStepTime() <= now + 1e-9) {
     batch.last_time = radio_->nextStepTime();
-    for (const Transfer& x : radio_->step(batch.last_time)) deliver(x, batch.last_time, 0, on_delivery);
+    for (const comm::Transfer& x : radio_->step(batch.last_time)) deliver(x, batch.last_time, 0, on_delivery);
     for (const auto& [pair, c] : lastStepLinks(*radio_)) batch.links[pair] = c;
     ++batch.steps;
   }
   return batch;
 }
 
-void RadioBroker::deliver(const Transfer& transfer, double step_time, StampNs step_stamp,
+void RadioBroker::deliver(const comm::Transfer& transfer, double step_time, StampNs step_stamp,
                           const DeliveryFn& on_delivery) {
   Delivery d{transfer, step_time, step_stamp, nullptr, {}};
   if (d.delivered()) {

@@ -18,12 +18,12 @@ Eigen::Vector3d radioPosition(const Trajectory& reference, StampNs step_stamp,
   return reference.empty() ? odometry_position : Eigen::Vector3d(reference.atClamped(step_stamp).translation());
 }
 
-StampNs nextRadioStepStamp(const RadioSimulator& radio, StampNs origin) {
+StampNs nextRadioStepStamp(const comm::RadioSimulator& radio, StampNs origin) {
   const StampNs next = radioStepStamp(origin, radio.nextStepTime());
   return next > 10 ? next - 10 : 0;
 }
 
-std::size_t advanceRadio(RadioSimulator& radio, StampNs origin, StampNs t, const RadioStateFn& state,
+std::size_t advanceRadio(comm::RadioSimulator& radio, StampNs origin, StampNs t, const RadioStateFn& state,
                          const RadioTransferFn& on_transfer) {
   if (t < origin) return 0;
   const double t_rel = static_cast<double>(t - origin) * 1e-9;
@@ -35,7 +35,7 @@ std::size_t advanceRadio(RadioSimulator& radio, StampNs origin, StampNs t, const
       const RadioRobotState s = state(robot, step_stamp);
       radio.setRobotState(robot, s.position, s.on);
     }
-    for (const Transfer& tr : radio.step(step_time)) on_transfer(step_stamp, tr);
+    for (const comm::Transfer& tr : radio.step(step_time)) on_transfer(step_stamp, tr);
     ++steps;
   }
   return steps;

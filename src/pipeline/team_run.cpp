@@ -23,7 +23,7 @@ TeamRun::TeamRun(std::string dataset_name, std::map<char, Trajectory> references
       radio_(params.radio, keysOf(references), radio_seed),
       schedule_(keysOf(references), true),
       recorder_(std::move(dataset_name), keysOf(references), params.noise, params.outlier_rule),
-      payloads_(params.radio.size_model == RadioParams::SizeModel::RealCompressed),
+      payloads_(params.radio.size_model == comm::RadioParams::SizeModel::RealCompressed),
       origin_(time_origin) {
   // One feature cache for the team: a delivered scan is the sender's own object, so its features are computed
   // once, not once per robot that registers against it (same results).
@@ -58,7 +58,7 @@ void TeamRun::record(const frontend::LoopClosureAttempt& a) {
     ++(a.accepted ? counts_.intra_accepted : counts_.intra_rejected);
   }
   if (!a.accepted) return;
-  LoopClosureMeasurement m;
+  dataset::LoopClosureMeasurement m;
   m.owner = a.owner;
   m.computed_at = a.computed_at;
   m.key1 = jrl::symbol(a.robot1, a.index1);
@@ -80,8 +80,8 @@ void TeamRun::advanceRadioTo(StampNs t) {
     s.position = radioPosition(fe.reference(), step_stamp, fe.lastOdomPose().translation());
     return s;
   };
-  const auto deliver = [this](StampNs step_stamp, const Transfer& tr) {
-    if (tr.outcome != Transfer::Outcome::Delivered) {
+  const auto deliver = [this](StampNs step_stamp, const comm::Transfer& tr) {
+    if (tr.outcome != comm::Transfer::Outcome::Delivered) {
       ++counts_.transfers_timed_out;
       return;
     }
@@ -125,7 +125,7 @@ void TeamRun::take(const frontend::RobotFrontend& fe, frontend::Step step) {
     ++counts_.keyframes;
     pending_.push_back(PendingRecord{kf, {}});
     const std::shared_ptr<const Scan> kf_scan = fe.keyframeScan(kf.index);
-    PayloadStore::Sizes sizes{rawPayloadBytes(*kf_scan), rawPayloadBytes(*kf_scan)};
+    comm::PayloadStore::Sizes sizes{comm::rawPayloadBytes(*kf_scan), comm::rawPayloadBytes(*kf_scan)};
     if (payloads_.compresses()) sizes = payloads_.offer(robot, kf.index, kf_scan);
     radio_.offerKeyframe(robot, kf.index, sizes.payload, sizes.raw);
   }

@@ -23,8 +23,8 @@ jrl::Dataset runAlone(char robot, sequence::MergedScanStream& stream, const Traj
   return run.recorder().build();
 }
 
-NoiseModelRecord recordOf(const NoiseModelEstimate& e, const NoiseModelEstimationParams& p, const std::string& trial) {
-  NoiseModelRecord r;
+dataset::NoiseModelRecord recordOf(const dataset::NoiseModelEstimate& e, const dataset::NoiseModelEstimationParams& p, const std::string& trial) {
+  dataset::NoiseModelRecord r;
   r.trial = trial;
   r.odometry_factors = e.odometry.used;
   r.loop_closures = e.loop_closure.used;
@@ -38,11 +38,11 @@ NoiseModelRecord recordOf(const NoiseModelEstimate& e, const NoiseModelEstimatio
 
 TrialNoiseModels estimateTrialNoiseModels(char robot, sequence::MergedScanStream& stream, const Trajectory& reference,
                                           const TeamRunParams& params, std::uint64_t radio_seed,
-                                          const NoiseModelEstimationParams& estimation, const std::string& trial_label,
+                                          const dataset::NoiseModelEstimationParams& estimation, const std::string& trial_label,
                                           const std::string& environment) {
   TrialNoiseModels out;
   out.run = runAlone(robot, stream, reference, params, radio_seed, trial_label + "_alone");
-  const MeasurementSets sets = collectMeasurements(out.run, robot);
+  const dataset::MeasurementSets sets = dataset::collectMeasurements(out.run, robot);
   try {
     out.estimate = estimateNoiseModels(sets.odometry, sets.loop_closures, estimation);
   } catch (const std::runtime_error& e) {
@@ -50,7 +50,7 @@ TrialNoiseModels estimateTrialNoiseModels(char robot, sequence::MergedScanStream
                              std::to_string(sets.odometry.size()) + " odometry factors, " +
                              std::to_string(sets.loop_closures.size()) + " loop closures): " + e.what());
   }
-  NoiseModels& m = out.estimate.models;
+  dataset::NoiseModels& m = out.estimate.models;
   m.environment = environment;
   m.estimated_from = recordOf(out.estimate, estimation, trial_label);
   std::ostringstream provenance;

@@ -7,7 +7,7 @@
 
 #include "cosmo/registration/float4.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 ConsistencyGraph::ConsistencyGraph(int n)
     : n_(std::max(n, 0)), words_((static_cast<std::size_t>(std::max(n, 0)) + 63) / 64) {
@@ -93,4 +93,4 @@ ConsistencyGraph ConsistencyGraph::fromCorrespondences(const std::vector<Eigen::
   return g;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

@@ -11,7 +11,7 @@
 #include "cosmo/registration/neighbour_pairs.hpp"
 #include "cosmo/registration/stage_observer.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 namespace {
 
@@ -372,4 +372,4 @@ FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& input, cons
   return out;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

@@ -4,7 +4,7 @@
 #include "cosmo/registration/stage_observer.hpp"
 #include "cosmo/common/voxel_grid.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 FeatureCloud computeFeatureCloud(const Scan& scan, const RegistrationParams& params, StageObserver* observer) {
   FeatureCloud out;
@@ -45,4 +45,4 @@ FeatureCloud computeFeatureCloud(const Scan& scan, const RegistrationParams& par
   return out;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
-#include "cosmo/registration/kdtree.hpp"
+#include "cosmo/common/kd_tree.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 std::vector<Correspondence> matchFeatures(const FpfhMatrix& source, const FpfhMatrix& target, std::size_t max_count,
                                           bool mutual, float eps) {
@@ -43,4 +43,4 @@ std::vector<Correspondence> matchFeatures(const FpfhMatrix& source, const FpfhMa
   return out;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

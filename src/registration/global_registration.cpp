@@ -7,12 +7,12 @@
 #include "cosmo/registration/consistency_graph.hpp"
 #include "cosmo/registration/feature_matching.hpp"
 #include "cosmo/registration/graph_pruning.hpp"
-#include "cosmo/registration/kdtree.hpp"
+#include "cosmo/common/kd_tree.hpp"
 #include "cosmo/registration/icp_refinement.hpp"
 #include "cosmo/registration/registration_gate.hpp"
 #include "cosmo/registration/robust_solver.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 GlobalRegistration::GlobalRegistration(const RegistrationParams& p) : params_(p) {}
 
@@ -266,4 +266,4 @@ RegistrationResult GlobalRegistration::align(const FeatureCloud& src, const Feat
   return r;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

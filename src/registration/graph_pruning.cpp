@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <numeric>
 
-namespace cosmo {
+namespace cosmo::registration {
 
 namespace {
 
@@ -219,4 +219,4 @@ CliqueResult maxClique(const ConsistencyGraph& graph, std::uint64_t node_budget)
   return result;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

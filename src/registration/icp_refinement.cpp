@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "cosmo/common/pose.hpp"
-#include "cosmo/registration/kdtree.hpp"
+#include "cosmo/common/kd_tree.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 IcpResult refinePointToPlane(const std::vector<Eigen::Vector3f>& source, const std::vector<Eigen::Vector3f>& target,
                              const std::vector<Eigen::Vector3f>& target_normals, const Eigen::Isometry3d& initial,
@@ -108,4 +108,4 @@ IcpResult refinePointToPlane(const std::vector<Eigen::Vector3f>& source, const K
   return out;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

@@ -6,7 +6,7 @@
 #include "cosmo/common/voxel_key.hpp"
 #include "cosmo/common/radix_sort.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 namespace {
 
@@ -126,4 +126,4 @@ NeighbourPairs findPairs(const std::vector<Eigen::Vector3f>& points, float radiu
 
 }  // namespace
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

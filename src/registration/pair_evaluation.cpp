@@ -9,7 +9,7 @@
 
 #include "cosmo/common/pose_io.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 namespace fs = std::filesystem;
 
@@ -76,4 +76,4 @@ void writePairList(const std::string& path, const std::vector<ScanPair>& pairs) 
   }
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-namespace cosmo {
+namespace cosmo::registration {
 
 namespace {
 pcl::PointCloud<pcl::PointXYZ>::Ptr toPcl(const std::vector<Eigen::Vector3f>& points) {
@@ -77,4 +77,4 @@ FpfhMatrix computeFpfh(const std::vector<Eigen::Vector3f>& points, const std::ve
   return out;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

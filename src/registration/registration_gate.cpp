@@ -2,7 +2,7 @@
 
 #include "cosmo/registration/global_registration.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 void applyGate(const RegistrationParams& p, RegistrationResult& r) {
   r.valid = false;
@@ -28,4 +28,4 @@ void applyGate(const RegistrationParams& p, RegistrationResult& r) {
   }
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

@@ -3,7 +3,7 @@
 
 #include <stdexcept>
 
-namespace cosmo {
+namespace cosmo::registration {
 
 namespace {
 void require(bool ok, const ConfigNode& node, const std::string& key, const std::string& what) {
@@ -32,4 +32,4 @@ RegistrationParams RegistrationParams::fromConfig(const ConfigNode& root) {
   return p;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-namespace cosmo {
+namespace cosmo::registration {
 
 Eigen::Matrix3d weightedProcrustes(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b,
                                    const std::vector<double>& w) {
@@ -155,4 +155,4 @@ RigidEstimate solveRobustRigid(const std::vector<Eigen::Vector3d>& source, const
   return out;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

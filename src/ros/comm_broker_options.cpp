@@ -15,17 +15,17 @@
 
 namespace cosmo::ros_glue {
 
-RadioParams readRadioParams(const ros::NodeHandle& pnh) {
+comm::RadioParams readRadioParams(const ros::NodeHandle& pnh) {
   std::string comm = "wifi", config, size_model, timeout_mode;
   pnh.param<std::string>("comm", comm, comm);
   pnh.param<std::string>("config", config, "");
-  RadioParams params = resolveCommModel(config.empty() ? comm : config, "").params;
-  if (pnh.getParam("size_model", size_model)) params.size_model = sizeModelFromString(size_model, "~size_model");
+  comm::RadioParams params = comm::resolveCommModel(config.empty() ? comm : config, "").params;
+  if (pnh.getParam("size_model", size_model)) params.size_model = comm::sizeModelFromString(size_model, "~size_model");
   if (pnh.getParam("timeout_mode", timeout_mode))
-    params.timeout_mode = timeoutModeFromString(timeout_mode, "~timeout_mode");
+    params.timeout_mode = comm::timeoutModeFromString(timeout_mode, "~timeout_mode");
   std::string trace;
   if (pnh.getParam("trace", trace) && !trace.empty())
-    params.trace = std::make_shared<const RadioTrace>(RadioTrace::read(trace));
+    params.trace = std::make_shared<const comm::RadioTrace>(comm::RadioTrace::read(trace));
   return params;
 }
 
@@ -39,7 +39,7 @@ CommBrokerOptions readCommBrokerOptions(const ros::NodeHandle& pnh) {
   pnh.param<std::string>("log_file", o.log_file, "");
   pnh.param<std::string>("frame_id", o.frame_id, "world");
   pnh.param("compress_payload", o.compress, true);
-  if (!o.compress && o.radio.size_model == RadioParams::SizeModel::RealCompressed) {
+  if (!o.compress && o.radio.size_model == comm::RadioParams::SizeModel::RealCompressed) {
     ROS_WARN("comm_broker: ~compress_payload false ignored: the real size model needs the xz payload");
     o.compress = true;
   }
@@ -48,7 +48,7 @@ CommBrokerOptions readCommBrokerOptions(const ros::NodeHandle& pnh) {
 }
 
 void logCommBrokerStart(const CommBrokerOptions& o) {
-  const RadioParams& p = o.radio;
+  const comm::RadioParams& p = o.radio;
   ROS_INFO(
       "comm_broker: %zu robots, B %.0f kB/s, d_init %.0f m, d_intf %.0f m, P_max %.2f, seed %s, sizes %s, "
       "timeout %s%s",
@@ -65,20 +65,20 @@ std_msgs::String offeredMsg(const std::map<char, std::uint32_t>& next_index) {
   return m;
 }
 
-std_msgs::String radioStatsMsg(const RadioSimulator& radio, double time) {
+std_msgs::String radioStatsMsg(const comm::RadioSimulator& radio, double time) {
   std_msgs::String m;
   m.data = radioStatus(radio, time).dump();
   return m;
 }
 
-void TransferLogFile::write(const RadioSimulator& radio) const {
+void TransferLogFile::write(const comm::RadioSimulator& radio) const {
   if (path_.empty()) return;
   try {
     writeTransferLog(path_, radio);
   } catch (const std::exception& e) { ROS_ERROR("comm_broker: %s", e.what()); }
 }
 
-void TransferLogFile::writeEvery30s(const RadioSimulator& radio, double radio_time) {
+void TransferLogFile::writeEvery30s(const comm::RadioSimulator& radio, double radio_time) {
   if (path_.empty() || radio_time - last_write_ < 30.0) return;
   last_write_ = radio_time;
   try {

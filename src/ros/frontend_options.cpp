@@ -60,16 +60,17 @@ frontend::FrontendSetup frontendSetup(const FrontendOptions& o, const frontend::
   return setup;
 }
 
-std::optional<NoiseModels> markerNoiseModels(const FrontendOptions& o) {
+std::optional<dataset::NoiseModels> markerNoiseModels(const FrontendOptions& o) {
   if (o.noise_models.empty()) return std::nullopt;
-  return NoiseModels::load(o.noise_models);
+  return dataset::NoiseModels::load(o.noise_models);
 }
 
-RegistrationParams sequenceRegistration(const FrontendOptions& o, const RegistrationParams& base) {
+registration::RegistrationParams sequenceRegistration(const FrontendOptions& o,
+                                                      const registration::RegistrationParams& base) {
   const std::optional<ResolvedSequence> sequence = resolvedSequence();
   if (!sequence) return base;
   try {
-    RegistrationParams p =
+    registration::RegistrationParams p =
         cosmo::sequence::registrationParamsWith(o.config_dir, sequence->registration, sequence->path);
     if (!sequence->registration.empty())
       ROS_INFO("frontend %c: registration: %s's own keys over %s/registration.yaml", o.robot, sequence->path.c_str(),
@@ -82,7 +83,7 @@ RegistrationParams sequenceRegistration(const FrontendOptions& o, const Registra
   }
 }
 
-std::optional<NoiseModels> sequenceNoiseModels(const FrontendOptions& o) {
+std::optional<dataset::NoiseModels> sequenceNoiseModels(const FrontendOptions& o) {
   const std::optional<ResolvedSequence> sequence = resolvedSequence();
   if (!sequence) return std::nullopt;
   try {

@@ -13,7 +13,7 @@
 namespace cosmo::ros_glue {
 
 FrontendPublisher::FrontendPublisher(ros::NodeHandle& nh, char robot, std::string world_frame, RecorderLink& recorder,
-                                     std::optional<NoiseModels> noise)
+                                     std::optional<dataset::NoiseModels> noise)
     : robot_(robot),
       world_frame_(std::move(world_frame)),
       odom_frame_(std::string(1, robot) + "/odom"),

@@ -65,7 +65,7 @@ cosmo::Keyframe offeredKeyframeMeta(const cosmo::Keyframe& offer) {
   return meta;
 }
 
-cosmo::Keyframe deliveredKeyframeMsg(const cosmo::Keyframe& meta, const Scan& scan, const Transfer& transfer,
+cosmo::Keyframe deliveredKeyframeMsg(const cosmo::Keyframe& meta, const Scan& scan, const comm::Transfer& transfer,
                                      const ros::Time& received_at) {
   cosmo::Keyframe out;
   out.cloud = toPointCloud2(scan, meta.header.frame_id);

@@ -104,9 +104,9 @@ visualization_msgs::MarkerArray frontendMarkers(const frontend::FrontendMap& map
   return array;
 }
 
-visualization_msgs::MarkerArray linkMarkers(const RadioSimulator& radio,
-                                            const std::map<std::pair<char, char>, ActiveCommunication>& links, double t,
-                                            const std::string& frame, const ros::Time& stamp) {
+visualization_msgs::MarkerArray linkMarkers(const comm::RadioSimulator& radio,
+                                            const std::map<std::pair<char, char>, comm::ActiveCommunication>& links,
+                                            double t, const std::string& frame, const ros::Time& stamp) {
   visualization_msgs::Marker m = marker(frame, stamp, "comm_links", visualization_msgs::Marker::LINE_LIST);
   m.id = 0;
   m.scale.x = 0.5;

@@ -41,7 +41,7 @@ dataset::MeasurementRecord measurementFromMsg(const cosmo::RecorderKeyframe& m, 
 }
 
 dataset::MeasurementRecord measurementFromMsg(const cosmo::RecorderLoopClosure& m, char topic_robot) {
-  LoopClosureMeasurement lc;
+  dataset::LoopClosureMeasurement lc;
   lc.owner = oneChar(m.owner, "owner");
   if (lc.owner != topic_robot)
     throw std::invalid_argument("owner field '" + m.owner + "' differs from the topic's robot");
@@ -52,7 +52,8 @@ dataset::MeasurementRecord measurementFromMsg(const cosmo::RecorderLoopClosure& 
   return dataset::MeasurementRecord{topic_robot, m.seq, lc};
 }
 
-cosmo::RecorderProgress recorderProgressMsg(const dataset::RecorderIntake& intake, const DatasetRecorder& recorder) {
+cosmo::RecorderProgress recorderProgressMsg(const dataset::RecorderIntake& intake,
+                                            const dataset::DatasetRecorder& recorder) {
   cosmo::RecorderProgress p;
   for (char r : intake.robots()) {
     p.robots.push_back(r);

@@ -18,7 +18,7 @@ namespace cosmo::ros_glue {
 
 std::string RecorderOptions::jrlPath() const { return (std::filesystem::path(output_dir) / (name + ".jrl")).string(); }
 
-NoiseModels RecorderOptions::noiseModels() const {
+dataset::NoiseModels RecorderOptions::noiseModels() const {
   return sequence::loadRunNoiseModels(sequence.noise_models, sequence.sequence, sequence.simulate_config,
                                       sequence.config_dir);
 }
@@ -34,7 +34,7 @@ RecorderOptions readRecorderOptions(const ros::NodeHandle& pnh) {
   pnh.param("progress_period", o.progress_period, o.progress_period);
   pnh.param("player_node", o.player_node, o.player_node);
   pnh.param<std::string>("run_id", o.run_id, "");
-  const auto parsed = parseOutlierRule(rule);
+  const auto parsed = dataset::parseOutlierRule(rule);
   if (!parsed) throw std::runtime_error("~outlier_rule: expected 'fidelity' or 'squared', got '" + rule + "'");
   o.rule = *parsed;
   return o;

@@ -66,7 +66,7 @@ std::map<std::string, std::string> readRegistration(const ConfigNode& root) {
   if (!root.has("registration")) return {};
   const ConfigNode section = root["registration"];
   std::map<std::string, std::string> keys = section.scalarMap("config/registration.yaml keys");
-  RegistrationParams::fromConfig(section);
+  registration::RegistrationParams::fromConfig(section);
   return keys;
 }
 
@@ -147,12 +147,13 @@ SequenceConfig SequenceConfig::load(const std::string& path, const std::string& 
   return cfg;
 }
 
-RegistrationParams SequenceConfig::registrationParams(const std::string& config_dir) const {
+registration::RegistrationParams SequenceConfig::registrationParams(const std::string& config_dir) const {
   return registrationParamsWith(config_dir, registration, path.empty() ? "sequence " + name : path);
 }
 
-RegistrationParams registrationParamsWith(const std::string& config_dir, const std::map<std::string, std::string>& keys,
-                                          const std::string& from) {
+registration::RegistrationParams registrationParamsWith(const std::string& config_dir,
+                                                        const std::map<std::string, std::string>& keys,
+                                                        const std::string& from) {
   const std::string file = (std::filesystem::path(config_dir) / "registration.yaml").string();
   YAML::Node merged(YAML::NodeType::Map);
   std::string where = "compiled-in defaults";
@@ -164,7 +165,7 @@ RegistrationParams registrationParamsWith(const std::string& config_dir, const s
   }
   for (const auto& [key, value] : keys) merged[key] = value;
   if (!keys.empty()) where += " with " + from + ": registration";
-  return RegistrationParams::fromConfig(ConfigNode{merged, where});
+  return registration::RegistrationParams::fromConfig(ConfigNode{merged, where});
 }
 
 std::vector<char> SequenceConfig::robots() const {

@@ -39,29 +39,29 @@ std::string chooseNoiseModels(const SequenceConfig& config, const std::string& c
   } catch (const NoiseModelsMissing&) { return ""; }
 }
 
-NoiseModels loadSequenceNoiseModels(const SequenceConfig& sequence, const std::string& config_dir,
-                                    const std::string& override_path) {
+dataset::NoiseModels loadSequenceNoiseModels(const SequenceConfig& sequence, const std::string& config_dir,
+                                             const std::string& override_path) {
   const std::string path = sequenceNoiseModelsPath(sequence, config_dir, override_path);
   const std::string env = sequence.environment.empty() ? "" : " of environment '" + sequence.environment + "'";
   if (!std::filesystem::exists(path))
     throw NoiseModelsMissing(sequenceLabel(sequence) + ": the noise models" + env + " do not exist (" + path +
                              ": no such file).\n" + howToMakeNoiseModels(sequence, path));
   try {
-    return NoiseModels::load(path);
-  } catch (const NoiseModelsUnknown& e) {
+    return dataset::NoiseModels::load(path);
+  } catch (const dataset::NoiseModelsUnknown& e) {
     throw NoiseModelsMissing(sequenceLabel(sequence) + ": the noise models" + env + " are not known (" + path + ": " +
                              e.reason + ").\n" + howToMakeNoiseModels(sequence, path));
   }
 }
 
-NoiseModels loadRunNoiseModels(const std::string& explicit_path, const std::string& sequence_path,
-                               const std::string& simulate_config, const std::string& config_dir) {
+dataset::NoiseModels loadRunNoiseModels(const std::string& explicit_path, const std::string& sequence_path,
+                                        const std::string& simulate_config, const std::string& config_dir) {
   if (!explicit_path.empty()) {
     if (!std::filesystem::exists(explicit_path))
       throw NoiseModelsMissing("noise models " + explicit_path + ": no such file");
     try {
-      return NoiseModels::load(explicit_path);
-    } catch (const NoiseModelsUnknown& e) {
+      return dataset::NoiseModels::load(explicit_path);
+    } catch (const dataset::NoiseModelsUnknown& e) {
       throw NoiseModelsMissing(std::string(e.what()) +
                                ". Make them with cosmo_generate SEQUENCE.yaml "
                                "--estimate-noise-models TRIAL, or cosmo_noise_models RUN.jrl " +

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "cosmo/suite/file_identity.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 namespace fs = std::filesystem;
 
@@ -52,13 +53,6 @@ DatasetSummary summaryFromJson(const json& o) {
   d.init_ate_m = o.at("init_ate_m").get<double>();
   d.solve_note = o.at("solve_note").get<std::string>();
   return d;
-}
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 /// Why the recorded inputs differ from the current ones ("" when they do not).
@@ -148,7 +142,7 @@ bool readRecord(const std::string& folder, JobRecord& record) {
   const fs::path path = fs::path(folder) / kRecordFile;
   if (!fs::exists(path)) return false;
   try {
-    record = JobRecord::fromJson(readText(path.string()), path.string());
+    record = JobRecord::fromJson(readWholeFileOrEmpty(path.string()), path.string());
     return true;
   } catch (const std::exception&) { return false; }
 }

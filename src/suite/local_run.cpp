@@ -14,16 +14,10 @@
 #include "cosmo/suite/out_dir.hpp"
 #include "cosmo/suite/progress.hpp"
 #include "cosmo/suite/run_job.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 namespace cosmo::suite {
 namespace {
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 std::size_t datasets(const Job& job) { return job.kind == Job::Kind::Estimate ? 0 : job.comms.size(); }
 double work(const Job& job) { return job.seconds * static_cast<double>(std::max<std::size_t>(1, job.comms.size())); }
@@ -122,7 +116,7 @@ class LocalRun {
       const auto status = statuses_.count(job.id) ? statuses_.at(job.id) : "";
       if (st == Scheduler::State::Running) {
         c.running += datasets(job);
-        const LogProgress p = readLogProgress(readText(jobLogPath(plan_.out_dir, job.id)));
+        const LogProgress p = readLogProgress(readWholeFileOrEmpty(jobLogPath(plan_.out_dir, job.id)));
         c.processed_s += std::min(p.done_s, work(job));
         c.remaining_s += std::max(0.0, work(job) - p.done_s);
       } else if (st == Scheduler::State::Waiting) {

@@ -14,6 +14,7 @@
 
 #include "cosmo/dataset/atomic_file.hpp"
 #include "cosmo/suite/job_record.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 namespace fs = std::filesystem;
 
@@ -25,13 +26,6 @@ std::string flat(const std::string& job_id) {
   for (char& c : s)
     if (c == '/') c = '+';
   return s;
-}
-
-std::string readSmall(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 }  // namespace
@@ -51,7 +45,7 @@ FileLock::FileLock(const std::string& path, bool wait, const std::string& busy_m
     ::close(fd_);
     fd_ = -1;
     if (err == EWOULDBLOCK) {
-      const std::string holder = readSmall(path);
+      const std::string holder = readWholeFileOrEmpty(path);
       throw std::runtime_error(busy_message + (holder.empty() ? "" : "\n  held by: " + holder));
     }
     throw std::runtime_error(path + ": flock: " + std::strerror(err));
@@ -125,7 +119,7 @@ void writeManifest(const Plan& plan) {
     JobRecord r;
     if (readRecord(jobFolder(plan, job), r)) text += r.toJson() + "\n";
   }
-  writeFileAtomically((fs::path(plan.out_dir) / "manifest.jsonl").string(), text);
+  dataset::writeFileAtomically((fs::path(plan.out_dir) / "manifest.jsonl").string(), text);
 }
 
 void syncPath(const std::string& path) {

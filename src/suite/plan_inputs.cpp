@@ -71,7 +71,7 @@ void addGroupInputs(const Plan& plan, Job& job, const sequence::SequenceConfig& 
   for (const auto& t : config.trials) addTrial(job, t);
   addFrontendConfig(plan, job);
   for (const auto& c : job.comms) {
-    const CommModel model = resolveCommModel(c, plan.config_dir);
+    const comm::CommModel model = comm::resolveCommModel(c, plan.config_dir);
     if (!model.file.empty()) job.inputs.push_back({"config comm/" + c + ".yaml", model.file});
   }
   job.inputs.push_back(

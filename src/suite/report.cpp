@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "cosmo/dataset/atomic_file.hpp"
+#include "cosmo/common/whole_file.hpp"
 #include "report_rows.hpp"
 #include "report_table.hpp"
 
@@ -85,19 +86,12 @@ std::string base64(const std::string& data) {
   return out;
 }
 
-std::string readFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 std::string figureCard(const ReportInput& input, const Row& r) {
   std::string img;
   const std::string svg = report_rows::figurePath(r, false);
   if (!svg.empty())
     img = "<img alt=\"" + escapeHtml(r.name) + "\" src=\"data:image/svg+xml;base64," +
-          base64(readFile((fs::path(input.out_dir) / svg).string())) + "\">";
+          base64(readWholeFileOrEmpty((fs::path(input.out_dir) / svg).string())) + "\">";
   else
     img = "<div class=\"nofig\">no figure</div>";
   return "<div class=\"card\"><h3>" + escapeHtml(r.name) + "</h3>" + img + report_table::html(datasetTable(r)) +
@@ -153,8 +147,8 @@ std::string reportHtml(const ReportInput& input) {
 std::vector<std::string> writeReport(const ReportInput& input) {
   const std::string md = (fs::path(input.out_dir) / "report.md").string();
   const std::string html = (fs::path(input.out_dir) / "report.html").string();
-  writeFileAtomically(md, reportMarkdown(input));
-  writeFileAtomically(html, reportHtml(input));
+  dataset::writeFileAtomically(md, reportMarkdown(input));
+  dataset::writeFileAtomically(html, reportHtml(input));
   return {md, html};
 }
 

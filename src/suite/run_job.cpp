@@ -141,7 +141,7 @@ JobRecord makeOutputs(const Plan& plan, const Job& job, const std::string& tmp, 
 
 void writeFailure(const Plan& plan, const Job& job, const RunJobOptions& o, const std::string& reason) {
   const nlohmann::json f{{"job", job.id}, {"run", o.run_id}, {"reason", reason}, {"finished", utcNow()}};
-  writeFileAtomically(jobFailurePath(plan.out_dir, job.id), f.dump() + "\n");
+  dataset::writeFileAtomically(jobFailurePath(plan.out_dir, job.id), f.dump() + "\n");
 }
 
 }  // namespace
@@ -178,7 +178,7 @@ JobOutcome runJob(const Plan& plan, const std::string& job_id, const RunJobOptio
     checkDependencies(plan, *job);
     tmp = makeJobTmpDir(plan.out_dir, job->id);
     const JobRecord rec = makeOutputs(plan, *job, tmp, o, log);
-    writeFileAtomically((fs::path(tmp) / kRecordFile).string(), rec.toJson() + "\n");
+    dataset::writeFileAtomically((fs::path(tmp) / kRecordFile).string(), rec.toJson() + "\n");
     moveIntoPlace(plan.out_dir, tmp, jobFolder(plan, *job));
     fs::remove(jobFailurePath(plan.out_dir, job->id));
     writeManifest(plan);

@@ -68,11 +68,11 @@ SlurmArray submitArray(const Plan& plan, const std::string& name, const std::vec
     width = std::max(width, jobWidth(plan.job(id).robots, SlotPolicy{1000, 0}));
   }
   const std::string list_path = dir + "/" + name + ".jobs";
-  writeFileAtomically(list_path, list);
+  dataset::writeFileAtomically(list_path, list);
   unsigned cpus = o.cpus_per_task ? o.cpus_per_task : width;
   if (!o.cpus_per_task && node_cpus) cpus = std::min(cpus, node_cpus);
   const std::string script = dir + "/" + name + ".sh";
-  writeFileAtomically(script, batchScript(plan, list_path, o.plan_path, o.self_exe, o.run_id, dir, cpus));
+  dataset::writeFileAtomically(script, batchScript(plan, list_path, o.plan_path, o.self_exe, o.run_id, dir, cpus));
   std::vector<std::string> args{"--array=0-" + std::to_string(jobs.size() - 1),
                                 "--job-name=cosmo-" + plan.suite_name + "-" + name};
   if (!after.empty()) args.push_back("--dependency=afterany:" + after);
@@ -137,12 +137,12 @@ SlurmSubmission submitToSlurm(const Plan& plan, const std::vector<std::string>& 
   std::string all;
   for (const auto& a : sub.arrays) all += (all.empty() ? "" : ":") + a.slurm_id;
   const std::string report = dir + "/report.sh";
-  writeFileAtomically(report, "#!/bin/bash\n#SBATCH --cpus-per-task=1\n#SBATCH --output=" + dir +
+  dataset::writeFileAtomically(report, "#!/bin/bash\n#SBATCH --cpus-per-task=1\n#SBATCH --output=" + dir +
                                   "/report-%j.out\nexec " + quoted(o.self_exe) + " report --plan " +
                                   quoted(o.plan_path) + " --run " + quoted(o.run_id) + "\n");
   sub.report_job = sbatch({"--job-name=cosmo-report", "--dependency=afterany:" + all}, o, report);
-  writeFileAtomically(dir + "/submitted.json", sub.toJson() + "\n");
-  writeFileAtomically(suiteDir(plan.out_dir, "slurm") + "/last", o.run_id + "\n");
+  dataset::writeFileAtomically(dir + "/submitted.json", sub.toJson() + "\n");
+  dataset::writeFileAtomically(suiteDir(plan.out_dir, "slurm") + "/last", o.run_id + "\n");
   return sub;
 }
 

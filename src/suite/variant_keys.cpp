@@ -94,7 +94,7 @@ VariantKey registrationPresetKey() {
 VariantKey registrationParamKey() {
   return {"registration.", "one config/registration.yaml key",
           [](const std::string& sub, const VariantValue& v) {
-            RegistrationParams::fromConfig(oneKeyNode(sub, v, "registration"));
+            registration::RegistrationParams::fromConfig(oneKeyNode(sub, v, "registration"));
           },
           [](const std::string& sub, const VariantValue& v) { return sub + "-" + v.scalar; },
           [](const std::string& sub, const VariantValue& v, VariantEffect& e) { e.registration[sub] = v.scalar; }};
@@ -104,7 +104,7 @@ VariantKey radioParamKey() {
   return {"radio.", "one config/comm/<model>.yaml key, set in every comm model",
           [](const std::string& sub, const VariantValue& v) {
             if (sub == "preset") fail(v, "the preset is the comm model itself: list the models under `comm:`");
-            RadioParams::fromConfig(oneKeyNode(sub, v, "radio"));
+            comm::RadioParams::fromConfig(oneKeyNode(sub, v, "radio"));
           },
           [](const std::string& sub, const VariantValue& v) { return sub + "-" + v.scalar; },
           [](const std::string& sub, const VariantValue& v, VariantEffect& e) { e.radio[sub] = v.scalar; }};
@@ -190,8 +190,8 @@ std::vector<std::string> variantKeyNames() {
   std::vector<std::string> names;
   for (const auto& k : variantKeys())
     if (k.name.back() != '.') names.push_back(k.name);
-  for (const auto& p : paramKeys<RegistrationParams>()) names.push_back("registration." + p);
-  for (const auto& p : paramKeys<RadioParams>()) names.push_back("radio." + p);
+  for (const auto& p : paramKeys<registration::RegistrationParams>()) names.push_back("registration." + p);
+  for (const auto& p : paramKeys<comm::RadioParams>()) names.push_back("radio." + p);
   names.insert(names.end(), {"radio.timeout_mode", "radio.size_model"});
   return names;
 }

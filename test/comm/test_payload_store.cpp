@@ -22,9 +22,9 @@ std::shared_ptr<const Scan> makeScan(StampNs stamp, int n) {
 }  // namespace
 
 TEST(PayloadStore, WithoutCompressionDeliversTheOfferedScanItself) {
-  PayloadStore store(false);
+  comm::PayloadStore store(false);
   const auto scan = makeScan(1234, 100);
-  const PayloadStore::Sizes sizes = store.offer('a', 3, scan);
+  const comm::PayloadStore::Sizes sizes = store.offer('a', 3, scan);
   EXPECT_EQ(sizes.raw, 1200u);
   EXPECT_EQ(sizes.payload, 1200u);
   EXPECT_EQ(store.deliver('a', 3), scan);  // the same object: no copy
@@ -33,11 +33,11 @@ TEST(PayloadStore, WithoutCompressionDeliversTheOfferedScanItself) {
 }
 
 TEST(PayloadStore, WithCompressionDeliversTheDecompressedPointsWithTheKeyframesStamp) {
-  PayloadStore store(true);
+  comm::PayloadStore store(true);
   const auto scan = makeScan(987654321, 500);
-  const PayloadStore::Sizes sizes = store.offer('b', 0, scan);
+  const comm::PayloadStore::Sizes sizes = store.offer('b', 0, scan);
   EXPECT_EQ(sizes.raw, 6000u);
-  EXPECT_EQ(sizes.payload, compressScan(*scan).size());
+  EXPECT_EQ(sizes.payload, comm::compressScan(*scan).size());
   EXPECT_LT(sizes.payload, sizes.raw);
   const auto received = store.deliver('b', 0);
   ASSERT_TRUE(received);
@@ -48,7 +48,7 @@ TEST(PayloadStore, WithCompressionDeliversTheDecompressedPointsWithTheKeyframesS
 }
 
 TEST(PayloadStore, RejectsAMissingScanAndABadPreset) {
-  PayloadStore store(true);
+  comm::PayloadStore store(true);
   EXPECT_THROW(store.offer('a', 0, nullptr), std::invalid_argument);
-  EXPECT_THROW(PayloadStore(true, 10), std::invalid_argument);
+  EXPECT_THROW(comm::PayloadStore(true, 10), std::invalid_argument);
 }

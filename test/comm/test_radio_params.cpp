@@ -9,7 +9,7 @@
 using namespace cosmo;
 
 TEST(RadioParams, PaperValues) {
-  const RadioParams w = RadioParams::wifi();
+  const comm::RadioParams w = comm::RadioParams::wifi();
   EXPECT_DOUBLE_EQ(w.bandwidth_kBps, 2000);
   EXPECT_DOUBLE_EQ(w.d_init, 30);
   EXPECT_DOUBLE_EQ(w.d_intf, 40);
@@ -19,7 +19,7 @@ TEST(RadioParams, PaperValues) {
   EXPECT_DOUBLE_EQ(w.r_max, 70);
   EXPECT_DOUBLE_EQ(w.step, 0.1);
   EXPECT_DOUBLE_EQ(w.timeout, 2.0);
-  const RadioParams p = RadioParams::proRadio();
+  const comm::RadioParams p = comm::RadioParams::proRadio();
   EXPECT_DOUBLE_EQ(p.bandwidth_kBps, 1000);
   EXPECT_DOUBLE_EQ(p.d_init, 150);
   EXPECT_DOUBLE_EQ(p.d_intf, 150);
@@ -30,13 +30,13 @@ TEST(RadioParams, PaperValues) {
 }
 
 TEST(RadioParams, PhiShape) {
-  const RadioParams w = RadioParams::wifi();
+  const comm::RadioParams w = comm::RadioParams::wifi();
   EXPECT_DOUBLE_EQ(w.phi(0.0), 0.7);  // capped at P_max near the robot
   EXPECT_NEAR(w.phi(30.0), 1.1 * (std::pow(0.1, 30.0 / 70.0) - 0.1), 1e-12);
   EXPECT_NEAR(w.phi(70.0), 0.0, 1e-12);                                       // zero at r_max
   EXPECT_DOUBLE_EQ(w.phi(500.0), 0.0);                                        // clamped, never negative
   for (double d = 0; d < 100; d += 0.5) EXPECT_GE(w.phi(d), w.phi(d + 0.5));  // non-increasing
-  const RadioParams p = RadioParams::proRadio();
+  const comm::RadioParams p = comm::RadioParams::proRadio();
   EXPECT_DOUBLE_EQ(p.phi(10.0), 0.8);
   EXPECT_NEAR(p.phi(150.0), 1.8 * (std::pow(0.3, 0.75) - 0.3), 1e-12);
   EXPECT_DOUBLE_EQ(p.phi(250.0), 0.0);
@@ -44,9 +44,10 @@ TEST(RadioParams, PhiShape) {
 
 TEST(RadioParams, ShippedConfigsMatchPresets) {
   const std::string dir = std::string(COSMO_SOURCE_DIR) + "/config/comm/";
-  const RadioParams w = RadioParams::fromConfig(ConfigNode::load(dir + "wifi.yaml"));
-  const RadioParams p = RadioParams::fromConfig(ConfigNode::load(dir + "proradio.yaml"));
-  for (const auto& [got, want] : {std::pair{w, RadioParams::wifi()}, std::pair{p, RadioParams::proRadio()}}) {
+  const comm::RadioParams w = comm::RadioParams::fromConfig(ConfigNode::load(dir + "wifi.yaml"));
+  const comm::RadioParams p = comm::RadioParams::fromConfig(ConfigNode::load(dir + "proradio.yaml"));
+  for (const auto& [got, want] :
+       {std::pair{w, comm::RadioParams::wifi()}, std::pair{p, comm::RadioParams::proRadio()}}) {
     EXPECT_DOUBLE_EQ(got.bandwidth_kBps, want.bandwidth_kBps);
     EXPECT_DOUBLE_EQ(got.d_init, want.d_init);
     EXPECT_DOUBLE_EQ(got.d_intf, want.d_intf);
@@ -54,8 +55,8 @@ TEST(RadioParams, ShippedConfigsMatchPresets) {
     EXPECT_DOUBLE_EQ(got.alpha, want.alpha);
     EXPECT_DOUBLE_EQ(got.beta, want.beta);
     EXPECT_DOUBLE_EQ(got.r_max, want.r_max);
-    EXPECT_EQ(got.timeout_mode, RadioParams::TimeoutMode::NoProgress);
-    EXPECT_EQ(got.size_model, RadioParams::SizeModel::PaperFactor);
+    EXPECT_EQ(got.timeout_mode, comm::RadioParams::TimeoutMode::NoProgress);
+    EXPECT_EQ(got.size_model, comm::RadioParams::SizeModel::PaperFactor);
   }
 }
 
@@ -63,16 +64,16 @@ TEST(RadioParams, BadConfigNamesFileAndKey) {
   const auto path = std::filesystem::temp_directory_path() / ("cosmo_comm_bad_" + std::to_string(::getpid()) + ".yaml");
   { std::ofstream(path) << "comm:\n  timeout_mode: sometimes\n"; }
   try {
-    RadioParams::fromConfig(ConfigNode::load(path.string()));
+    comm::RadioParams::fromConfig(ConfigNode::load(path.string()));
     FAIL() << "no exception";
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("timeout_mode"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find(path.filename().string()), std::string::npos) << e.what();
   }
   { std::ofstream(path) << "comm:\n  p_max: 1.5\n"; }
-  EXPECT_THROW(RadioParams::fromConfig(ConfigNode::load(path.string())), std::runtime_error);
+  EXPECT_THROW(comm::RadioParams::fromConfig(ConfigNode::load(path.string())), std::runtime_error);
   { std::ofstream(path) << "comm:\n  bandwidth_kBps: fast\n"; }
-  EXPECT_THROW(RadioParams::fromConfig(ConfigNode::load(path.string())), std::runtime_error);
+  EXPECT_THROW(comm::RadioParams::fromConfig(ConfigNode::load(path.string())), std::runtime_error);
   std::filesystem::remove(path);
-  EXPECT_THROW(RadioParams::byName("carrier-pigeon"), std::runtime_error);
+  EXPECT_THROW(comm::RadioParams::byName("carrier-pigeon"), std::runtime_error);
 }

@@ -15,8 +15,8 @@ constexpr std::size_t kHuge = 1000000000000ULL;  // a payload that never complet
 
 /// Runs steps on the grid until `cond` holds or `max_steps` pass; returns the transfers that ended.
 template <typename Cond>
-std::vector<Transfer> stepUntil(RadioSimulator& sim, Cond cond, int max_steps = 100000) {
-  std::vector<Transfer> all;
+std::vector<comm::Transfer> stepUntil(comm::RadioSimulator& sim, Cond cond, int max_steps = 100000) {
+  std::vector<comm::Transfer> all;
   for (int i = 0; i < max_steps && !cond(); ++i) {
     const auto ended = sim.step(sim.nextStepTime());
     all.insert(all.end(), ended.begin(), ended.end());
@@ -24,16 +24,16 @@ std::vector<Transfer> stepUntil(RadioSimulator& sim, Cond cond, int max_steps = 
   return all;
 }
 
-RadioParams realSizes(RadioParams p) {
-  p.size_model = RadioParams::SizeModel::RealCompressed;
+comm::RadioParams realSizes(comm::RadioParams p) {
+  p.size_model = comm::RadioParams::SizeModel::RealCompressed;
   return p;
 }
 
 /// A pair a-b at distance d with one endless transfer a -> b started at close range.
-RadioSimulator endlessPair(const RadioParams& p, std::uint64_t seed) {
-  RadioParams q = realSizes(p);
+comm::RadioSimulator endlessPair(const comm::RadioParams& p, std::uint64_t seed) {
+  comm::RadioParams q = realSizes(p);
   q.timeout = 1e9;
-  RadioSimulator sim(q, {'a', 'b'}, seed);
+  comm::RadioSimulator sim(q, {'a', 'b'}, seed);
   sim.setRobotState('a', {0, 0, 0}, true);
   sim.setRobotState('b', {1, 0, 0}, true);
   sim.offerKeyframe('a', 0, kHuge);
@@ -42,8 +42,8 @@ RadioSimulator endlessPair(const RadioParams& p, std::uint64_t seed) {
   return sim;
 }
 
-RadioParams certainLink() {  // phi = 1 for d < ~0.9 r_max
-  RadioParams p = realSizes(RadioParams::wifi());
+comm::RadioParams certainLink() {  // phi = 1 for d < ~0.9 r_max
+  comm::RadioParams p = realSizes(comm::RadioParams::wifi());
   p.p_max = 1.0;
   p.alpha = 100.0;
   return p;
@@ -54,10 +54,10 @@ RadioParams certainLink() {  // phi = 1 for d < ~0.9 r_max
 // The observed connectivity frequency of an active link at distance d matches phi(d) within sampling error.
 TEST(RadioSimulator, ConnectivityFrequencyMatchesPhi) {
   const int n = 4000;
-  for (const RadioParams& p : {RadioParams::wifi(), RadioParams::proRadio()}) {
+  for (const comm::RadioParams& p : {comm::RadioParams::wifi(), comm::RadioParams::proRadio()}) {
     for (double frac : {0.02, 0.15, 0.3, 0.5, 0.7, 0.9, 1.2}) {
       const double d = frac * p.r_max;
-      RadioSimulator sim = endlessPair(p, 11 + static_cast<std::uint64_t>(1000 * frac));
+      comm::RadioSimulator sim = endlessPair(p, 11 + static_cast<std::uint64_t>(1000 * frac));
       sim.setRobotState('b', {d, 0, 0}, true);
       const auto before = sim.stats();
       stepUntil(
@@ -74,8 +74,8 @@ TEST(RadioSimulator, ConnectivityFrequencyMatchesPhi) {
 
 // A clean link (one pair, nobody else around) carries B * P_max on average.
 TEST(RadioSimulator, CleanLinkThroughputIsBandwidthTimesPmax) {
-  for (const RadioParams& p : {RadioParams::wifi(), RadioParams::proRadio()}) {
-    RadioSimulator sim = endlessPair(p, 5);
+  for (const comm::RadioParams& p : {comm::RadioParams::wifi(), comm::RadioParams::proRadio()}) {
+    comm::RadioSimulator sim = endlessPair(p, 5);
     const int n = 5000;
     const double before = sim.activeCommunications().front().bytes_delivered;
     stepUntil(
@@ -90,9 +90,9 @@ TEST(RadioSimulator, CleanLinkThroughputIsBandwidthTimesPmax) {
 
 // Two overlapping communications each get B / 2; apart (beyond d_intf) each gets B.
 TEST(RadioSimulator, OverlappingCommunicationsShareBandwidth) {
-  const RadioParams p = certainLink();
+  const comm::RadioParams p = certainLink();
   for (double separation : {10.0, 1000.0}) {
-    RadioSimulator sim(p, {'a', 'b', 'c', 'd'}, 3);
+    comm::RadioSimulator sim(p, {'a', 'b', 'c', 'd'}, 3);
     sim.setRobotState('a', {0, 0, 0}, true);
     sim.setRobotState('b', {1, 0, 0}, true);
     sim.setRobotState('c', {separation, 0, 0}, true);
@@ -108,9 +108,9 @@ TEST(RadioSimulator, OverlappingCommunicationsShareBandwidth) {
     }
   }
   // Statistically with the Wi-Fi model: mean throughput of each of two overlapping links = B P_max / 2.
-  RadioParams w = realSizes(RadioParams::wifi());
+  comm::RadioParams w = realSizes(comm::RadioParams::wifi());
   w.timeout = 1e9;
-  RadioSimulator sim(w, {'a', 'b', 'c', 'd'}, 9);
+  comm::RadioSimulator sim(w, {'a', 'b', 'c', 'd'}, 9);
   const Eigen::Vector3d pos[4] = {{0, 0, 0}, {2, 0, 0}, {0, 3, 0}, {2, 3, 0}};
   for (int i = 0; i < 4; ++i) {
     sim.setRobotState(static_cast<char>('a' + i), pos[i], true);
@@ -133,14 +133,14 @@ TEST(RadioSimulator, OverlappingCommunicationsShareBandwidth) {
 // Payload completion time follows from the shared bandwidth: 300 kB at 2000 kB/s takes 2 steps alone and 3
 // steps when another communication overlaps.
 TEST(RadioSimulator, CompletionTimeFollowsBandwidth) {
-  const RadioParams p = certainLink();
-  RadioSimulator alone(p, {'a', 'b'}, 1);
+  const comm::RadioParams p = certainLink();
+  comm::RadioSimulator alone(p, {'a', 'b'}, 1);
   alone.setRobotState('a', {0, 0, 0}, true);
   alone.setRobotState('b', {5, 0, 0}, true);
   alone.offerKeyframe('a', 7, 300000);
-  std::vector<Transfer> got = stepUntil(alone, [&] { return alone.stats().delivered > 0; });
+  std::vector<comm::Transfer> got = stepUntil(alone, [&] { return alone.stats().delivered > 0; });
   ASSERT_EQ(got.size(), 1u);
-  EXPECT_EQ(got[0].outcome, Transfer::Outcome::Delivered);
+  EXPECT_EQ(got[0].outcome, comm::Transfer::Outcome::Delivered);
   EXPECT_EQ(got[0].keyframe, 7u);
   EXPECT_NEAR(got[0].end - got[0].start, 0.1, 1e-9);  // steps at start and start + 0.1
   EXPECT_TRUE(alone.wasDelivered('a', 'b', 7));
@@ -150,8 +150,8 @@ TEST(RadioSimulator, CompletionTimeFollowsBandwidth) {
 // A pair that moves apart while communicating times out T after its last progress (NoProgress mode), or T
 // after its start (TotalDuration mode).
 TEST(RadioSimulator, PairMovingApartTimesOut) {
-  RadioParams p = realSizes(RadioParams::wifi());
-  RadioSimulator sim(p, {'a', 'b'}, 21);
+  comm::RadioParams p = realSizes(comm::RadioParams::wifi());
+  comm::RadioSimulator sim(p, {'a', 'b'}, 21);
   sim.setRobotState('a', {0, 0, 0}, true);
   sim.setRobotState('b', {3, 0, 0}, true);
   sim.offerKeyframe('a', 0, kHuge);
@@ -164,7 +164,7 @@ TEST(RadioSimulator, PairMovingApartTimesOut) {
   const auto ended = stepUntil(
       sim, [&] { return sim.stats().timed_out > 0; }, 1000);
   ASSERT_EQ(ended.size(), 1u);
-  EXPECT_EQ(ended[0].outcome, Transfer::Outcome::TimedOut);
+  EXPECT_EQ(ended[0].outcome, comm::Transfer::Outcome::TimedOut);
   EXPECT_NEAR(ended[0].end, last_progress + p.timeout, 1e-6);
   EXPECT_LE(ended[0].end, moved_at + p.timeout);
   EXPECT_LT(ended[0].bytes_delivered, static_cast<double>(ended[0].bytes));
@@ -174,9 +174,9 @@ TEST(RadioSimulator, PairMovingApartTimesOut) {
       sim, [] { return false; }, 200);
   EXPECT_EQ(sim.stats().initiated, 1u);
 
-  RadioParams total = certainLink();
-  total.timeout_mode = RadioParams::TimeoutMode::TotalDuration;
-  RadioSimulator sim2(total, {'a', 'b'}, 21);
+  comm::RadioParams total = certainLink();
+  total.timeout_mode = comm::RadioParams::TimeoutMode::TotalDuration;
+  comm::RadioSimulator sim2(total, {'a', 'b'}, 21);
   sim2.setRobotState('a', {0, 0, 0}, true);
   sim2.setRobotState('b', {3, 0, 0}, true);
   sim2.offerKeyframe('a', 0, 10000000);  // 5 s of a clean link
@@ -188,7 +188,7 @@ TEST(RadioSimulator, PairMovingApartTimesOut) {
 
 // Robots are off until their first state; an off robot neither starts nor carries communications.
 TEST(RadioSimulator, OffRobotsDoNotCommunicate) {
-  RadioSimulator sim(certainLink(), {'a', 'b', 'c'}, 4);
+  comm::RadioSimulator sim(certainLink(), {'a', 'b', 'c'}, 4);
   sim.setRobotState('a', {0, 0, 0}, true);
   sim.setRobotState('b', {1, 0, 0}, false);
   for (char r : {'a', 'b', 'c'}) sim.offerKeyframe(r, 0, 1000);
@@ -207,7 +207,7 @@ TEST(RadioSimulator, OffRobotsDoNotCommunicate) {
 
 // The robot with more undelivered keyframes sends; every keyframe arrives exactly once.
 TEST(RadioSimulator, SenderChoiceAndCompleteDelivery) {
-  RadioSimulator sim(certainLink(), {'b', 'a'}, 8);
+  comm::RadioSimulator sim(certainLink(), {'b', 'a'}, 8);
   sim.setRobotState('a', {0, 0, 0}, true);
   sim.setRobotState('b', {1, 0, 0}, true);
   for (std::size_t k = 0; k < 5; ++k) sim.offerKeyframe('a', k, 1000 + k);
@@ -218,8 +218,8 @@ TEST(RadioSimulator, SenderChoiceAndCompleteDelivery) {
   stepUntil(
       sim, [] { return false; }, 100);
   std::set<std::pair<char, std::size_t>> seen;
-  for (const Transfer& x : sim.transferLog()) {
-    EXPECT_EQ(x.outcome, Transfer::Outcome::Delivered);
+  for (const comm::Transfer& x : sim.transferLog()) {
+    EXPECT_EQ(x.outcome, comm::Transfer::Outcome::Delivered);
     EXPECT_TRUE(seen.insert({x.sender, x.keyframe}).second) << "duplicate delivery";
   }
   EXPECT_EQ(seen.size(), 6u);
@@ -231,7 +231,7 @@ TEST(RadioSimulator, ScanSelectionIsUniform) {
   const int kKeyframes = 4, kSeeds = 800;
   std::vector<int> count(kKeyframes, 0);
   for (int seed = 0; seed < kSeeds; ++seed) {
-    RadioSimulator sim(certainLink(), {'a', 'b'}, seed);
+    comm::RadioSimulator sim(certainLink(), {'a', 'b'}, seed);
     sim.setRobotState('a', {0, 0, 0}, true);
     sim.setRobotState('b', {1, 0, 0}, true);
     for (int k = 0; k < kKeyframes; ++k) sim.offerKeyframe('a', k, 10);
@@ -247,8 +247,8 @@ TEST(RadioSimulator, ScanSelectionIsUniform) {
 
 // The paper's size model: s = f * S with f ~ N(0.653, 0.04), independent of the order of offers.
 TEST(RadioSimulator, PaperSizeModel) {
-  const RadioParams p = RadioParams::wifi();
-  RadioSimulator sim(p, {'a', 'b'}, 77), reversed(p, {'a', 'b'}, 77);
+  const comm::RadioParams p = comm::RadioParams::wifi();
+  comm::RadioSimulator sim(p, {'a', 'b'}, 77), reversed(p, {'a', 'b'}, 77);
   const std::size_t raw = 65536 * 12;
   const int n = 2000;
   for (int k = 0; k < n; ++k) sim.offerKeyframe('a', k, 0, raw);
@@ -267,8 +267,8 @@ TEST(RadioSimulator, PaperSizeModel) {
 }
 
 namespace {
-std::vector<Transfer> randomTeamRun(std::uint64_t seed) {
-  RadioSimulator sim(RadioParams::wifi(), {'a', 'b', 'c', 'd'}, seed);
+std::vector<comm::Transfer> randomTeamRun(std::uint64_t seed) {
+  comm::RadioSimulator sim(comm::RadioParams::wifi(), {'a', 'b', 'c', 'd'}, seed);
   for (int i = 0; i < 3000; ++i) {
     const double t = sim.nextStepTime();
     for (int r = 0; r < 4; ++r) {
@@ -280,7 +280,7 @@ std::vector<Transfer> randomTeamRun(std::uint64_t seed) {
   }
   return sim.transferLog();
 }
-bool sameLog(const std::vector<Transfer>& x, const std::vector<Transfer>& y) {
+bool sameLog(const std::vector<comm::Transfer>& x, const std::vector<comm::Transfer>& y) {
   if (x.size() != y.size()) return false;
   for (std::size_t i = 0; i < x.size(); ++i)
     if (x[i].sender != y[i].sender || x[i].receiver != y[i].receiver || x[i].keyframe != y[i].keyframe ||
@@ -296,8 +296,8 @@ TEST(RadioSimulator, DeterministicPerSeed) {
   EXPECT_TRUE(sameLog(a, b));
   EXPECT_FALSE(sameLog(a, c));
   // At most one active communication per robot at any time.
-  for (const Transfer& x : a)
-    for (const Transfer& y : a) {
+  for (const comm::Transfer& x : a)
+    for (const comm::Transfer& y : a) {
       if (&x == &y) continue;
       const bool share =
           x.sender == y.sender || x.sender == y.receiver || x.receiver == y.sender || x.receiver == y.receiver;
@@ -307,11 +307,11 @@ TEST(RadioSimulator, DeterministicPerSeed) {
 }
 
 TEST(RadioSimulator, BadInput) {
-  EXPECT_THROW(RadioSimulator(RadioParams::wifi(), {}, 1), std::invalid_argument);
-  RadioParams bad = RadioParams::wifi();
+  EXPECT_THROW(comm::RadioSimulator(comm::RadioParams::wifi(), {}, 1), std::invalid_argument);
+  comm::RadioParams bad = comm::RadioParams::wifi();
   bad.step = 0;
-  EXPECT_THROW(RadioSimulator(bad, {'a'}, 1), std::runtime_error);
-  RadioSimulator sim(RadioParams::wifi(), {'a', 'b'}, 1);
+  EXPECT_THROW(comm::RadioSimulator(bad, {'a'}, 1), std::runtime_error);
+  comm::RadioSimulator sim(comm::RadioParams::wifi(), {'a', 'b'}, 1);
   EXPECT_THROW(sim.setRobotState('z', {0, 0, 0}, true), std::invalid_argument);
   EXPECT_THROW(sim.offerKeyframe('z', 0, 10), std::invalid_argument);
   EXPECT_THROW(sim.setRobotState('a', {NAN, 0, 0}, true), std::invalid_argument);
@@ -322,7 +322,7 @@ TEST(RadioSimulator, BadInput) {
   sim.step(5.0);  // off the grid: the grid restarts there
   EXPECT_NEAR(sim.nextStepTime(), 5.1, 1e-12);
   // A single robot or a zero-byte payload does not crash.
-  RadioSimulator one(RadioParams::wifi(), {'a'}, 1);
+  comm::RadioSimulator one(comm::RadioParams::wifi(), {'a'}, 1);
   one.setRobotState('a', {0, 0, 0}, true);
   one.offerKeyframe('a', 0, 0);
   EXPECT_TRUE(one.step(0.0).empty());

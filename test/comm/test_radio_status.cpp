@@ -7,9 +7,9 @@
 using namespace cosmo;
 
 TEST(RadioStatus, CountsActiveTransfersAndWhatWaitsPerLink) {
-  RadioParams p = RadioParams::wifi();
+  comm::RadioParams p = comm::RadioParams::wifi();
   p.timeout = 1e9;
-  RadioSimulator sim(p, {'a', 'b'}, 7);
+  comm::RadioSimulator sim(p, {'a', 'b'}, 7);
   sim.setRobotState('a', {0, 0, 0}, true);
   sim.setRobotState('b', {1, 0, 0}, true);
   sim.offerKeyframe('a', 0, 1000000000000ULL);
@@ -27,8 +27,8 @@ TEST(RadioStatus, CountsActiveTransfersAndWhatWaitsPerLink) {
 }
 
 TEST(RadioStatus, LinkThroughputIsTheMeanRateSinceTheStartOverTheBandwidth) {
-  RadioParams p = RadioParams::wifi();
-  ActiveCommunication c;
+  comm::RadioParams p = comm::RadioParams::wifi();
+  comm::ActiveCommunication c;
   c.start = 10.0;
   c.bytes_delivered = 0.5 * p.bandwidthBps() * (4.0 + p.step);  // half the bandwidth over 4 s + one step
   EXPECT_NEAR(linkThroughputFraction(c, 14.0, p), 0.5, 1e-12);

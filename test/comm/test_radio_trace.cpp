@@ -16,9 +16,9 @@ namespace {
 
 const std::string kBlackout = std::string(COSMO_SOURCE_DIR) + "/test/comm/data/blackout_3robots.csv";
 
-RadioTrace parse(const std::string& text, const std::string& source = "x.csv") {
+comm::RadioTrace parse(const std::string& text, const std::string& source = "x.csv") {
   std::istringstream in(text);
-  return RadioTrace::parse(in, source);
+  return comm::RadioTrace::parse(in, source);
 }
 
 std::string errorOf(const std::string& text) {
@@ -31,7 +31,7 @@ std::string errorOf(const std::string& text) {
 using Positions = std::function<Eigen::Vector3d(char robot, double t)>;
 
 /// Runs `sim` from 0 to `seconds`: robots placed by `where`, each offering a keyframe of 150-300 kB every 2 s.
-void run(RadioSimulator& sim, double seconds, const Positions& where) {
+void run(comm::RadioSimulator& sim, double seconds, const Positions& where) {
   std::map<char, std::size_t> next;
   for (double t = sim.nextStepTime(); t <= seconds + 1e-9; t = sim.nextStepTime()) {
     for (char r : sim.robots()) {
@@ -52,9 +52,9 @@ Eigen::Vector3d crossing(char r, double t) {
   return {25.0 * std::cos(0.05 * t), 25.0 * std::sin(0.05 * t), 0.0};
 }
 
-std::string withoutLink(const std::vector<Transfer>& transfers) {
-  std::vector<Transfer> copy = transfers;
-  for (Transfer& x : copy) x.link = Transfer::Link::Distance;
+std::string withoutLink(const std::vector<comm::Transfer>& transfers) {
+  std::vector<comm::Transfer> copy = transfers;
+  for (comm::Transfer& x : copy) x.link = comm::Transfer::Link::Distance;
   std::ostringstream out;
   writeTransferCsv(out, copy);
   return out.str();
@@ -63,7 +63,7 @@ std::string withoutLink(const std::vector<Transfer>& transfers) {
 }  // namespace
 
 TEST(RadioTrace, ParsesWindowsAndFindsTheOneContainingATime) {
-  const RadioTrace t = parse(
+  const comm::RadioTrace t = parse(
       "# a comment\n\nrobot_a,robot_b,start,duration,throughput_Bps,latency,connected\n"
       "b,a,0,1.5,1000,0.01,1\n a , b , 1.5 , 0.5 , 0 , 0 , 0 \nb,c,3,1,2e6,0,1\n");
   EXPECT_EQ(t.windowCount(), 3u);
@@ -79,7 +79,7 @@ TEST(RadioTrace, ParsesWindowsAndFindsTheOneContainingATime) {
   std::ostringstream out;
   t.write(out);
   EXPECT_EQ(parse(out.str()).windows().size(), 3u);
-  EXPECT_NO_THROW(RadioTrace::read(kBlackout));
+  EXPECT_NO_THROW(comm::RadioTrace::read(kBlackout));
 }
 
 TEST(RadioTrace, BadRowsStopWithFileAndLine) {
@@ -98,10 +98,10 @@ TEST(RadioTrace, BadRowsStopWithFileAndLine) {
   EXPECT_EQ(errorOf("a,b,0,1,5,0,1\n").rfind("x.csv:1: expected the header", 0), 0u);
   EXPECT_EQ(errorOf("# nothing\n"), "x.csv: no header line 'robot_a,robot_b,start,duration,throughput_Bps,latency,connected'");
 
-  RadioParams p = RadioParams::wifi();
-  p.trace = std::make_shared<const RadioTrace>(parse(h + "a,b,0,1,5,0,1\n\nb,d,0,1,5,0,1\n"));
+  comm::RadioParams p = comm::RadioParams::wifi();
+  p.trace = std::make_shared<const comm::RadioTrace>(parse(h + "a,b,0,1,5,0,1\n\nb,d,0,1,5,0,1\n"));
   try {
-    RadioSimulator sim(p, {'a', 'b', 'c'}, 1);
+    comm::RadioSimulator sim(p, {'a', 'b', 'c'}, 1);
     FAIL() << "a robot outside the team was accepted";
   } catch (const std::runtime_error& e) {
     EXPECT_EQ(std::string(e.what()), "x.csv:4: robot 'd' is not in the team (a, b, c)");
@@ -109,35 +109,35 @@ TEST(RadioTrace, BadRowsStopWithFileAndLine) {
 }
 
 TEST(RadioTrace, ARecordedRunReplaysToTheSameTransfers) {
-  for (const RadioParams& model : {RadioParams::wifi(), RadioParams::proRadio()})
+  for (const comm::RadioParams& model : {comm::RadioParams::wifi(), comm::RadioParams::proRadio()})
     for (std::uint64_t seed : {1u, 2u, 3u}) {
-      RadioSimulator original(model, {'a', 'b', 'c'}, seed);
+      comm::RadioSimulator original(model, {'a', 'b', 'c'}, seed);
       original.recordLinks(true);
       run(original, 90.0, crossing);
       ASSERT_GT(original.stats().delivered, 5u);
       std::ostringstream text;
-      RadioTrace::fromRecords(original.linkRecords(), model.step).write(text);
+      comm::RadioTrace::fromRecords(original.linkRecords(), model.step).write(text);
 
-      RadioParams replay = model;
-      replay.trace = std::make_shared<const RadioTrace>(parse(text.str(), "recorded.csv"));
-      RadioSimulator again(replay, {'a', 'b', 'c'}, seed);
+      comm::RadioParams replay = model;
+      replay.trace = std::make_shared<const comm::RadioTrace>(parse(text.str(), "recorded.csv"));
+      comm::RadioSimulator again(replay, {'a', 'b', 'c'}, seed);
       run(again, 90.0, crossing);
       EXPECT_EQ(withoutLink(again.transferLog()), withoutLink(original.transferLog())) << "seed " << seed;
       EXPECT_EQ(again.stats().fallback_samples, 0u);  // every sample from the trace
       EXPECT_EQ(again.stats().trace_samples, original.linkRecords().size());
-      for (const Transfer& x : again.transferLog()) EXPECT_EQ(x.link, Transfer::Link::Trace);
+      for (const comm::Transfer& x : again.transferLog()) EXPECT_EQ(x.link, comm::Transfer::Link::Trace);
       EXPECT_LT(replay.trace->windowCount(), original.linkRecords().size());  // steps merged into windows
     }
 }
 
 TEST(RadioTrace, NoDeliveriesInABlackoutAndTheDistanceModelAfterTheTrace) {
-  RadioParams p = RadioParams::wifi();
-  p.trace = std::make_shared<const RadioTrace>(RadioTrace::read(kBlackout));
-  RadioSimulator sim(p, {'a', 'b', 'c'}, 5);
+  comm::RadioParams p = comm::RadioParams::wifi();
+  p.trace = std::make_shared<const comm::RadioTrace>(comm::RadioTrace::read(kBlackout));
+  comm::RadioSimulator sim(p, {'a', 'b', 'c'}, 5);
   run(sim, 75.0, [](char r, double) { return Eigen::Vector3d(5.0 * (r - 'a'), 0.0, 0.0); });
   std::size_t before = 0, after = 0, late = 0;
-  for (const Transfer& x : sim.transferLog()) {
-    if (x.outcome != Transfer::Outcome::Delivered) continue;
+  for (const comm::Transfer& x : sim.transferLog()) {
+    if (x.outcome != comm::Transfer::Outcome::Delivered) continue;
     const double mid = x.received - 0.5 * p.step;  // the step's interval (received - 0.1, received]
     EXPECT_FALSE(mid >= 20.0 && mid < 30.0) << x.sender << "->" << x.receiver << " received at " << x.received;
     EXPECT_FALSE(x.end - 0.5 * p.step >= 20.0 && x.end - 0.5 * p.step < 30.0);  // no last byte sent in it
@@ -156,15 +156,15 @@ TEST(RadioTrace, NoDeliveriesInABlackoutAndTheDistanceModelAfterTheTrace) {
 }
 
 TEST(RadioTrace, LatencyDelaysTheReceiverNotTheLink) {
-  RadioParams p = RadioParams::wifi();
-  p.trace = std::make_shared<const RadioTrace>(
+  comm::RadioParams p = comm::RadioParams::wifi();
+  p.trace = std::make_shared<const comm::RadioTrace>(
       parse("robot_a,robot_b,start,duration,throughput_Bps,latency,connected\na,b,0,100,1000000,0.35,1\n"));
-  RadioSimulator sim(p, {'a', 'b'}, 2);
+  comm::RadioSimulator sim(p, {'a', 'b'}, 2);
   run(sim, 40.0, [](char r, double) { return Eigen::Vector3d(r == 'a' ? 0.0 : 500.0, 0.0, 0.0); });  // beyond d_init
   std::size_t delivered = 0;
   double last_end = -1.0;
-  for (const Transfer& x : sim.transferLog()) {
-    ASSERT_EQ(x.outcome, Transfer::Outcome::Delivered);
+  for (const comm::Transfer& x : sim.transferLog()) {
+    ASSERT_EQ(x.outcome, comm::Transfer::Outcome::Delivered);
     EXPECT_NEAR(x.received, x.end + 0.4, 1e-9);  // the first step at or after end + 0.35
     EXPECT_GE(x.end, last_end);
     last_end = x.end;

@@ -29,9 +29,9 @@ Scan syntheticScan(int rows, int cols) {
 TEST(ScanCompression, RoundTripIsBitExact) {
   Scan s = syntheticScan(16, 256);
   s.points.emplace_back(-0.0f, 1e-30f, 3.4e38f);
-  const auto bytes = compressScan(s);
-  EXPECT_LT(bytes.size(), rawPayloadBytes(s));
-  const Scan r = decompressScan(bytes);
+  const auto bytes = comm::compressScan(s);
+  EXPECT_LT(bytes.size(), comm::rawPayloadBytes(s));
+  const Scan r = comm::decompressScan(bytes);
   ASSERT_EQ(r.size(), s.size());
   for (std::size_t i = 0; i < s.size(); ++i)
     for (int k = 0; k < 3; ++k) EXPECT_EQ(std::signbit(r.points[i][k]), std::signbit(s.points[i][k]));
@@ -39,18 +39,18 @@ TEST(ScanCompression, RoundTripIsBitExact) {
 }
 
 TEST(ScanCompression, EmptyScanAndGarbage) {
-  const auto bytes = compressScan(Scan{});
-  EXPECT_TRUE(decompressScan(bytes).empty());
-  EXPECT_THROW(decompressScan({}), std::runtime_error);
-  EXPECT_THROW(decompressScan({1, 2, 3, 4, 5, 6, 7, 8}), std::runtime_error);
-  auto truncated = compressScan(syntheticScan(4, 64));
+  const auto bytes = comm::compressScan(Scan{});
+  EXPECT_TRUE(comm::decompressScan(bytes).empty());
+  EXPECT_THROW(comm::decompressScan({}), std::runtime_error);
+  EXPECT_THROW(comm::decompressScan({1, 2, 3, 4, 5, 6, 7, 8}), std::runtime_error);
+  auto truncated = comm::compressScan(syntheticScan(4, 64));
   truncated.resize(truncated.size() / 2);
-  EXPECT_THROW(decompressScan(truncated), std::runtime_error);
+  EXPECT_THROW(comm::decompressScan(truncated), std::runtime_error);
 }
 
 TEST(ScanCompression, DeterministicBytes) {
   const Scan s = syntheticScan(8, 128);
-  EXPECT_EQ(compressScan(s), compressScan(s));
+  EXPECT_EQ(comm::compressScan(s), comm::compressScan(s));
 }
 
 // Real scans: the ratio liblzma achieves lies in a plausible band around the paper's 0.653 (the figures per
@@ -60,11 +60,11 @@ TEST(ScanCompression, RealScansRoundTripAndRatio) {
   if (!file) GTEST_SKIP() << "../shared/data/scan_snippets not available";
   const Scan s = readScanFile(*file);
   ASSERT_GT(s.size(), 1000u);
-  const auto bytes = compressScan(s);
-  const double ratio = static_cast<double>(bytes.size()) / rawPayloadBytes(s);
+  const auto bytes = comm::compressScan(s);
+  const double ratio = static_cast<double>(bytes.size()) / comm::rawPayloadBytes(s);
   EXPECT_GT(ratio, 0.4);
   EXPECT_LT(ratio, 0.95);
-  const Scan r = decompressScan(bytes);
+  const Scan r = comm::decompressScan(bytes);
   ASSERT_EQ(r.size(), s.size());
   for (std::size_t i = 0; i < s.size(); i += 97)
     EXPECT_EQ(std::memcmp(r.points[i].data(), s.points[i].data(), 12), 0) << i;

@@ -11,9 +11,9 @@
 using namespace cosmo;
 
 TEST(TransferLog, CsvAndSummaryFiles) {
-  RadioParams p = RadioParams::wifi();
-  p.size_model = RadioParams::SizeModel::RealCompressed;
-  RadioSimulator sim(p, {'a', 'b'}, 1);
+  comm::RadioParams p = comm::RadioParams::wifi();
+  p.size_model = comm::RadioParams::SizeModel::RealCompressed;
+  comm::RadioSimulator sim(p, {'a', 'b'}, 1);
   sim.setRobotState('a', {0, 0, 0}, true);
   sim.setRobotState('b', {2, 0, 0}, true);
   sim.offerKeyframe('a', 3, 1000);

@@ -41,7 +41,7 @@ struct SyntheticKeyframe {
 };
 
 struct SyntheticLoopClosure {
-  LoopClosureMeasurement lc;
+  dataset::LoopClosureMeasurement lc;
   bool injected_outlier = false;
   std::size_t expected_entry = 0;  // in the owner's measurements
 };
@@ -140,7 +140,7 @@ inline SyntheticTeam makeTeam(const Matrix6& odo_cov, const Matrix6& lc_cov, std
 }
 
 /// Feed a team to a recorder (keyframes, then loop closures, in the given order).
-inline void feed(DatasetRecorder& rec, const SyntheticTeam& team, bool with_reference = true) {
+inline void feed(dataset::DatasetRecorder& rec, const SyntheticTeam& team, bool with_reference = true) {
   for (const auto& k : team.keyframes)
     rec.addKeyframe(k.robot, k.index, k.stamp, k.odometry,
                     with_reference ? std::optional<Pose3>(k.truth) : std::nullopt);

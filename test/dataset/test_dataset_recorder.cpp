@@ -24,8 +24,8 @@ namespace {
 const Matrix6 kOdoCov = test::diagonalCovariance(0.002, 0.02);
 const Matrix6 kLcCov = test::diagonalCovariance(0.004, 0.05);
 
-NoiseModels models() {
-  NoiseModels m;
+dataset::NoiseModels models() {
+  dataset::NoiseModels m;
   m.odometry = kOdoCov;
   m.loop_closure = kLcCov;
   m.environment = "test";
@@ -42,8 +42,8 @@ class RecorderTest : public ::testing::Test {
     ds = rec.build(&report);
   }
   test::SyntheticTeam team;
-  DatasetRecorder rec{"synthetic_team", {'a', 'b'}, models()};
-  BuildReport report;
+  dataset::DatasetRecorder rec{"synthetic_team", {'a', 'b'}, models()};
+  dataset::BuildReport report;
   jrl::Dataset ds;
 };
 
@@ -63,7 +63,7 @@ TEST_F(RecorderTest, PriorAndOdometryEntries) {
     EXPECT_TRUE(prior.isPriorPose3());
     EXPECT_EQ(prior.keys, std::vector<jrl::Key>{symbol(r, 0)});
     EXPECT_LT(poseDistance(prior.pose3(), team.truth[r][0]), 1e-12);
-    EXPECT_TRUE(prior.covarianceMatrix().isApprox(priorCovariance(), 0.0));
+    EXPECT_TRUE(prior.covarianceMatrix().isApprox(dataset::priorCovariance(), 0.0));
     EXPECT_DOUBLE_EQ(prior.covarianceMatrix()(0, 0), 1e-8);
     EXPECT_DOUBLE_EQ(prior.covarianceMatrix()(5, 5), 1e-6);
     // Entry i: odometry (i-1) -> i first, at keyframe i's stamp.
@@ -146,8 +146,8 @@ TEST_F(RecorderTest, PotentialOutliersAreEveryLoopClosureAndLabelsFollowTheRule)
         if (odometry) continue;
         const Pose3 truth = jrl::pose3At(ds.groundtruth->at(r), f.keys[0]).inverse(Eigen::Isometry) *
                             jrl::pose3At(ds.groundtruth->at(r), f.keys[1]);
-        const double d2 = chi2Distance(f.pose3(), truth, f.covarianceMatrix());
-        EXPECT_EQ(out.count({e, j}) == 1, std::sqrt(d2) > kChi2Critical95Dof6) << r << " " << e << "," << j;
+        const double d2 = dataset::chi2Distance(f.pose3(), truth, f.covarianceMatrix());
+        EXPECT_EQ(out.count({e, j}) == 1, std::sqrt(d2) > dataset::kChi2Critical95Dof6) << r << " " << e << "," << j;
       }
     }
     for (const auto& id : out) EXPECT_TRUE(pot.count(id));
@@ -204,7 +204,7 @@ TEST_F(RecorderTest, DeterministicWhateverTheArrivalOrder) {
   std::mt19937_64 rng(3);
   std::shuffle(shuffled.keyframes.begin(), shuffled.keyframes.end(), rng);
   std::shuffle(shuffled.closures.begin(), shuffled.closures.end(), rng);
-  DatasetRecorder other("synthetic_team", {'a', 'b'}, models());
+  dataset::DatasetRecorder other("synthetic_team", {'a', 'b'}, models());
   test::feed(other, shuffled);
   EXPECT_EQ(jrl::dumpJrl(other.build()), bytes);
   EXPECT_EQ(jrl::dumpJrl(rec.build()), bytes);  // build() does not change the recorder
@@ -214,23 +214,23 @@ TEST_F(RecorderTest, WritesAtomicallyAndParsesBack) {
   const auto dir = std::filesystem::temp_directory_path() / ("cosmo_recorder_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "synthetic_team.jrl").string();
-  const BuildReport written = rec.write(path);
+  const dataset::BuildReport written = rec.write(path);
   EXPECT_TRUE(written.labelled);
   const jrl::Dataset back = jrl::readJrl(path);
   EXPECT_EQ(jrl::dumpJrl(back), jrl::dumpJrl(ds));
-  std::ifstream in(DatasetRecorder::metadataPath(path));
+  std::ifstream in(dataset::DatasetRecorder::metadataPath(path));
   std::stringstream meta;
   meta << in.rdbuf();
   EXPECT_NE(meta.str().find("outlier_labels: true"), std::string::npos);
   EXPECT_NE(meta.str().find("outlier_rule: fidelity"), std::string::npos);
-  const YAML::Node yaml = YAML::LoadFile(DatasetRecorder::metadataPath(path));
+  const YAML::Node yaml = YAML::LoadFile(dataset::DatasetRecorder::metadataPath(path));
   EXPECT_TRUE(yaml["outlier_labels"].as<bool>());
   EXPECT_EQ(yaml["outliers"].as<std::size_t>(), written.outliers);
   EXPECT_EQ(yaml["name"].as<std::string>(), "synthetic_team");
-  std::ifstream stats_in(DatasetRecorder::statsPath(path));
+  std::ifstream stats_in(dataset::DatasetRecorder::statsPath(path));
   std::stringstream stats;
   stats << stats_in.rdbuf();
-  EXPECT_EQ(DatasetRecorder::statsPath(path), (dir / "synthetic_team.stats.txt").string());
+  EXPECT_EQ(dataset::DatasetRecorder::statsPath(path), (dir / "synthetic_team.stats.txt").string());
   // The stats table, then the noise models the labels were made with (file and provenance).
   EXPECT_EQ(stats.str(), jrl::formatStats(jrl::computeStats(ds)) + "\nnoise models: (built in code) (test)\n");
   EXPECT_EQ(yaml["noise_models"]["environment"].as<std::string>(), "test");
@@ -243,9 +243,9 @@ TEST_F(RecorderTest, WritesAtomicallyAndParsesBack) {
 }
 
 TEST_F(RecorderTest, SquaredRuleLabelsMore) {
-  DatasetRecorder squared("synthetic_team", {'a', 'b'}, models(), OutlierRule::Squared);
+  dataset::DatasetRecorder squared("synthetic_team", {'a', 'b'}, models(), dataset::OutlierRule::Squared);
   test::feed(squared, team);
-  BuildReport r;
+  dataset::BuildReport r;
   const jrl::Dataset d = squared.build(&r);
   EXPECT_GE(r.outliers, report.outliers);
   for (const char robot : d.robots)
@@ -255,9 +255,9 @@ TEST_F(RecorderTest, SquaredRuleLabelsMore) {
 
 TEST(Recorder, WithoutReferencePosesNoLabels) {
   const auto team = test::makeTeam(kOdoCov, kLcCov, 7);
-  DatasetRecorder rec("no_reference", {'a', 'b'}, models());
+  dataset::DatasetRecorder rec("no_reference", {'a', 'b'}, models());
   test::feed(rec, team, false);
-  BuildReport report;
+  dataset::BuildReport report;
   const jrl::Dataset ds = rec.build(&report);
   EXPECT_FALSE(report.labelled);
   EXPECT_FALSE(ds.groundtruth.has_value());
@@ -272,7 +272,7 @@ TEST(Recorder, WithoutReferencePosesNoLabels) {
 
 TEST(Recorder, GapsAndDanglingClosuresWaitForTheirKeyframes) {
   const auto team = test::makeTeam(kOdoCov, kLcCov, 7);
-  DatasetRecorder rec("gap", {'a', 'b', 'c'}, models());
+  dataset::DatasetRecorder rec("gap", {'a', 'b', 'c'}, models());
   const test::SyntheticKeyframe* held = nullptr;
   for (const auto& k : team.keyframes) {
     if (k.robot == 'b' && k.index == 10) {
@@ -282,7 +282,7 @@ TEST(Recorder, GapsAndDanglingClosuresWaitForTheirKeyframes) {
     rec.addKeyframe(k.robot, k.index, k.stamp, k.odometry, k.truth);
   }
   for (const auto& c : team.closures) rec.addLoopClosure(c.lc);
-  BuildReport report;
+  dataset::BuildReport report;
   jrl::Dataset ds = rec.build(&report);
   EXPECT_EQ(ds.robots, (std::vector<char>{'a', 'b'}));  // c never sent anything
   EXPECT_EQ(report.robots_without_keyframes, std::vector<char>{'c'});
@@ -300,7 +300,7 @@ TEST(Recorder, GapsAndDanglingClosuresWaitForTheirKeyframes) {
 }
 
 TEST(Recorder, RefusesBadInputWithoutLosingState) {
-  DatasetRecorder rec("bad", {'a', 'b'}, models());
+  dataset::DatasetRecorder rec("bad", {'a', 'b'}, models());
   const Pose3 step = makePose(1, 0, 0, 0, 0, 0);
   rec.addKeyframe('a', 0, 100, Pose3::Identity(), Pose3::Identity());
   rec.addKeyframe('a', 1, 200, step, step);
@@ -311,7 +311,7 @@ TEST(Recorder, RefusesBadInputWithoutLosingState) {
   nan.translation().x() = std::nan("");
   EXPECT_THROW(rec.addKeyframe('a', 2, 300, nan, std::nullopt), std::invalid_argument);
   rec.addKeyframe('a', 2, 300, step, nan);  // a NaN reference is "no reference"
-  LoopClosureMeasurement lc{'b', 250, symbol('a', 2), symbol('a', 0), step};
+  dataset::LoopClosureMeasurement lc{'b', 250, symbol('a', 2), symbol('a', 0), step};
   EXPECT_THROW(rec.addLoopClosure(lc), std::invalid_argument);  // owner b owns neither key
   lc.owner = 'a';
   lc.key2 = lc.key1;
@@ -322,7 +322,7 @@ TEST(Recorder, RefusesBadInputWithoutLosingState) {
   EXPECT_EQ(rec.counts().rejected, 7u);
   EXPECT_EQ(rec.counts().keyframes.at('a'), 3u);
   EXPECT_EQ(rec.counts().loop_closures, 1u);
-  BuildReport report;
+  dataset::BuildReport report;
   const jrl::Dataset ds = rec.build(&report);
   EXPECT_FALSE(report.labelled);  // a2 has no usable reference
   EXPECT_EQ(ds.robots, std::vector<char>{'a'});
@@ -331,8 +331,8 @@ TEST(Recorder, RefusesBadInputWithoutLosingState) {
 }
 
 TEST(Recorder, EmptyRecorderBuilds) {
-  DatasetRecorder rec("empty", {'a'}, NoiseModels{});
-  BuildReport report;
+  dataset::DatasetRecorder rec("empty", {'a'}, dataset::NoiseModels{});
+  dataset::BuildReport report;
   const jrl::Dataset ds = rec.build(&report);
   EXPECT_TRUE(ds.robots.empty());
   EXPECT_NO_THROW(jrl::dumpJrl(ds));

@@ -41,7 +41,7 @@ void expectWithinSamplingError(const Matrix6& est, const Matrix6& truth, std::si
 // them gross errors; written as a JRL (what cosmo_noise_models reads).
 jrl::Dataset singleRobotRun(const Matrix6& q_odo, const Matrix6& q_lc, std::size_t n, std::uint64_t seed) {
   test::TangentSampler sampler(seed);
-  DatasetRecorder rec("single", {'a'}, NoiseModels{});
+  dataset::DatasetRecorder rec("single", {'a'}, dataset::NoiseModels{});
   std::vector<Pose3> truth;
   for (std::size_t i = 0; i < n; ++i) {
     const double phase = 2 * M_PI * static_cast<double>(i) / 40.0;
@@ -60,17 +60,17 @@ jrl::Dataset singleRobotRun(const Matrix6& q_odo, const Matrix6& q_lc, std::size
 }  // namespace
 
 TEST(NoiseModels, DefaultsAreValidAndRoundTripThroughYaml) {
-  const NoiseModels d;
-  EXPECT_NO_THROW(checkCovariance(d.odometry, "odometry"));
-  EXPECT_NO_THROW(checkCovariance(d.loop_closure, "loop_closure"));
+  const dataset::NoiseModels d;
+  EXPECT_NO_THROW(dataset::checkCovariance(d.odometry, "odometry"));
+  EXPECT_NO_THROW(dataset::checkCovariance(d.loop_closure, "loop_closure"));
   EXPECT_DOUBLE_EQ(d.odometry(0, 0), 8.664332784342755e-05);  // the reference file's stored value
   const auto dir = tempDir();
   const std::string path = (dir / "nm.yaml").string();
-  NoiseModels m;
+  dataset::NoiseModels m;
   m.environment = "unit \"test\"";
   m.odometry(1, 2) = m.odometry(2, 1) = 1.0 / 3.0 * 1e-5;
   m.save(path, "line one\nline two");
-  const NoiseModels back = NoiseModels::load(path);
+  const dataset::NoiseModels back = dataset::NoiseModels::load(path);
   EXPECT_EQ(back.odometry, m.odometry);  // bit for bit
   EXPECT_EQ(back.loop_closure, m.loop_closure);
   EXPECT_EQ(back.environment, m.environment);
@@ -78,7 +78,7 @@ TEST(NoiseModels, DefaultsAreValidAndRoundTripThroughYaml) {
 }
 
 TEST(NoiseModels, ReadsFlatListsAndSigmas) {
-  const NoiseModels m = NoiseModels::fromConfig(parse(
+  const dataset::NoiseModels m = dataset::NoiseModels::fromConfig(parse(
       "odometry:\n  sigmas: [0.01, 0.01, 0.01, 0.1, 0.1, 0.1]\n"
       "loop_closure:\n  covariance: [1,0,0,0,0,0, 0,1,0,0,0,0, 0,0,1,0,0,0, 0,0,0,2,0,0, 0,0,0,0,2,0, 0,0,0,0,0,2]\n"));
   EXPECT_DOUBLE_EQ(m.odometry(0, 0), 1e-4);
@@ -86,15 +86,16 @@ TEST(NoiseModels, ReadsFlatListsAndSigmas) {
   EXPECT_EQ(m.odometry(0, 1), 0.0);
   EXPECT_EQ(m.loop_closure(3, 3), 2.0);
   // Both sections are required: nothing is filled in from elsewhere.
-  EXPECT_THROW(NoiseModels::fromConfig(parse("environment: x\n")), std::runtime_error);
-  EXPECT_THROW(NoiseModels::fromConfig(parse("odometry:\n  sigmas: [1, 1, 1, 1, 1, 1]\n")), std::runtime_error);
+  EXPECT_THROW(dataset::NoiseModels::fromConfig(parse("environment: x\n")), std::runtime_error);
+  EXPECT_THROW(dataset::NoiseModels::fromConfig(parse("odometry:\n  sigmas: [1, 1, 1, 1, 1, 1]\n")),
+               std::runtime_error);
 }
 
 TEST(NoiseModels, ProvenanceAndEstimationRecordRoundTrip) {
-  NoiseModels m;
+  dataset::NoiseModels m;
   m.environment = "env";
   m.provenance = "from \"somewhere\"";
-  NoiseModelRecord r;
+  dataset::NoiseModelRecord r;
   r.trial = "night_04";
   r.odometry_factors = 238;
   r.loop_closures = 119;
@@ -102,7 +103,7 @@ TEST(NoiseModels, ProvenanceAndEstimationRecordRoundTrip) {
   r.max_translation_error = 0.4;
   r.max_rotation_error = 0.03;
   m.estimated_from = r;
-  const NoiseModels back = NoiseModels::fromConfig(parse(m.toYaml("header")));
+  const dataset::NoiseModels back = dataset::NoiseModels::fromConfig(parse(m.toYaml("header")));
   EXPECT_EQ(back.provenance, m.provenance);
   ASSERT_TRUE(back.estimated_from.has_value());
   EXPECT_EQ(back.estimated_from->trial, "night_04");
@@ -115,15 +116,15 @@ TEST(NoiseModels, ProvenanceAndEstimationRecordRoundTrip) {
       << back.describe();
   // An environment whose models are unknown says so instead of handing out numbers.
   try {
-    NoiseModels::fromConfig(parse("environment: far\nunknown: \"not measured\"\n"));
+    dataset::NoiseModels::fromConfig(parse("environment: far\nunknown: \"not measured\"\n"));
     FAIL() << "no error";
-  } catch (const NoiseModelsUnknown& e) { EXPECT_EQ(e.reason, "not measured"); }
+  } catch (const dataset::NoiseModelsUnknown& e) { EXPECT_EQ(e.reason, "not measured"); }
 }
 
 TEST(NoiseModels, BadConfigsNameFileAndKey) {
   auto message = [](const std::string& text) {
     try {
-      NoiseModels::fromConfig(parse(text));
+      dataset::NoiseModels::fromConfig(parse(text));
     } catch (const std::runtime_error& e) { return std::string(e.what()); }
     return std::string("no error");
   };
@@ -139,23 +140,24 @@ TEST(NoiseModels, BadConfigsNameFileAndKey) {
   std::string asym =
       "odometry:\n  covariance: [1,0.5,0,0,0,0, 0,1,0,0,0,0, 0,0,1,0,0,0, 0,0,0,1,0,0, 0,0,0,0,1,0, 0,0,0,0,0,1]\n";
   EXPECT_NE(message(asym).find("not symmetric"), std::string::npos);
-  EXPECT_THROW(NoiseModels::load("/nonexistent/noise.yaml"), std::runtime_error);
+  EXPECT_THROW(dataset::NoiseModels::load("/nonexistent/noise.yaml"), std::runtime_error);
 }
 
 TEST(NoiseModels, EnvironmentConfigsLoad) {
   for (const char* env : {"synthetic", "ntu", "kth", "tuhh"}) {
     const std::string path = std::string(COSMO_SOURCE_DIR) + "/config/noise_models/" + env + ".yaml";
-    NoiseModels m;
-    ASSERT_NO_THROW(m = NoiseModels::load(path)) << path;
+    dataset::NoiseModels m;
+    ASSERT_NO_THROW(m = dataset::NoiseModels::load(path)) << path;
     EXPECT_EQ(m.environment, env);
   }
   // tuhh = the covariances stored in the reference COSMO-Bench file.
-  const NoiseModels tuhh = NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/tuhh.yaml");
-  EXPECT_EQ(tuhh.odometry, NoiseModels::defaultOdometry());
-  EXPECT_EQ(tuhh.loop_closure, NoiseModels::defaultLoopClosure());
+  const dataset::NoiseModels tuhh =
+      dataset::NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/tuhh.yaml");
+  EXPECT_EQ(tuhh.odometry, dataset::NoiseModels::defaultOdometry());
+  EXPECT_EQ(tuhh.loop_closure, dataset::NoiseModels::defaultLoopClosure());
   // CU Boulder's are not known: its file says so (no copy of another environment's).
-  EXPECT_THROW(NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/cu_boulder.yaml"),
-               NoiseModelsUnknown);
+  EXPECT_THROW(dataset::NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/cu_boulder.yaml"),
+               dataset::NoiseModelsUnknown);
 }
 
 TEST(NoiseModels, ShippedModelsAreTheReleasedCosmoBenchCovariances) {
@@ -163,7 +165,8 @@ TEST(NoiseModels, ShippedModelsAreTheReleasedCosmoBenchCovariances) {
   if (!json_path) GTEST_SKIP() << "../shared/ref/cosmo_noise_models.json absent";
   const nlohmann::json ref = nlohmann::json::parse(std::ifstream(*json_path));
   for (const char* env : {"ntu", "kth", "tuhh"}) {
-    const NoiseModels m = NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/" + env + ".yaml");
+    const dataset::NoiseModels m =
+        dataset::NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/" + env + ".yaml");
     EXPECT_FALSE(m.provenance.empty()) << env;
     for (const auto& [key, cov] :
          {std::pair{"odometry_covariance", m.odometry}, std::pair{"loop_closure_covariance", m.loop_closure}}) {
@@ -173,19 +176,19 @@ TEST(NoiseModels, ShippedModelsAreTheReleasedCosmoBenchCovariances) {
     }
   }
   // Different environments, different models.
-  EXPECT_NE(NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/ntu.yaml").loop_closure,
-            NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/kth.yaml").loop_closure);
+  EXPECT_NE(dataset::NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/ntu.yaml").loop_closure,
+            dataset::NoiseModels::load(std::string(COSMO_SOURCE_DIR) + "/config/noise_models/kth.yaml").loop_closure);
 }
 
 TEST(NoiseModelEstimation, RecoversKnownCovarianceFromASyntheticRun) {
   // Dense "true" covariances: the reference file's (realistic magnitudes and correlations).
-  const Matrix6 q_odo = NoiseModels::defaultOdometry(), q_lc = NoiseModels::defaultLoopClosure();
+  const Matrix6 q_odo = dataset::NoiseModels::defaultOdometry(), q_lc = dataset::NoiseModels::defaultLoopClosure();
   const std::size_t n = 4000;
   const jrl::Dataset run = jrl::parseJrl(jrl::dumpJrl(singleRobotRun(q_odo, q_lc, n, 11)));
-  const MeasurementSets sets = collectMeasurements(run);
+  const dataset::MeasurementSets sets = dataset::collectMeasurements(run);
   ASSERT_EQ(sets.odometry.size(), n - 1);
   ASSERT_EQ(sets.loop_closures.size(), n - 40);
-  const NoiseModelEstimate est = estimateNoiseModels(sets.odometry, sets.loop_closures);
+  const dataset::NoiseModelEstimate est = estimateNoiseModels(sets.odometry, sets.loop_closures);
   EXPECT_EQ(est.odometry.used, n - 1);
   EXPECT_EQ(est.odometry.rejected, 0u);
   const std::size_t gross = (n - 40) / 10;  // i % 10 == 0 for i in [40, n)
@@ -196,14 +199,14 @@ TEST(NoiseModelEstimation, RecoversKnownCovarianceFromASyntheticRun) {
   // Relative error of the variances: a few percent at this sample size.
   for (int i = 0; i < 6; ++i) EXPECT_NEAR(est.models.loop_closure(i, i) / q_lc(i, i), 1.0, 0.1) << i;
   // The centred variant is nearly the same here (zero-mean noise).
-  NoiseModelEstimationParams centred;
+  dataset::NoiseModelEstimationParams centred;
   centred.subtract_mean = true;
-  const NoiseModelEstimate c = estimateNoiseModels(sets.odometry, sets.loop_closures, centred);
+  const dataset::NoiseModelEstimate c = estimateNoiseModels(sets.odometry, sets.loop_closures, centred);
   EXPECT_LT((c.models.odometry - est.models.odometry).cwiseAbs().maxCoeff(), 0.01 * q_odo.cwiseAbs().maxCoeff());
 }
 
 TEST(NoiseModelEstimation, TooFewMeasurementsIsAClearError) {
-  std::vector<MeasurementWithTruth> few(3);
+  std::vector<dataset::MeasurementWithTruth> few(3);
   try {
     estimateNoiseModels(few, few);
     FAIL() << "no error";
@@ -211,9 +214,9 @@ TEST(NoiseModelEstimation, TooFewMeasurementsIsAClearError) {
     EXPECT_NE(std::string(e.what()).find("odometry: only 3 usable measurements"), std::string::npos) << e.what();
   }
   // Identical measurements give a singular Q: refused, not written.
-  std::vector<MeasurementWithTruth> same(20);
+  std::vector<dataset::MeasurementWithTruth> same(20);
   EXPECT_THROW(estimateNoiseModels(same, same), std::runtime_error);
   jrl::Dataset no_gt;
   no_gt.name = "x";
-  EXPECT_THROW(collectMeasurements(no_gt), std::runtime_error);
+  EXPECT_THROW(dataset::collectMeasurements(no_gt), std::runtime_error);
 }

@@ -48,8 +48,8 @@ std::map<std::pair<char, jrl::FactorId>, const jrl::PoseFactor*> byId(const jrl:
   return out;
 }
 
-InjectionParams params(OutlierKind kind, double rate, ClosureScope scope = ClosureScope::Both) {
-  InjectionParams p;
+dataset::InjectionParams params(dataset::OutlierKind kind, double rate, dataset::ClosureScope scope = dataset::ClosureScope::Both) {
+  dataset::InjectionParams p;
   p.kind = kind;
   p.rate = rate;
   p.scope = scope;
@@ -73,10 +73,10 @@ TEST(OutlierInjection, MeasuredRateWithinOneClosureEveryFactorLabelledAndWrong) 
   const LoopCounts before = countLoops(in);
   const std::size_t n0 = before.intra + before.inter;
   ASSERT_GT(n0, 50u);
-  for (OutlierKind kind : {OutlierKind::Random, OutlierKind::Local, OutlierKind::Group, OutlierKind::Mixed})
+  for (dataset::OutlierKind kind : {dataset::OutlierKind::Random, dataset::OutlierKind::Local, dataset::OutlierKind::Group, dataset::OutlierKind::Mixed})
     for (double rate : {0.05, 0.2, 0.5}) {
       SCOPED_TRACE(std::string(outlierKindName(kind)) + " " + std::to_string(rate));
-      InjectionReport report;
+      dataset::InjectionReport report;
       const jrl::Dataset out = injectOutliers(in, params(kind, rate), &report);
       const LoopCounts after = countLoops(out);
       const std::size_t n = after.intra + after.inter;
@@ -96,7 +96,7 @@ TEST(OutlierInjection, MeasuredRateWithinOneClosureEveryFactorLabelledAndWrong) 
         const jrl::PoseFactor& f = *factors.at({robot, id});
         EXPECT_TRUE(f.isLoopClosure());
         EXPECT_EQ(jrl::robotOf(f.key1), robot);  // stored by the owner of the newer pose, key1 its own
-        EXPECT_TRUE(exceedsRule(jrl::closureError(f, g.groundtruth).d2, OutlierRule::Fidelity));
+        EXPECT_TRUE(exceedsRule(jrl::closureError(f, g.groundtruth).d2, dataset::OutlierRule::Fidelity));
         EXPECT_EQ(f.stamp, g.stamps.at(f.key1));  // in the entry that made key1
         EXPECT_GE(f.stamp, g.stamps.at(f.key2));
       }
@@ -110,45 +110,45 @@ TEST(OutlierInjection, MeasuredRateWithinOneClosureEveryFactorLabelledAndWrong) 
 TEST(OutlierInjection, ScopeAndRateOfAll) {
   const jrl::Dataset in = smallTeam();
   const LoopCounts before = countLoops(in);
-  InjectionReport report;
-  LoopCounts after = countLoops(injectOutliers(in, params(OutlierKind::Random, 0.3, ClosureScope::Inter), &report));
+  dataset::InjectionReport report;
+  LoopCounts after = countLoops(injectOutliers(in, params(dataset::OutlierKind::Random, 0.3, dataset::ClosureScope::Inter), &report));
   EXPECT_EQ(after.intra, before.intra);
   EXPECT_EQ(report.injected_inter, report.injected);
   EXPECT_LE(std::abs(double(report.injected) - 0.3 * double(after.inter)), 1.0);
-  after = countLoops(injectOutliers(in, params(OutlierKind::Local, 0.3, ClosureScope::Intra), &report));
+  after = countLoops(injectOutliers(in, params(dataset::OutlierKind::Local, 0.3, dataset::ClosureScope::Intra), &report));
   EXPECT_EQ(after.inter, before.inter);
   EXPECT_EQ(report.injected_intra, report.injected);
 
-  InjectionParams all = params(OutlierKind::Random, 0.4);
-  all.rate_of = RateOf::All;
+  dataset::InjectionParams all = params(dataset::OutlierKind::Random, 0.4);
+  all.rate_of = dataset::RateOf::All;
   after = countLoops(injectOutliers(in, all));
   const double share = double(after.intra_outliers + after.inter_outliers) / double(after.intra + after.inter);
   EXPECT_LE(std::abs(share - 0.4) * double(after.intra + after.inter), 1.0);
   all.rate = 0.01;  // below the natural share
   EXPECT_THROW(injectOutliers(in, all), std::invalid_argument);
-  EXPECT_EQ(jrl::dumpJrl(injectOutliers(in, params(OutlierKind::Group, 0.0))), jrl::dumpJrl(in));
-  EXPECT_THROW(injectOutliers(in, params(OutlierKind::Random, 1.0)), std::invalid_argument);
-  EXPECT_THROW(injectedCount(-0.1, RateOf::Injected, 10, 0), std::invalid_argument);
-  EXPECT_EQ(injectedCount(0.5, RateOf::Injected, 10, 3), 10u);
-  EXPECT_EQ(injectedCount(0.5, RateOf::All, 10, 3), 4u);
+  EXPECT_EQ(jrl::dumpJrl(injectOutliers(in, params(dataset::OutlierKind::Group, 0.0))), jrl::dumpJrl(in));
+  EXPECT_THROW(injectOutliers(in, params(dataset::OutlierKind::Random, 1.0)), std::invalid_argument);
+  EXPECT_THROW(injectedCount(-0.1, dataset::RateOf::Injected, 10, 0), std::invalid_argument);
+  EXPECT_EQ(injectedCount(0.5, dataset::RateOf::Injected, 10, 3), 10u);
+  EXPECT_EQ(injectedCount(0.5, dataset::RateOf::All, 10, 3), 4u);
 }
 
 TEST(OutlierInjection, KindsFollowTheirRules) {
   const jrl::Dataset in = smallTeam();
   // local: near poses, off by 1.5-3 label bounds
-  InjectionReport report;
-  jrl::Dataset out = injectOutliers(in, params(OutlierKind::Local, 0.3), &report);
+  dataset::InjectionReport report;
+  jrl::Dataset out = injectOutliers(in, params(dataset::OutlierKind::Local, 0.3), &report);
   jrl::PoseGraph g = jrl::poseGraph(out);
   auto factors = byId(g);
   for (const auto& [robot, id] : report.ids) {
     const jrl::PoseFactor& f = *factors.at({robot, id});
     const double d = std::sqrt(jrl::closureError(f, g.groundtruth).d2);
-    EXPECT_GE(d, 1.5 * kChi2Critical95Dof6 - 1e-6);
-    EXPECT_LE(d, 3.0 * kChi2Critical95Dof6 + 1e-6);
+    EXPECT_GE(d, 1.5 * dataset::kChi2Critical95Dof6 - 1e-6);
+    EXPECT_LE(d, 3.0 * dataset::kChi2Critical95Dof6 + 1e-6);
     EXPECT_LE((g.groundtruth.at(f.key1).translation() - g.groundtruth.at(f.key2).translation()).norm(), 10.0);
   }
   // group: runs of 4 consecutive pose pairs that agree with each other through the true motion
-  out = injectOutliers(in, params(OutlierKind::Group, 0.3), &report);
+  out = injectOutliers(in, params(dataset::OutlierKind::Group, 0.3), &report);
   g = jrl::poseGraph(out);
   factors = byId(g);
   EXPECT_EQ(report.injected_group, report.injected);
@@ -177,7 +177,7 @@ TEST(OutlierInjection, InliersSolveUnchanged) {
   const jrl::Dataset in = smallTeam(120);
   backend::SolverOptions inliers;
   const backend::SolveResult base = backend::solvePoseGraph(jrl::poseGraph(in), inliers);
-  for (OutlierKind kind : {OutlierKind::Random, OutlierKind::Group})
+  for (dataset::OutlierKind kind : {dataset::OutlierKind::Random, dataset::OutlierKind::Group})
     for (double rate : {0.2, 0.6}) {
       const backend::SolveResult r = backend::solvePoseGraph(jrl::poseGraph(injectOutliers(in, params(kind, rate))), inliers);
       EXPECT_EQ(r.poses.size(), base.poses.size());
@@ -194,7 +194,7 @@ TEST(OutlierInjection, RobustSolveOfTheReferenceFileDegradesAsTheRateGrows) {
   const jrl::Dataset in = jrl::readJrl(*path);
   const double natural = robustAte(in);
   std::vector<double> ate;  // groups: the hard case (random ones the kernel rejects up to ~30 %, docs/benchmarks.md)
-  for (double rate : {0.1, 0.3}) ate.push_back(robustAte(injectOutliers(in, params(OutlierKind::Group, rate))));
+  for (double rate : {0.1, 0.3}) ate.push_back(robustAte(injectOutliers(in, params(dataset::OutlierKind::Group, rate))));
   std::printf("group outliers: robust ATE %.2f m as released, %.2f / %.2f m at 10 / 30 %%\n", natural, ate[0], ate[1]);
   EXPECT_GT(ate[0], natural);
   EXPECT_GT(ate[1], ate[0]);
@@ -205,12 +205,12 @@ TEST(OutlierInjection, RefusesWhatItCannotDo) {
   jrl::Dataset in = smallTeam(40);
   jrl::Dataset unlabelled = in;
   unlabelled.outliers.reset();
-  EXPECT_THROW(injectOutliers(unlabelled, params(OutlierKind::Random, 0.2)), std::invalid_argument);
+  EXPECT_THROW(injectOutliers(unlabelled, params(dataset::OutlierKind::Random, 0.2)), std::invalid_argument);
   jrl::SyntheticParams one;
   one.robots = {'a'};
   one.poses_per_robot = 60;
   std::mt19937_64 rng(3);
-  EXPECT_THROW(injectOutliers(jrl::makeSyntheticDataset(one, rng), params(OutlierKind::Random, 0.2, ClosureScope::Inter)),
+  EXPECT_THROW(injectOutliers(jrl::makeSyntheticDataset(one, rng), params(dataset::OutlierKind::Random, 0.2, dataset::ClosureScope::Inter)),
                std::invalid_argument);  // no inter-robot closures to count
 }
 
@@ -218,8 +218,8 @@ TEST(OutlierInjection, ReferenceFile) {
   const auto path = sharedPath("ref/jrl/tuhh_r3_01_night_wifi.jrl");
   if (!path) GTEST_SKIP() << "../shared/ref/jrl/tuhh_r3_01_night_wifi.jrl not present";
   const jrl::Dataset in = jrl::readJrl(*path);
-  for (OutlierKind kind : {OutlierKind::Random, OutlierKind::Local, OutlierKind::Group, OutlierKind::Mixed}) {
-    InjectionReport report;
+  for (dataset::OutlierKind kind : {dataset::OutlierKind::Random, dataset::OutlierKind::Local, dataset::OutlierKind::Group, dataset::OutlierKind::Mixed}) {
+    dataset::InjectionReport report;
     const jrl::Dataset out = injectOutliers(in, params(kind, 0.3), &report);
     EXPECT_EQ(report.closures_before, 636u);
     EXPECT_EQ(report.natural_outliers, 75u);

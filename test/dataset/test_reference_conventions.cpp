@@ -29,8 +29,8 @@ bool isOdometry(const jrl::Factor& f, char r, std::size_t entry, std::size_t j) 
 
 /// Feed a COSMO-Bench dataset's measurements back into a recorder: keyframes from its odometry and ground
 /// truth, loop closures computed at their entry's stamp.
-DatasetRecorder rerecord(const jrl::Dataset& ref, OutlierRule rule) {
-  NoiseModels noise;
+dataset::DatasetRecorder rerecord(const jrl::Dataset& ref, dataset::OutlierRule rule) {
+  dataset::NoiseModels noise;
   bool have_odo = false, have_lc = false;
   for (const char r : ref.robots)
     for (std::size_t e = 0; e < ref.measurements.at(r).size(); ++e)
@@ -44,7 +44,7 @@ DatasetRecorder rerecord(const jrl::Dataset& ref, OutlierRule rule) {
           noise.loop_closure = c, have_lc = true;
       }
   EXPECT_TRUE(have_odo && have_lc);
-  DatasetRecorder rec(ref.name, ref.robots, noise, rule);
+  dataset::DatasetRecorder rec(ref.name, ref.robots, noise, rule);
   for (const char r : ref.robots) {
     const auto& entries = ref.measurements.at(r);
     const jrl::Values& gt = ref.groundtruth->at(r);
@@ -71,22 +71,22 @@ TEST(OutlierRule, ResidualAndDistance) {
   Vector6 e;
   e << 0.01, -0.02, 0.03, 0.1, 0.2, -0.3;
   const Pose3 m = truth * expSE3(e);  // Log(m^-1 m*) = -e
-  EXPECT_LT((measurementResidual(m, truth) + e).norm(), 1e-12);
+  EXPECT_LT((dataset::measurementResidual(m, truth) + e).norm(), 1e-12);
   Matrix6 cov = Matrix6::Zero();
   cov.diagonal() << 1e-4, 1e-4, 1e-4, 1e-2, 1e-2, 1e-2;
   const double d2 = (e.head<3>().squaredNorm() / 1e-4) + (e.tail<3>().squaredNorm() / 1e-2);
-  EXPECT_NEAR(chi2Distance(m, truth, cov), d2, 1e-9);             // 14 + 14 = 28
-  EXPECT_TRUE(isOutlier(m, truth, cov, OutlierRule::Squared));    // 28 > 12.592
-  EXPECT_FALSE(isOutlier(m, truth, cov, OutlierRule::Fidelity));  // sqrt(28) = 5.3 <= 12.592
-  EXPECT_FALSE(exceedsRule(158.0, OutlierRule::Fidelity));
-  EXPECT_TRUE(exceedsRule(159.0, OutlierRule::Fidelity));
-  EXPECT_TRUE(exceedsRule(std::nan(""), OutlierRule::Fidelity));
-  EXPECT_EQ(parseOutlierRule("Squared"), OutlierRule::Squared);
-  EXPECT_EQ(parseOutlierRule("fidelity"), OutlierRule::Fidelity);
-  EXPECT_FALSE(parseOutlierRule("chi2").has_value());
-  EXPECT_STREQ(outlierRuleName(OutlierRule::Fidelity), "fidelity");
+  EXPECT_NEAR(dataset::chi2Distance(m, truth, cov), d2, 1e-9);             // 14 + 14 = 28
+  EXPECT_TRUE(isOutlier(m, truth, cov, dataset::OutlierRule::Squared));    // 28 > 12.592
+  EXPECT_FALSE(isOutlier(m, truth, cov, dataset::OutlierRule::Fidelity));  // sqrt(28) = 5.3 <= 12.592
+  EXPECT_FALSE(exceedsRule(158.0, dataset::OutlierRule::Fidelity));
+  EXPECT_TRUE(exceedsRule(159.0, dataset::OutlierRule::Fidelity));
+  EXPECT_TRUE(exceedsRule(std::nan(""), dataset::OutlierRule::Fidelity));
+  EXPECT_EQ(dataset::parseOutlierRule("Squared"), dataset::OutlierRule::Squared);
+  EXPECT_EQ(dataset::parseOutlierRule("fidelity"), dataset::OutlierRule::Fidelity);
+  EXPECT_FALSE(dataset::parseOutlierRule("chi2").has_value());
+  EXPECT_STREQ(outlierRuleName(dataset::OutlierRule::Fidelity), "fidelity");
   // A singular covariance never calls a measurement an inlier.
-  EXPECT_TRUE(isOutlier(m, truth, Matrix6::Zero()));
+  EXPECT_TRUE(dataset::isOutlier(m, truth, Matrix6::Zero()));
 }
 
 TEST(ReferenceFile, LabelsAreTheFidelityRule) {
@@ -101,10 +101,10 @@ TEST(ReferenceFile, LabelsAreTheFidelityRule) {
     for (const jrl::FactorId& id : ds.potential_outliers->at(r)) {
       const jrl::Factor& f = ds.factor(r, id);
       const Pose3 truth = jrl::pose3At(gt, f.keys[0]).inverse(Eigen::Isometry) * jrl::pose3At(gt, f.keys[1]);
-      const double d2 = chi2Distance(f.pose3(), truth, f.covarianceMatrix());
+      const double d2 = dataset::chi2Distance(f.pose3(), truth, f.covarianceMatrix());
       const bool labelled = out.count(id) > 0;
-      mismatches += exceedsRule(d2, OutlierRule::Fidelity) != labelled;
-      squared_outliers += exceedsRule(d2, OutlierRule::Squared);
+      mismatches += exceedsRule(d2, dataset::OutlierRule::Fidelity) != labelled;
+      squared_outliers += exceedsRule(d2, dataset::OutlierRule::Squared);
       outliers += labelled;
       (labelled ? min_outlier : max_inlier) = labelled ? std::min(min_outlier, d2) : std::max(max_inlier, d2);
       ++checked;
@@ -125,8 +125,8 @@ TEST(ReferenceFile, RecorderReproducesItsConventions) {
   const auto path = sharedPath(kReference);
   if (!path) GTEST_SKIP() << "../shared/" << kReference << " not found (set COSMO_SHARED_DIR)";
   const jrl::Dataset ref = jrl::readJrl(*path);
-  const DatasetRecorder rec = rerecord(ref, OutlierRule::Fidelity);
-  BuildReport report;
+  const dataset::DatasetRecorder rec = rerecord(ref, dataset::OutlierRule::Fidelity);
+  dataset::BuildReport report;
   const jrl::Dataset ds = rec.build(&report);
   for (const auto& v : jrl::validate(ds)) ADD_FAILURE() << v.str();
   EXPECT_TRUE(report.labelled);
@@ -193,12 +193,12 @@ TEST(TinyExample, RecorderGivesTheSameDataset) {
   EXPECT_EQ(compact.size(), 4265u);
   const jrl::Dataset example = jrl::parseJrl(compact, "jrl.md §12");
 
-  NoiseModels noise;
+  dataset::NoiseModels noise;
   noise.odometry = Matrix6::Zero();
   noise.odometry.diagonal() << 1e-4, 1e-4, 1e-4, 1e-2, 1e-2, 1e-2;
   noise.loop_closure = Matrix6::Zero();
   noise.loop_closure.diagonal() << 1e-3, 1e-3, 1e-3, 0.04, 0.04, 0.04;
-  DatasetRecorder rec("tiny_example", {'a', 'b'}, noise);
+  dataset::DatasetRecorder rec("tiny_example", {'a', 'b'}, noise);
   const Pose3 rz90 = makePose(0, 0, 0, 0, 0, M_PI / 2);
   auto at = [&](double x, double y, bool rotated) {
     Pose3 p = rotated ? rz90 : Pose3::Identity();

@@ -24,7 +24,7 @@ LoopClosureAttempt closure(const Pose3& measurement, bool accepted = true) {
 }  // namespace
 
 TEST(ClosureLabel, InlierAndOutlierByTheChi2RuleAgainstTheReferences) {
-  ClosureLabeller labeller{NoiseModels{}};
+  ClosureLabeller labeller{dataset::NoiseModels{}};
   labeller.addReference('a', 7, at(10, 0, 0.1));
   labeller.addReference('b', 3, at(12, 1, 0.3));
   const Pose3 truth = at(10, 0, 0.1).inverse() * at(12, 1, 0.3);
@@ -34,7 +34,7 @@ TEST(ClosureLabel, InlierAndOutlierByTheChi2RuleAgainstTheReferences) {
 }
 
 TEST(ClosureLabel, UnlabelledWithoutAReferenceOrNoiseModels) {
-  ClosureLabeller labeller{NoiseModels{}};
+  ClosureLabeller labeller{dataset::NoiseModels{}};
   labeller.addReference('a', 7, at(10, 0, 0.1));
   EXPECT_EQ(labeller.label(closure(Pose3::Identity())), ClosureLabel::Unlabelled);  // b3 has none
   ClosureLabeller without{std::nullopt};

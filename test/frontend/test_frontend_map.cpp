@@ -34,7 +34,7 @@ TEST(FrontendMap, KeyframesWithoutReferenceAreAlignedByTheFirstKeyframesReferenc
 }
 
 TEST(FrontendMap, ClosuresJoinKnownKeyframesAndCarryTheirLabels) {
-  FrontendMap map('a', NoiseModels{});
+  FrontendMap map('a', dataset::NoiseModels{});
   map.addKeyframe(keyframeRecord(0, at(0, 0), at(0, 0)));
   map.addKeyframe(keyframeRecord(1, at(2, 0), at(2, 0)));
   map.addTeammateKeyframe('b', 4, at(2, 1));

@@ -101,7 +101,7 @@ TEST(KeptScan, ComesBackBitForBitOnceReleasedAndHoldsNoPointsMeanwhile) {
 }
 
 TEST(FeatureCache, SpilledFeaturesComeBackBitForBitAndLeaveMemory) {
-  const GlobalRegistration registration(FrontendParams::loadDir(defaultConfigDir()).registration);
+  const registration::GlobalRegistration registration(FrontendParams::loadDir(defaultConfigDir()).registration);
   auto spill = std::make_shared<SpillFile>();
   FeatureCache cache(spill);
   auto scan = std::make_shared<const KeptScan>(std::make_shared<const Scan>(team()[0].scans[0]), spill);
@@ -110,15 +110,15 @@ TEST(FeatureCache, SpilledFeaturesComeBackBitForBitAndLeaveMemory) {
     ++computed;
     return registration.prepare(s);
   };
-  const FeatureCloud direct = registration.prepare(*scan->get());
+  const registration::FeatureCloud direct = registration.prepare(*scan->get());
   ASSERT_GT(direct.keypoints.size(), 10u);
-  std::shared_ptr<const FeatureCloud> first = cache.get(scan, prepare);
+  std::shared_ptr<const registration::FeatureCloud> first = cache.get(scan, prepare);
   EXPECT_EQ(cache.footprint().bytes_in_memory, featureCloudBytes(direct));
   EXPECT_EQ(cache.get(scan, prepare).get(), first.get());  // in use: the same object
   first.reset();
   EXPECT_EQ(cache.footprint().bytes_in_memory, 0u);
   EXPECT_EQ(cache.footprint().bytes_spilled, featureCloudBytes(direct));
-  const std::shared_ptr<const FeatureCloud> back = cache.get(scan, prepare);
+  const std::shared_ptr<const registration::FeatureCloud> back = cache.get(scan, prepare);
   EXPECT_EQ(computed, 1);  // read back, not recomputed
   EXPECT_TRUE(sameArray(back->points, direct.points));
   EXPECT_TRUE(sameArray(back->normals, direct.normals));

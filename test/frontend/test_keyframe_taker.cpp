@@ -32,7 +32,8 @@ TEST(KeyframeTaker, KeyframesEveryTwoMetresOfPath) {
   KeyframeTaker taker(params);
   std::vector<std::size_t> keyframes;
   for (int i = 0; i < 12; ++i) {  // 0.5 m per scan
-    const KeyframeDecision d = taker.update(10 * kSecond + i * kSecond / 10, makePose(0.5 * i, 0, 0, 0, 0, 0));
+    const odometry::KeyframeDecision d =
+        taker.update(10 * kSecond + i * kSecond / 10, makePose(0.5 * i, 0, 0, 0, 0, 0));
     if (d.is_keyframe) keyframes.push_back(static_cast<std::size_t>(i));
   }
   EXPECT_EQ(keyframes, (std::vector<std::size_t>{0, 5, 10}));  // more than 2 m: after 2.5 m

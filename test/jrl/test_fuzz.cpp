@@ -13,27 +13,21 @@
 
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/validate.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 using namespace cosmo::jrl;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 std::vector<std::string> seeds() {
   const fs::path root = fs::path(COSMO_SOURCE_DIR) / "test" / "jrl";
-  std::vector<std::string> out{slurp(root / "data" / "tiny_example.jrl")};
+  std::vector<std::string> out{cosmo::readWholeFileOrEmpty(root / "data" / "tiny_example.jrl")};
   std::vector<fs::path> files;
   for (const auto& e : fs::directory_iterator(root / "corpus"))
     if (e.path().extension() == ".jrl") files.push_back(e.path());
   std::sort(files.begin(), files.end());  // deterministic order
-  for (const auto& f : files) out.push_back(slurp(f));
+  for (const auto& f : files) out.push_back(cosmo::readWholeFileOrEmpty(f));
   return out;
 }
 

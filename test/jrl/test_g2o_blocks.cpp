@@ -18,6 +18,7 @@
 #include "cosmo/jrl/pose_graph.hpp"
 #include "cosmo/jrl/synthetic.hpp"
 #include "export_fixture.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 using namespace cosmo;
 using namespace cosmo::jrl;
@@ -27,11 +28,6 @@ using jrl_test::kTiny;
 namespace {
 
 fs::path tempDir(const std::string& name) { return jrl_test::tempDir("g2o_blocks_" + name); }
-
-std::string readText(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
 
 /// A CSV line's fields (an empty last one after a trailing comma).
 std::vector<std::string> csvFields(const std::string& line) {
@@ -181,7 +177,8 @@ void expectDpgoLayout(const Dataset& d, const fs::path& dir) {
 
   // Deterministic: a second export gives the same bytes.
   const auto again = exportG2o(d, (dir / "again.g2o").string());
-  for (std::size_t i = 0; i < written.size(); ++i) EXPECT_EQ(readText(again[i]), readText(written[i])) << written[i];
+  for (std::size_t i = 0; i < written.size(); ++i)
+    EXPECT_EQ(cosmo::readWholeFileOrEmpty(again[i]), cosmo::readWholeFileOrEmpty(written[i])) << written[i];
 }
 
 }  // namespace
@@ -197,7 +194,7 @@ TEST(G2oBlocks, TinyExample) {
   const fs::path dir = tempDir("tiny");
   expectDpgoLayout(readJrl(kTiny), dir);
   // a0 a1 a2 b0 b1 (jrl.md §12).
-  EXPECT_EQ(readText(dir / "graph.blocks.csv"), "robot,first_id,count\na,0,3\nb,3,2\n");
+  EXPECT_EQ(cosmo::readWholeFileOrEmpty(dir / "graph.blocks.csv"), "robot,first_id,count\na,0,3\nb,3,2\n");
   std::ifstream ids(dir / "graph.ids.csv");
   std::string header, first;
   std::getline(ids, header);
@@ -220,6 +217,7 @@ TEST(G2oBlocks, ReferenceFile) {
   if (!path) GTEST_SKIP() << "../shared/ref/jrl/tuhh_r3_01_night_wifi.jrl not available";
   const fs::path dir = tempDir("reference");
   expectDpgoLayout(readJrl(*path), dir);
-  EXPECT_EQ(readText(dir / "graph.blocks.csv"), "robot,first_id,count\na,0,351\nb,351,535\nc,886,139\n");
+  EXPECT_EQ(cosmo::readWholeFileOrEmpty(dir / "graph.blocks.csv"),
+            "robot,first_id,count\na,0,351\nb,351,535\nc,886,139\n");
   fs::remove_all(dir);
 }

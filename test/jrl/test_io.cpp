@@ -11,19 +11,13 @@
 
 #include "cosmo/common/shared_data.hpp"
 #include "cosmo/jrl/io.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 using namespace cosmo::jrl;
 using cosmo::Matrix6;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 std::string tinyPath() { return std::string(COSMO_SOURCE_DIR) + "/test/jrl/data/tiny_example.jrl"; }
 
@@ -41,7 +35,7 @@ std::string parseError(const std::string& text) {
 
 /// tiny_example with the first occurrence of `from` replaced by `to`.
 std::string tinyWith(const std::string& from, const std::string& to) {
-  std::string s = slurp(tinyPath());
+  std::string s = cosmo::readWholeFileOrEmpty(tinyPath());
   const auto pos = s.find(from);
   EXPECT_NE(pos, std::string::npos) << from;
   if (pos != std::string::npos) s.replace(pos, from.size(), to);
@@ -61,7 +55,7 @@ TEST(JrlKeys, SymbolLayout) {
 }
 
 TEST(JrlIo, TinyExampleRoundTripIsByteIdentical) {
-  const std::string text = slurp(tinyPath());
+  const std::string text = cosmo::readWholeFileOrEmpty(tinyPath());
   ASSERT_EQ(text.size(), 4265u);
   const Dataset d = parseJrl(text, "tiny_example.jrl");
   EXPECT_EQ(d.name, "tiny_example");
@@ -92,7 +86,7 @@ TEST(JrlIo, WriteJrlIsAtomicAndReadable) {
   const std::string out = (dir / "copy.jrl").string();
   writeJrl(out, d);
   writeJrl(out, d);  // overwrite in place
-  EXPECT_EQ(slurp(out), slurp(tinyPath()));
+  EXPECT_EQ(cosmo::readWholeFileOrEmpty(out), cosmo::readWholeFileOrEmpty(tinyPath()));
   std::size_t files = 0;
   for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file() ? 1 : 0;
   EXPECT_EQ(files, 1u) << "temporary file left behind";
@@ -107,7 +101,7 @@ TEST(JrlIo, WriteJrlIsAtomicAndReadable) {
 TEST(JrlIo, ReferenceFileRoundTripIsByteIdentical) {
   const auto path = cosmo::sharedPath("ref/jrl/tuhh_r3_01_night_wifi.jrl");
   if (!path) GTEST_SKIP() << "../shared/ref/jrl/tuhh_r3_01_night_wifi.jrl not available";
-  const std::string text = slurp(*path);
+  const std::string text = cosmo::readWholeFileOrEmpty(*path);
   ASSERT_EQ(text.size(), 2381116u);
   const Dataset d = parseJrl(text, *path);
   EXPECT_EQ(d.name, "tuhh_r3_01_night_wifi");
@@ -293,7 +287,7 @@ TEST(JrlErrors, RejectsBadInputWithItsPath) {
 }
 
 TEST(JrlErrors, TruncatedAndNonJson) {
-  const std::string text = slurp(tinyPath());
+  const std::string text = cosmo::readWholeFileOrEmpty(tinyPath());
   for (std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{100}, text.size() / 2, text.size() - 1}) {
     const std::string what = parseError(text.substr(0, n));
     EXPECT_NE(what.find("invalid JSON"), std::string::npos) << what;

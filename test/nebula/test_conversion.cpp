@@ -22,6 +22,7 @@
 #include "cosmo/nebula/ros1_serialization.hpp"
 #include "cosmo/ros/nebula_dataset.hpp"
 #include "cosmo/ros/nebula_synthetic_folder.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 using namespace cosmo;
 using namespace cosmo::nebula;
@@ -301,13 +302,6 @@ std::pair<int, std::string> runTool(const std::string& args) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 }  // namespace
 
 TEST(NebulaTool, WritesAValidJrlWithStatsMetadataAndModels) {
@@ -323,16 +317,18 @@ TEST(NebulaTool, WritesAValidJrlWithStatsMetadataAndModels) {
   const jrl::Dataset ds = jrl::readJrl((out / "tunnel.jrl").string());
   EXPECT_TRUE(jrl::validate(ds).empty());
   expectLabelsMatchTruth(f->team, ds);
-  EXPECT_NE(readText(out / "tunnel.nebula.yaml").find("robots:\n  a: husky1\n  c: husky3\n  d: husky4\n"),
-            std::string::npos)
-      << readText(out / "tunnel.nebula.yaml");
-  EXPECT_NE(readText(out / "tunnel.stats.txt").find("IRLC"), std::string::npos);
+  EXPECT_NE(
+      cosmo::readWholeFileOrEmpty(out / "tunnel.nebula.yaml").find("robots:\n  a: husky1\n  c: husky3\n  d: husky4\n"),
+      std::string::npos)
+      << cosmo::readWholeFileOrEmpty(out / "tunnel.nebula.yaml");
+  EXPECT_NE(cosmo::readWholeFileOrEmpty(out / "tunnel.stats.txt").find("IRLC"), std::string::npos);
   EXPECT_TRUE(fs::exists(out / "tunnel.stats.json"));
   // The estimated models, given back, reproduce the same file.
   const auto again = runTool("'" + f->dir.string() + "' --out '" + (f->dir / "out2").string() +
                              "' --name tunnel --noise-models '" + (out / "tunnel.noise_models.yaml").string() + "'");
   ASSERT_EQ(again.first, 0) << again.second;
-  EXPECT_EQ(readText(f->dir / "out2" / "tunnel.jrl"), readText(out / "tunnel.jrl"));
+  EXPECT_EQ(cosmo::readWholeFileOrEmpty(f->dir / "out2" / "tunnel.jrl"),
+            cosmo::readWholeFileOrEmpty(out / "tunnel.jrl"));
 }
 
 TEST(NebulaTool, BrokenInputExitsOneAndWritesNothing) {

@@ -35,7 +35,8 @@ Scene makeScene(std::uint64_t seed) {
   return s;
 }
 
-void expectSameConstraints(const std::vector<FeatureConstraint>& a, const std::vector<FeatureConstraint>& b) {
+void expectSameConstraints(const std::vector<odometry::FeatureConstraint>& a,
+                           const std::vector<odometry::FeatureConstraint>& b) {
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
     ASSERT_EQ(a[i].edge, b[i].edge);
@@ -50,12 +51,12 @@ void expectSameConstraints(const std::vector<FeatureConstraint>& a, const std::v
 
 TEST(AssociationMemory, ReusedConstraintsEqualAFreshAssociation) {
   const Scene s = makeScene(5);
-  LoamParams params;
-  LocalFeatureMap map;
+  odometry::LoamParams params;
+  odometry::LocalFeatureMap map;
   map.add(s.map_edges, s.map_planes);
-  AssociationMemory memory;
+  odometry::AssociationMemory memory;
   memory.reset(s.edges.size(), s.planes.size());
-  std::vector<FeatureConstraint> remembered, fresh;
+  std::vector<odometry::FeatureConstraint> remembered, fresh;
   const Pose3 T0 = makePose(0.2, -0.1, 0.02, 0.0, 0.0, 0.01);
   associateFeaturesRemembering(s.edges, s.planes, map, T0, params, remembered, memory, 1, true);
   associateFeatures(s.edges, s.planes, map, T0, params, fresh);
@@ -75,15 +76,15 @@ TEST(AssociationMemory, ReusedConstraintsEqualAFreshAssociation) {
 
 TEST(AssociationMemory, SubsampledListsUseTheFullIndex) {
   const Scene s = makeScene(9);
-  LoamParams params;
-  LocalFeatureMap map;
+  odometry::LoamParams params;
+  odometry::LocalFeatureMap map;
   map.add(s.map_edges, s.map_planes);
-  AssociationMemory memory;
+  odometry::AssociationMemory memory;
   memory.reset(s.edges.size(), s.planes.size());
   std::vector<Eigen::Vector3d> sub_edges, sub_planes;
   for (std::size_t i = 0; i < s.edges.size(); i += 4) sub_edges.push_back(s.edges[i]);
   for (std::size_t i = 0; i < s.planes.size(); i += 4) sub_planes.push_back(s.planes[i]);
-  std::vector<FeatureConstraint> cs, fresh;
+  std::vector<odometry::FeatureConstraint> cs, fresh;
   const Pose3 T = makePose(0.1, 0.0, 0.0, 0.0, 0.0, 0.0);
   associateFeaturesRemembering(sub_edges, sub_planes, map, T, params, cs, memory, 4, true);
   const std::size_t searched_sub = memory.searched;
@@ -101,7 +102,7 @@ TEST(LocalFeatureMapWindow, SlidingMapAnswersLikeAFreshOne) {
   // built from the last three scans only.
   std::vector<Scene> scans;
   for (std::uint64_t seed : {21, 22, 23, 24}) scans.push_back(makeScene(seed));
-  LocalFeatureMap sliding(3), fresh(3);
+  odometry::LocalFeatureMap sliding(3), fresh(3);
   for (const Scene& s : scans) sliding.add(s.map_edges, s.map_planes);
   for (std::size_t i = 1; i < scans.size(); ++i) fresh.add(scans[i].map_edges, scans[i].map_planes);
   EXPECT_EQ(sliding.numPlanePoints(), fresh.numPlanePoints());

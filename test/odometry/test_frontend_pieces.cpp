@@ -13,13 +13,13 @@
 #include "cosmo/common/voxel_grid.hpp"
 #include "cosmo/odometry/loam_params.hpp"
 #include "cosmo/odometry/scan_lines.hpp"
-#include "cosmo/odometry/synthetic_scene.hpp"
+#include "cosmo/test_support/street_scene.hpp"
 #include "cosmo/odometry/trajectory_metrics.hpp"
 
 using namespace cosmo;
 
 TEST(Keyframer, TwoMetreSpacingAndComposedOdometry) {
-  Keyframer kf(2.0);
+  odometry::Keyframer kf(2.0);
   std::vector<Pose3> poses;
   std::vector<std::size_t> kf_scans;
   std::vector<Pose3> rel;
@@ -40,21 +40,21 @@ TEST(Keyframer, TwoMetreSpacingAndComposedOdometry) {
   for (std::size_t k = 1; k < kf_scans.size(); ++k) {
     EXPECT_EQ(kf_scans[k] - kf_scans[k - 1], 7u);
     const Pose3 expected = poses[kf_scans[k - 1]].inverse() * poses[kf_scans[k]];
-    EXPECT_LT(translationError(rel[k], expected), 1e-9);
-    EXPECT_LT(rotationErrorRad(rel[k], expected), 1e-9);
+    EXPECT_LT(odometry::translationError(rel[k], expected), 1e-9);
+    EXPECT_LT(odometry::rotationErrorRad(rel[k], expected), 1e-9);
   }
   EXPECT_TRUE(rel[0].isApprox(Pose3::Identity()));
 }
 
 TEST(Keyframer, StandingStillGivesNoKeyframes) {
-  Keyframer kf;
+  odometry::Keyframer kf;
   EXPECT_TRUE(kf.update(Pose3::Identity()).is_keyframe);
   for (int i = 0; i < 100; ++i) EXPECT_FALSE(kf.update(makePose(0.001 * (i % 2), 0, 0, 0, 0, 0)).is_keyframe);
 }
 
 TEST(Dewarp, KnownConstantMotionRestoresTheStampFrame) {
-  const SyntheticScene scene = SyntheticScene::street(60.0, 8.0);
-  SyntheticLidar lidar;
+  const test_support::SyntheticScene scene = test_support::SyntheticScene::street(60.0, 8.0);
+  test_support::SyntheticLidar lidar;
   lidar.rings = 16;
   lidar.columns = 256;
   // 10 m/s and 30 deg/s: a strongly distorted sweep.
@@ -63,7 +63,7 @@ TEST(Dewarp, KnownConstantMotionRestoresTheStampFrame) {
   const StampNs stamp = toStampNs(5.0);
   const Scan s = simulateSweep(scene, lidar, stamp, [&](double dt) { return pose_at(t_end + dt); });
   ASSERT_TRUE(s.hasTime());
-  const Scan d = dewarp(s, [&](StampNs st) { return pose_at(t_end + (toSeconds(st) - 5.0)); });
+  const Scan d = odometry::dewarp(s, [&](StampNs st) { return pose_at(t_end + (toSeconds(st) - 5.0)); });
   ASSERT_EQ(d.size(), s.size());
   double worst = 0.0;
   for (std::size_t i = 0; i < s.size(); ++i) {
@@ -77,15 +77,15 @@ TEST(Dewarp, KnownConstantMotionRestoresTheStampFrame) {
   // Without per-point times the scan is unchanged.
   Scan no_time = s;
   no_time.time.clear();
-  EXPECT_EQ(dewarp(no_time, [](StampNs) { return Pose3::Identity(); }).points, no_time.points);
+  EXPECT_EQ(odometry::dewarp(no_time, [](StampNs) { return Pose3::Identity(); }).points, no_time.points);
 }
 
 TEST(ScanLines, RingFieldElevationAndOrder) {
-  const SyntheticScene scene = SyntheticScene::street(60.0, 8.0);
-  SyntheticLidar lidar;  // 64 x 1024
+  const test_support::SyntheticScene scene = test_support::SyntheticScene::street(60.0, 8.0);
+  test_support::SyntheticLidar lidar;  // 64 x 1024
   Scan s = simulateSweep(scene, lidar, 1, [](double) { return Pose3::Identity(); });
-  const LoamParams p;
-  const ScanLines with_ring = organizeScanLines(s, p);
+  const odometry::LoamParams p;
+  const odometry::ScanLines with_ring = organizeScanLines(s, p);
   EXPECT_EQ(with_ring.method, "ring");
   EXPECT_EQ(with_ring.lines.size(), 64u);
   // Drop the ring field and shuffle the points: lines from the elevation histogram.
@@ -99,7 +99,7 @@ TEST(ScanLines, RingFieldElevationAndOrder) {
     shuffled.points[i] = s.points[idx[i]];
     shuffled.time[i] = s.time[idx[i]];
   }
-  const ScanLines by_elev = organizeScanLines(shuffled, p);
+  const odometry::ScanLines by_elev = organizeScanLines(shuffled, p);
   EXPECT_EQ(by_elev.method, "elevation");
   // The top beam sees little (sky) and may merge with its neighbour.
   EXPECT_GE(by_elev.lines.size(), 62u);
@@ -108,7 +108,7 @@ TEST(ScanLines, RingFieldElevationAndOrder) {
 
   const auto dir = sharedPath("data/scan_snippets/kitti00");
   if (!dir) GTEST_SKIP() << "../shared/data/scan_snippets/kitti00 not found: KITTI part skipped";
-  const ScanLines kitti = organizeScanLines(readScanFile(*dir + "/velodyne/000094.bin"), p);
+  const odometry::ScanLines kitti = organizeScanLines(readScanFile(*dir + "/velodyne/000094.bin"), p);
   EXPECT_EQ(kitti.method, "order");
   EXPECT_GE(kitti.lines.size(), 60u);
   EXPECT_LE(kitti.lines.size(), 66u);
@@ -121,17 +121,17 @@ TEST(TrajectoryMetrics, UmeyamaAteAndSegments) {
     ref.push_back(makePose(0.5 * i, 5.0 * std::sin(0.02 * i), 0.0, 0.0, 0.0, 0.1 * std::cos(0.02 * i)));
     est.push_back(A * ref.back());
   }
-  const AteResult ate = absoluteTrajectoryError(est, ref);
+  const odometry::AteResult ate = odometry::absoluteTrajectoryError(est, ref);
   EXPECT_LT(ate.rmse, 1e-9);
   EXPECT_TRUE(ate.alignment.isApprox(A.inverse(), 1e-9));
-  for (const auto& e : segmentErrors(est, ref, {10.0, 50.0, 100.0})) {
+  for (const auto& e : odometry::segmentErrors(est, ref, {10.0, 50.0, 100.0})) {
     EXPECT_GT(e.count, 0u);
     EXPECT_LT(e.translation_percent, 1e-6);
   }
   // A 1 % scale error shows up as 1 % translation error.
   std::vector<Pose3> scaled = ref;
   for (auto& p : scaled) p.translation() *= 1.01;
-  const auto seg = segmentErrors(scaled, ref, {100.0});
+  const auto seg = odometry::segmentErrors(scaled, ref, {100.0});
   EXPECT_NEAR(seg[0].translation_percent, 1.0, 0.05);
 }
 
@@ -156,13 +156,13 @@ TEST(TrajectoryMetrics, ConstantVelocityFillsAreFound) {
     poses[i].translation() = a.translation() + s * (b.translation() - a.translation());
     poses[i].linear() = a.linear() * Eigen::AngleAxisd(s * turn.angle(), turn.axis()).toRotationMatrix();
   }
-  const auto runs = findConstantMotionRuns(poses);
+  const auto runs = odometry::findConstantMotionRuns(poses);
   ASSERT_EQ(runs.size(), 1u);
   EXPECT_EQ(runs[0].first, 29u);
   EXPECT_EQ(runs[0].last, 42u);
   EXPECT_NEAR(runs[0].step_m, (b.translation() - a.translation()).norm() / 13.0, 1e-6);
   // Shorter than the minimum: not reported.
-  EXPECT_TRUE(findConstantMotionRuns(poses, 0.002, 0.005, 14).empty());
+  EXPECT_TRUE(odometry::findConstantMotionRuns(poses, 0.002, 0.005, 14).empty());
   // A simulated straight drive at a constant speed is one run end to end; an arc at a constant speed and turn
   // rate is not a fill (its steps turn with the vehicle).
   std::vector<Pose3> straight{Pose3::Identity()}, arc{Pose3::Identity()};
@@ -170,21 +170,22 @@ TEST(TrajectoryMetrics, ConstantVelocityFillsAreFound) {
     straight.push_back(straight.back() * makePose(1.0, 0, 0, 0, 0, 0));
     arc.push_back(arc.back() * makePose(1.0, 0, 0, 0, 0, 0.01));
   }
-  const auto all = findConstantMotionRuns(straight);
+  const auto all = odometry::findConstantMotionRuns(straight);
   ASSERT_EQ(all.size(), 1u);
   EXPECT_EQ(all[0].first, 0u);
   EXPECT_EQ(all[0].last, 49u);
-  EXPECT_TRUE(findConstantMotionRuns(arc).empty());
+  EXPECT_TRUE(odometry::findConstantMotionRuns(arc).empty());
 }
 
 TEST(LoamParams, DefaultsAreThePaperValuesAndConfigOverrides) {
-  const LoamParams d;
+  const odometry::LoamParams d;
   EXPECT_EQ(d.neighbor_points, 3);
   EXPECT_EQ(d.number_sectors, 6);
   EXPECT_EQ(d.max_planar_feats_per_sector, 50);
   EXPECT_DOUBLE_EQ(d.edge_feat_threshold, 100.0);
   EXPECT_DOUBLE_EQ(d.max_avg_point_plane_dist, 0.2);
-  const LoamParams c = LoamParams::fromConfig(ConfigNode::load(COSMO_SOURCE_DIR "/config/odometry.yaml"));
+  const odometry::LoamParams c =
+      odometry::LoamParams::fromConfig(ConfigNode::load(COSMO_SOURCE_DIR "/config/odometry.yaml"));
   EXPECT_EQ(c.max_icf_iterations, 20);
   EXPECT_DOUBLE_EQ(c.rotation_convergence_thresh, 1e-4);
   EXPECT_EQ(c.num_local_map_scans, 3);

@@ -12,7 +12,7 @@
 #include <functional>
 
 #include "cosmo/odometry/loam_odometry.hpp"
-#include "cosmo/odometry/synthetic_scene.hpp"
+#include "cosmo/test_support/street_scene.hpp"
 #include "cosmo/odometry/trajectory_metrics.hpp"
 
 using namespace cosmo;
@@ -31,27 +31,27 @@ struct StepErrors {
 /// A fresh LOAM over n sweeps of `period` s each (sweep k ends at k * period) of a sensor moving along pose_at(t);
 /// returns the worst per-step errors of the estimated scan-to-scan motion.
 StepErrors runSweeps(int n, double period, const std::function<Pose3(double)>& pose_at) {
-  const SyntheticScene scene = SyntheticScene::street(160.0, 8.0);
-  SyntheticLidar lidar;
+  const test_support::SyntheticScene scene = test_support::SyntheticScene::street(160.0, 8.0);
+  test_support::SyntheticLidar lidar;
   lidar.period = period;
-  LoamOdometry odom;
+  odometry::LoamOdometry odom;
   Pose3 prev_est = Pose3::Identity();
   StepErrors e;
   for (int k = 0; k < n; ++k) {
     const double t_end = period * k;
     const Scan s = simulateSweep(scene, lidar, toStampNs(1.0 + t_end), [&](double dt) { return pose_at(t_end + dt); });
-    const OdometryResult r = odom.update(s);
+    const odometry::OdometryResult r = odom.update(s);
     if (!r.ok) ++e.not_ok;
     if (k > 0) {
       const Pose3 de = prev_est.inverse() * r.pose, dg = pose_at(t_end - period).inverse() * pose_at(t_end);
-      e.max_translation_m = std::max(e.max_translation_m, translationError(de, dg));
-      e.max_rotation_deg = std::max(e.max_rotation_deg, rotationErrorRad(de, dg) / kDeg);
+      e.max_translation_m = std::max(e.max_translation_m, odometry::translationError(de, dg));
+      e.max_rotation_deg = std::max(e.max_rotation_deg, odometry::rotationErrorRad(de, dg) / kDeg);
     }
     prev_est = r.pose;
   }
   const Pose3 gt_end = pose_at(0.0).inverse() * pose_at(period * (n - 1));
-  e.end_translation_m = translationError(prev_est, gt_end);
-  e.end_rotation_deg = rotationErrorRad(prev_est, gt_end) / kDeg;
+  e.end_translation_m = odometry::translationError(prev_est, gt_end);
+  e.end_rotation_deg = odometry::rotationErrorRad(prev_est, gt_end) / kDeg;
   return e;
 }
 

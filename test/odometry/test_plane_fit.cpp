@@ -30,8 +30,8 @@ std::vector<Eigen::Vector3d> flatPatch(double noise, std::uint64_t seed) {
 }
 
 /// The paper's fit rules only: both of our neighbour tests off.
-LoamParams paperRules() {
-  LoamParams p;
+odometry::LoamParams paperRules() {
+  odometry::LoamParams p;
   p.max_plane_planarity = 0.0;
   p.plane_off_surface_min_dist = 0.0;
   return p;
@@ -39,8 +39,8 @@ LoamParams paperRules() {
 }  // namespace
 
 TEST(PlaneFit, TwoSurfacesPassThePaperRulesButFailTheFlatnessTest) {
-  ASSERT_EQ(LoamParams{}.max_plane_planarity, 0.0);  // off by default
-  LoamParams p = paperRules();
+  ASSERT_EQ(odometry::LoamParams{}.max_plane_planarity, 0.0);  // off by default
+  odometry::LoamParams p = paperRules();
   const auto tilted = fitPlaneConstraint(groundAndWallFoot(), p);
   ASSERT_TRUE(tilted.has_value());
   // The wall point tilts the fitted normal away from the vertical by a clearly measurable angle.
@@ -50,7 +50,7 @@ TEST(PlaneFit, TwoSurfacesPassThePaperRulesButFailTheFlatnessTest) {
 }
 
 TEST(PlaneFit, FlatNeighboursPassTheFlatnessTest) {
-  LoamParams p = paperRules();
+  odometry::LoamParams p = paperRules();
   p.max_plane_planarity = 0.01;
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
     const auto c = fitPlaneConstraint(flatPatch(0.005, seed), p);
@@ -62,7 +62,7 @@ TEST(PlaneFit, FlatNeighboursPassTheFlatnessTest) {
 }
 
 TEST(PlaneFit, FlatnessTestOffKeepsTheFitsUnchanged) {
-  LoamParams off = paperRules(), huge = paperRules();
+  odometry::LoamParams off = paperRules(), huge = paperRules();
   huge.max_plane_planarity = 1e9;  // accepts any neighbour set: same fits as off
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
     const auto nb = flatPatch(0.05, seed);
@@ -76,8 +76,8 @@ TEST(PlaneFit, FlatnessTestOffKeepsTheFitsUnchanged) {
 }
 
 TEST(PlaneFit, OffSurfaceTestRejectsOneWallPointAmongGroundPoints) {
-  ASSERT_EQ(LoamParams{}.plane_off_surface_min_dist, 0.02);  // on by default
-  LoamParams p = paperRules();
+  ASSERT_EQ(odometry::LoamParams{}.plane_off_surface_min_dist, 0.02);  // on by default
+  odometry::LoamParams p = paperRules();
   ASSERT_TRUE(fitPlaneConstraint(groundAndWallFoot(), p).has_value());
   p.plane_off_surface_min_dist = 0.01;  // the set spreads 1.9 cm along its fitted normal
   EXPECT_FALSE(fitPlaneConstraint(groundAndWallFoot(), p).has_value());
@@ -88,7 +88,7 @@ TEST(PlaneFit, OffSurfaceTestRejectsOneWallPointAmongGroundPoints) {
 TEST(PlaneFit, OffSurfaceTestKeepsSetsUnevenAsAWhole) {
   // Patches uneven by +-4 cm everywhere (no single neighbour to blame): the flatness test rejects half of them
   // (25 of 50), the off-surface test a third (16: with five random points, one is sometimes the odd one out).
-  LoamParams flatness = paperRules(), off_surface = paperRules();
+  odometry::LoamParams flatness = paperRules(), off_surface = paperRules();
   flatness.max_plane_planarity = 0.01;
   off_surface.plane_off_surface_min_dist = 0.01;
   int kept_flatness = 0, kept_off_surface = 0;
@@ -103,7 +103,7 @@ TEST(PlaneFit, OffSurfaceTestKeepsSetsUnevenAsAWhole) {
 }
 
 TEST(PlaneFit, OffSurfaceTestKeepsFlatNeighboursUnchanged) {
-  LoamParams off = paperRules(), on = paperRules();
+  odometry::LoamParams off = paperRules(), on = paperRules();
   on.plane_off_surface_min_dist = 0.02;
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
     const auto nb = flatPatch(0.005, seed);

@@ -36,7 +36,7 @@ TEST(SymmetricEigen3, MatchesEigenOnPointScatters) {
     for (int i = 0; i < 5; ++i) pts.push_back(centre + R * scale.cwiseProduct(Eigen::Vector3d(g(rng), g(rng), g(rng))));
     const Eigen::Matrix3d s = scatterOf(pts);
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(s);
-    const Eigen::Vector3d ev = symmetricEigenvalues3(s);
+    const Eigen::Vector3d ev = odometry::symmetricEigenvalues3(s);
     const double norm = es.eigenvalues().cwiseAbs().maxCoeff();
     // The acos solution is ill-conditioned for two nearly equal eigenvalues (a line's two small ones): their
     // absolute error reaches ~1e-11 of the largest, far below what the fit tests (ratios >= 0.05) resolve.
@@ -44,7 +44,7 @@ TEST(SymmetricEigen3, MatchesEigenOnPointScatters) {
     // The eigenvector a fit uses: smallest for planes, largest for lines (well separated there).
     const int which = kind == 1 ? 0 : 2;
     if (kind != 0) {
-      const Eigen::Vector3d v = symmetricEigenvector3(s, ev[which]);
+      const Eigen::Vector3d v = odometry::symmetricEigenvector3(s, ev[which]);
       EXPECT_NEAR(v.norm(), 1.0, 1e-12);
       EXPECT_NEAR(std::abs(v.dot(es.eigenvectors().col(which))), 1.0, 1e-9) << trial;
     }
@@ -52,22 +52,22 @@ TEST(SymmetricEigen3, MatchesEigenOnPointScatters) {
 }
 
 TEST(SymmetricEigen3, DegenerateMatrices) {
-  const Eigen::Vector3d same = symmetricEigenvalues3(2.0 * Eigen::Matrix3d::Identity());
+  const Eigen::Vector3d same = odometry::symmetricEigenvalues3(2.0 * Eigen::Matrix3d::Identity());
   EXPECT_EQ(same, Eigen::Vector3d::Constant(2.0));
-  EXPECT_NEAR(symmetricEigenvector3(2.0 * Eigen::Matrix3d::Identity(), 2.0).norm(), 1.0, 1e-12);
-  const Eigen::Vector3d zero = symmetricEigenvalues3(Eigen::Matrix3d::Zero());
+  EXPECT_NEAR(odometry::symmetricEigenvector3(2.0 * Eigen::Matrix3d::Identity(), 2.0).norm(), 1.0, 1e-12);
+  const Eigen::Vector3d zero = odometry::symmetricEigenvalues3(Eigen::Matrix3d::Zero());
   EXPECT_EQ(zero, Eigen::Vector3d::Zero());
   // Rank 1 (collinear points along d): eigenvalues 0, 0, |d|^2; the eigenvector of |d|^2 is d.
   const Eigen::Vector3d d = Eigen::Vector3d(1.0, 2.0, -0.5).normalized() * 3.0;
   const Eigen::Matrix3d rank1 = d * d.transpose();
-  const Eigen::Vector3d ev = symmetricEigenvalues3(rank1);
+  const Eigen::Vector3d ev = odometry::symmetricEigenvalues3(rank1);
   EXPECT_NEAR(ev[0], 0.0, 1e-12);
   EXPECT_NEAR(ev[1], 0.0, 1e-12);
   EXPECT_NEAR(ev[2], 9.0, 1e-12);
-  EXPECT_NEAR(std::abs(symmetricEigenvector3(rank1, ev[2]).dot(d.normalized())), 1.0, 1e-12);
+  EXPECT_NEAR(std::abs(odometry::symmetricEigenvector3(rank1, ev[2]).dot(d.normalized())), 1.0, 1e-12);
   // A perpendicular of the double eigenvalue 0 is perpendicular to d.
-  EXPECT_NEAR(symmetricEigenvector3(rank1, ev[0]).dot(d), 0.0, 1e-9);
-  const Eigen::Vector3d p = anyPerpendicular(Eigen::Vector3d::UnitZ());
+  EXPECT_NEAR(odometry::symmetricEigenvector3(rank1, ev[0]).dot(d), 0.0, 1e-9);
+  const Eigen::Vector3d p = odometry::anyPerpendicular(Eigen::Vector3d::UnitZ());
   EXPECT_NEAR(p.norm(), 1.0, 1e-12);
   EXPECT_NEAR(p.z(), 0.0, 1e-12);
 }

@@ -56,7 +56,7 @@ TEST(LookalikeClosures, ATerracedStreetYieldsAcceptedWrongPlaceClosuresLabelledO
       {trial.robot, toSensorReference(trial.body, trial.extrinsic, timing.of(trial.robot))}};
   TeamRunParams params;
   params.frontend = frontend::FrontendParams::loadDir(defaultConfigDir());
-  params.noise = NoiseModels::load(defaultConfigDir() + "/noise_models/synthetic.yaml");
+  params.noise = dataset::NoiseModels::load(defaultConfigDir() + "/noise_models/synthetic.yaml");
   TeamRun run("terraced_street", refs, params, 5, timing.start());
   std::map<char, std::unique_ptr<ScanSource>> sources;
   sources[trial.robot] = std::make_unique<VectorScanSource>(trial.scans);
@@ -67,14 +67,15 @@ TEST(LookalikeClosures, ATerracedStreetYieldsAcceptedWrongPlaceClosuresLabelledO
   run.finish(timing.end());
 
   // The street is driven once: every loop closure the gate accepted is a place a block or more away.
-  const MeasurementSets sets = collectMeasurements(run.recorder().build(), trial.robot);
+  const dataset::MeasurementSets sets = dataset::collectMeasurements(run.recorder().build(), trial.robot);
   ASSERT_FALSE(sets.loop_closures.empty()) << "no accepted closure on the terraced street";
   std::size_t wrong = 0;
   for (const auto& m : sets.loop_closures) {
     const double error = (m.measurement.inverse(Eigen::Isometry) * m.truth).translation().norm();
     if (error <= 2.0) continue;
     ++wrong;
-    EXPECT_TRUE(isOutlier(m.measurement, m.truth, params.noise.loop_closure)) << "closure off by " << error << " m";
+    EXPECT_TRUE(dataset::isOutlier(m.measurement, m.truth, params.noise.loop_closure))
+        << "closure off by " << error << " m";
   }
   EXPECT_GE(wrong, 1u);
   std::printf("terraced street: %zu accepted loop closures, %zu of them off by > 2 m\n", sets.loop_closures.size(),

@@ -126,14 +126,15 @@ std::string errorOf(const std::string& text) {
 
 TEST(ParameterLists, OdometryFileStructAndReaderAgree) {
   const ConfigNode section = shippedSection("odometry.yaml", {"odometry"});
-  expectFileStructAndReaderAgree(section, LoamParams{});
-  EXPECT_EQ(listedValues(LoamParams::fromConfig(section)), listedValues(LoamParams{}));
+  expectFileStructAndReaderAgree(section, odometry::LoamParams{});
+  EXPECT_EQ(listedValues(odometry::LoamParams::fromConfig(section)), listedValues(odometry::LoamParams{}));
 }
 
 TEST(ParameterLists, RegistrationFileStructAndReaderAgree) {
   const ConfigNode section = shippedSection("registration.yaml", {"registration"});
-  expectFileStructAndReaderAgree(section, RegistrationParams{});
-  EXPECT_EQ(listedValues(RegistrationParams::fromConfig(section)), listedValues(RegistrationParams{}));
+  expectFileStructAndReaderAgree(section, registration::RegistrationParams{});
+  EXPECT_EQ(listedValues(registration::RegistrationParams::fromConfig(section)),
+            listedValues(registration::RegistrationParams{}));
 }
 
 TEST(ParameterLists, PlaceRecognitionFileStructAndReaderAgree) {
@@ -154,11 +155,11 @@ TEST(ParameterLists, FrontendFileStructAndReaderAgree) {
 }
 
 TEST(ParameterLists, RadioFilesHoldTheirPresetsAndTheReaderAgrees) {
-  for (const auto& [file, preset] :
-       {std::pair{"comm/wifi.yaml", RadioParams::wifi()}, std::pair{"comm/proradio.yaml", RadioParams::proRadio()}}) {
+  for (const auto& [file, preset] : {std::pair{"comm/wifi.yaml", comm::RadioParams::wifi()},
+                                     std::pair{"comm/proradio.yaml", comm::RadioParams::proRadio()}}) {
     const ConfigNode section = shippedSection(file, {"comm"});
     expectFileStructAndReaderAgree(section, preset, {"preset", "timeout_mode", "size_model"});
-    const RadioParams read = RadioParams::fromConfig(section);
+    const comm::RadioParams read = comm::RadioParams::fromConfig(section);
     EXPECT_EQ(listedValues(read), listedValues(preset)) << file;
     EXPECT_EQ(read.timeout_mode, preset.timeout_mode) << file;
     EXPECT_EQ(read.size_model, preset.size_model) << file;
@@ -166,9 +167,9 @@ TEST(ParameterLists, RadioFilesHoldTheirPresetsAndTheReaderAgrees) {
 }
 
 TEST(ParameterLists, AMisspeltKeyStopsTheReadNamingTheFileTheKeyAndTheNearestParameter) {
-  EXPECT_EQ(errorOf<LoamParams>("odometry:\n  min_plane_spred_ratio: 0.1\n"),
+  EXPECT_EQ(errorOf<odometry::LoamParams>("odometry:\n  min_plane_spred_ratio: 0.1\n"),
             "test.yaml: odometry.min_plane_spred_ratio: unknown parameter (did you mean 'min_plane_spread_ratio'?)");
-  EXPECT_EQ(errorOf<RegistrationParams>("registration:\n  voxelsize: 0.5\n"),
+  EXPECT_EQ(errorOf<registration::RegistrationParams>("registration:\n  voxelsize: 0.5\n"),
             "test.yaml: registration.voxelsize: unknown parameter (did you mean 'voxel_size'?)");
   EXPECT_EQ(errorOf<PlaceRecognitionParams>("place_recognition:\n  scan_context:\n    ring: 20\n"),
             "test.yaml: place_recognition.scan_context.ring: unknown parameter (did you mean 'rings'?)");
@@ -176,7 +177,7 @@ TEST(ParameterLists, AMisspeltKeyStopsTheReadNamingTheFileTheKeyAndTheNearestPar
             "test.yaml: place_recognition.treshold: unknown parameter (did you mean 'threshold'?)");
   EXPECT_EQ(errorOf<frontend::FrontendParams>("frontend:\n  colour: red\n"),
             "test.yaml: frontend.colour: unknown parameter");
-  EXPECT_EQ(errorOf<RadioParams>("comm:\n  preset: wifi\n  dinit: 20\n"),
+  EXPECT_EQ(errorOf<comm::RadioParams>("comm:\n  preset: wifi\n  dinit: 20\n"),
             "test.yaml: comm.dinit: unknown parameter (did you mean 'd_init'?)");
 }
 

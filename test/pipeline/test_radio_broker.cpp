@@ -53,7 +53,7 @@ QueuedRadioStep request(std::uint32_t seq, StampNs through, bool on, std::uint32
 
 struct Recorded {
   std::vector<RadioBroker::StepDone> done;
-  std::vector<std::pair<StampNs, Transfer>> delivered;
+  std::vector<std::pair<StampNs, comm::Transfer>> delivered;
   std::vector<std::shared_ptr<const Scan>> scans;
   RadioBroker::DeliveryFn onDelivery() {
     return [this](const RadioBroker::Delivery& d) {
@@ -69,7 +69,7 @@ struct Recorded {
 };
 
 RadioBroker lockstepBroker(bool compress) {
-  RadioBroker broker(RadioParams::wifi(), {'a', 'b'}, 99, true, compress, 6);
+  RadioBroker broker(comm::RadioParams::wifi(), {'a', 'b'}, 99, true, compress, 6);
   return broker;
 }
 
@@ -86,7 +86,7 @@ RadioBroker startedBroker(bool compress, double b_x) {
 }  // namespace
 
 TEST(RadioBroker, LockstepRequestsWaitForTheSequenceTheReferencesAndTheOffers) {
-  RadioBroker broker(RadioParams::wifi(), {'a', 'b'}, 99, true, false, 6);
+  RadioBroker broker(comm::RadioParams::wifi(), {'a', 'b'}, 99, true, false, 6);
   Recorded rec;
   broker.request(request(1, kStart + 1000000000ULL, true, 1));
   broker.runReadySteps(rec.onDelivery(), rec.onDone());
@@ -98,7 +98,7 @@ TEST(RadioBroker, LockstepRequestsWaitForTheSequenceTheReferencesAndTheOffers) {
   broker.setReference('b', standing(5.0));
   ASSERT_TRUE(broker.readyToStart());
   EXPECT_EQ(broker.start(), deriveSeed(42, "radio"));
-  EXPECT_EQ(broker.origin(), radioGridOrigin(kStart, RadioParams::wifi().step));
+  EXPECT_EQ(broker.origin(), radioGridOrigin(kStart, comm::RadioParams::wifi().step));
   EXPECT_FALSE(broker.readyToStart());
 
   broker.runReadySteps(rec.onDelivery(), rec.onDone());
@@ -133,11 +133,13 @@ TEST(RadioBroker, LockstepRunsTheOfflineRuleWithTheSequenceSeed) {
   broker.request(request(1, kStart + 30000000000ULL, true, 1));
   broker.runReadySteps(rec.onDelivery(), rec.onDone());
 
-  RadioSimulator offline(RadioParams::wifi(), {'a', 'b'}, deriveSeed(7, "radio"));
-  offline.offerKeyframe('a', 0, rawPayloadBytes(*scanOf(4000, kStart)), rawPayloadBytes(*scanOf(4000, kStart)));
-  offline.offerKeyframe('b', 0, rawPayloadBytes(*scanOf(3000, kStart)), rawPayloadBytes(*scanOf(3000, kStart)));
-  const StampNs origin = radioGridOrigin(kStart, RadioParams::wifi().step);
-  std::vector<std::pair<StampNs, Transfer>> expected;
+  comm::RadioSimulator offline(comm::RadioParams::wifi(), {'a', 'b'}, deriveSeed(7, "radio"));
+  offline.offerKeyframe('a', 0, comm::rawPayloadBytes(*scanOf(4000, kStart)),
+                        comm::rawPayloadBytes(*scanOf(4000, kStart)));
+  offline.offerKeyframe('b', 0, comm::rawPayloadBytes(*scanOf(3000, kStart)),
+                        comm::rawPayloadBytes(*scanOf(3000, kStart)));
+  const StampNs origin = radioGridOrigin(kStart, comm::RadioParams::wifi().step);
+  std::vector<std::pair<StampNs, comm::Transfer>> expected;
   advanceRadio(
       offline, origin, kStart + 30000000000ULL,
       [](char r, StampNs) {
@@ -146,8 +148,8 @@ TEST(RadioBroker, LockstepRunsTheOfflineRuleWithTheSequenceSeed) {
         s.position = Eigen::Vector3d(r == 'a' ? 0.0 : 20.0, 0, 0);
         return s;
       },
-      [&](StampNs stamp, const Transfer& t) {
-        if (t.outcome == Transfer::Outcome::Delivered) expected.emplace_back(stamp, t);
+      [&](StampNs stamp, const comm::Transfer& t) {
+        if (t.outcome == comm::Transfer::Outcome::Delivered) expected.emplace_back(stamp, t);
       });
   ASSERT_EQ(rec.delivered.size(), 2u);  // both ways
   ASSERT_EQ(rec.delivered.size(), expected.size());
@@ -219,7 +221,7 @@ TEST(RadioBroker, AHandOverTheCallerRefusesIsNotCounted) {
 }
 
 TEST(RadioBroker, RealTimeStepsFollowTheTimeGivenAndRestartAfterAJump) {
-  RadioBroker broker(RadioParams::wifi(), {'a', 'b'}, 5, false, false, 6);
+  RadioBroker broker(comm::RadioParams::wifi(), {'a', 'b'}, 5, false, false, 6);
   EXPECT_FALSE(broker.positionReported('a', Eigen::Vector3d(NAN, 0, 0)));
   EXPECT_TRUE(broker.positionReported('a', Eigen::Vector3d(0, 0, 0)));
   EXPECT_TRUE(broker.positionReported('b', Eigen::Vector3d(4, 0, 0)));
@@ -245,11 +247,11 @@ TEST(RadioBroker, RealTimeStepsFollowTheTimeGivenAndRestartAfterAJump) {
 
 TEST(RadioBroker, LockstepReplaysARadioTraceWithTheOfflineRuleAndLog) {
   // A trace with latency, a blackout, and a pair left to phi(d): the broker's transfer log is the offline rule's.
-  RadioParams params = RadioParams::wifi();
+  comm::RadioParams params = comm::RadioParams::wifi();
   std::istringstream text(
       "robot_a,robot_b,start,duration,throughput_Bps,latency,connected\n"
       "a,b,0,8,300000,0.25,1\na,b,8,4,300000,0,0\na,b,12,20,800000,0.05,1\n");
-  params.trace = std::make_shared<const RadioTrace>(RadioTrace::parse(text, "trace.csv"));
+  params.trace = std::make_shared<const comm::RadioTrace>(comm::RadioTrace::parse(text, "trace.csv"));
   RadioBroker broker(params, {'a', 'b', 'c'}, 99, true, false, 6);
   std::vector<std::shared_ptr<const Scan>> scans;
   for (int k = 0; k < 12; ++k) scans.push_back(scanOf(20000 + 1000 * k, kStart + k));
@@ -269,9 +271,9 @@ TEST(RadioBroker, LockstepReplaysARadioTraceWithTheOfflineRuleAndLog) {
   broker.request(q);
   broker.runReadySteps(rec.onDelivery(), rec.onDone());
 
-  RadioSimulator offline(params, {'a', 'b', 'c'}, deriveSeed(7, "radio"));
+  comm::RadioSimulator offline(params, {'a', 'b', 'c'}, deriveSeed(7, "radio"));
   for (int k = 0; k < 12; ++k)
-    offline.offerKeyframe(k % 2 ? 'a' : 'b', k, rawPayloadBytes(*scans[k]), rawPayloadBytes(*scans[k]));
+    offline.offerKeyframe(k % 2 ? 'a' : 'b', k, comm::rawPayloadBytes(*scans[k]), comm::rawPayloadBytes(*scans[k]));
   advanceRadio(
       offline, radioGridOrigin(kStart, params.step), q.order.through,
       [](char r, StampNs) {
@@ -280,14 +282,14 @@ TEST(RadioBroker, LockstepReplaysARadioTraceWithTheOfflineRuleAndLog) {
         s.position = Eigen::Vector3d(r == 'a' ? 0.0 : r == 'b' ? 200.0 : 10.0, 0, 0);
         return s;
       },
-      [](StampNs, const Transfer&) {});
+      [](StampNs, const comm::Transfer&) {});
   std::ostringstream got, want;
   writeTransferCsv(got, broker.radio().transferLog());
   writeTransferCsv(want, offline.transferLog());
   EXPECT_EQ(got.str(), want.str());
   std::size_t ab = 0;
-  for (const Transfer& x : broker.radio().transferLog()) {
-    if (x.outcome != Transfer::Outcome::Delivered || x.sender == 'c' || x.receiver == 'c') continue;
+  for (const comm::Transfer& x : broker.radio().transferLog()) {
+    if (x.outcome != comm::Transfer::Outcome::Delivered || x.sender == 'c' || x.receiver == 'c') continue;
     ++ab;
     EXPECT_FALSE(x.end - 0.05 >= 8.0 && x.end - 0.05 < 12.0) << "sent in the blackout, at " << x.end;
     EXPECT_GT(x.received, x.end);  // latency

@@ -94,7 +94,7 @@ TEST(SequenceNoiseModels, ASequenceWithoutNoiseModelsStopsWithTheWayToMakeThem) 
   EXPECT_THROW(loadRunNoiseModels("", "", "", config_dir), NoiseModelsMissing);
   EXPECT_THROW(loadRunNoiseModels("/nonexistent/noise.yaml", "", "", config_dir), NoiseModelsMissing);
   // What a sequence names is what it gets; an explicit file overrides it.
-  const NoiseModels ntu = loadSequenceNoiseModels(sequenceWith("ntu", ""), config_dir);
+  const dataset::NoiseModels ntu = loadSequenceNoiseModels(sequenceWith("ntu", ""), config_dir);
   EXPECT_EQ(ntu.environment, "ntu");
   EXPECT_EQ(ntu.source, config_dir + "/noise_models/ntu.yaml");
   EXPECT_NE(ntu.provenance.find("COSMO-Bench"), std::string::npos);
@@ -119,7 +119,7 @@ TEST(TrialNoiseModels, EstimateFromOneTrialAloneFitsTheClosuresItSawAndLabelsThe
   MergedScanStream stream(std::move(sources), timing);
   TeamRunParams params;
   params.frontend = frontend::FrontendParams::loadDir(defaultConfigDir());
-  NoiseModelEstimationParams estimation;
+  dataset::NoiseModelEstimationParams estimation;
   estimation.min_samples = 6;
   const TrialNoiseModels result =
       estimateTrialNoiseModels(trial.robot, stream, reference, params, 5, estimation, "test_a", "ci");
@@ -128,7 +128,7 @@ TEST(TrialNoiseModels, EstimateFromOneTrialAloneFitsTheClosuresItSawAndLabelsThe
   const auto dir = tempDir();
   const std::string path = (dir / "ci.yaml").string();
   result.estimate.models.save(path, "test");
-  const NoiseModels back = NoiseModels::load(path);
+  const dataset::NoiseModels back = dataset::NoiseModels::load(path);
   EXPECT_EQ(back.loop_closure, result.estimate.models.loop_closure);
   EXPECT_EQ(back.environment, "ci");
   ASSERT_TRUE(back.estimated_from.has_value());
@@ -140,13 +140,13 @@ TEST(TrialNoiseModels, EstimateFromOneTrialAloneFitsTheClosuresItSawAndLabelsThe
   std::filesystem::remove_all(dir);
 
   // Every sigma lies within the spread of the good closures' residuals on its axis.
-  const MeasurementSets sets = collectMeasurements(result.run, trial.robot);
+  const dataset::MeasurementSets sets = dataset::collectMeasurements(result.run, trial.robot);
   std::vector<Vector6> good;
-  std::vector<MeasurementWithTruth> good_closures;
+  std::vector<dataset::MeasurementWithTruth> good_closures;
   for (const auto& m : sets.loop_closures) {
     const Pose3 e = m.measurement.inverse(Eigen::Isometry) * m.truth;
     if (e.translation().norm() < 0.5 && rotationAngle(e) < 0.05) {
-      good.push_back(measurementResidual(m.measurement, m.truth));
+      good.push_back(dataset::measurementResidual(m.measurement, m.truth));
       good_closures.push_back(m);
     }
   }
@@ -167,14 +167,14 @@ TEST(TrialNoiseModels, EstimateFromOneTrialAloneFitsTheClosuresItSawAndLabelsThe
   // than 2 m is an outlier (the good ones displaced as a registration onto the wrong façade would be).
   const Matrix6& q = result.estimate.models.loop_closure;
   std::size_t inliers = 0;
-  for (const auto& m : good_closures) inliers += isOutlier(m.measurement, m.truth, q) ? 0 : 1;
+  for (const auto& m : good_closures) inliers += dataset::isOutlier(m.measurement, m.truth, q) ? 0 : 1;
   EXPECT_GE(static_cast<double>(inliers), 0.9 * static_cast<double>(good_closures.size()));
   for (const auto& m : sets.loop_closures)
     if ((m.measurement.inverse(Eigen::Isometry) * m.truth).translation().norm() > 2.0)
-      EXPECT_TRUE(isOutlier(m.measurement, m.truth, q));
+      EXPECT_TRUE(dataset::isOutlier(m.measurement, m.truth, q));
   for (const auto& m : good_closures) {
     Pose3 shifted = m.measurement;
     shifted.translation() += Eigen::Vector3d(2.1, 0.0, 0.0);
-    EXPECT_TRUE(isOutlier(shifted, m.truth, q));
+    EXPECT_TRUE(dataset::isOutlier(shifted, m.truth, q));
   }
 }

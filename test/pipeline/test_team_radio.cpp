@@ -29,8 +29,8 @@ TEST(TeamRadio, PositionFromTheReferenceHeldAtItsEndsElseOdometry) {
 }
 
 TEST(TeamRadio, RunsEveryStepUpToTAndDeliversAtTheStepStamp) {
-  RadioParams params = RadioParams::wifi();
-  RadioSimulator radio(params, {'a', 'b'}, 7);
+  comm::RadioParams params = comm::RadioParams::wifi();
+  comm::RadioSimulator radio(params, {'a', 'b'}, 7);
   const StampNs origin = 5000000000ULL;
   std::vector<StampNs> asked;
   const auto state = [&](char robot, StampNs stamp) {
@@ -40,8 +40,8 @@ TEST(TeamRadio, RunsEveryStepUpToTAndDeliversAtTheStepStamp) {
     s.position = Eigen::Vector3d(robot == 'a' ? 0.0 : 5.0, 0, 0);  // close: a link starts
     return s;
   };
-  std::vector<std::pair<StampNs, Transfer>> ended;
-  const auto on_transfer = [&](StampNs stamp, const Transfer& t) { ended.emplace_back(stamp, t); };
+  std::vector<std::pair<StampNs, comm::Transfer>> ended;
+  const auto on_transfer = [&](StampNs stamp, const comm::Transfer& t) { ended.emplace_back(stamp, t); };
 
   EXPECT_EQ(advanceRadio(radio, origin, origin - 1, state, on_transfer), 0u);             // before the origin: nothing
   EXPECT_EQ(advanceRadio(radio, origin, origin + 250000000ULL, state, on_transfer), 3u);  // 0, 0.1, 0.2 s

@@ -15,6 +15,7 @@
 #include "cosmo/pipeline/team_run.hpp"
 #include "cosmo/frontend/odometry_run_ahead.hpp"
 #include "../support/synthetic_team.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 using namespace cosmo;
 using namespace cosmo::pipeline;
@@ -46,13 +47,6 @@ MergedScanStream streamOf(const std::vector<test::SyntheticTrial>& trials, const
   return MergedScanStream(sourcesOf(trials), timing);
 }
 
-std::string readFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 /// One offline run; returns the JRL bytes.
 std::string runOnce(std::uint64_t seed, TeamCounts* counts = nullptr, unsigned registration_threads = 0) {
   const auto& trials = team();
@@ -74,7 +68,7 @@ std::string runOnce(std::uint64_t seed, TeamCounts* counts = nullptr, unsigned r
                         .string();
   run.recorder().write(path);
   if (counts) *counts = run.counts();
-  return readFile(path);
+  return cosmo::readWholeFileOrEmpty(path);
 }
 
 std::map<char, std::unique_ptr<ScanSource>> sourcesOf(const std::vector<test::SyntheticTrial>& trials) {
@@ -119,7 +113,7 @@ std::string runLoam(bool run_ahead, std::size_t max_scans, unsigned cores = 0, u
   run.recorder().write(path);
   EXPECT_GT(run.counts().keyframes, 2u);
   if (counts) *counts = run.counts();
-  return readFile(path);
+  return cosmo::readWholeFileOrEmpty(path);
 }
 
 }  // namespace
@@ -169,7 +163,7 @@ TEST(TeamRun, PreparedKeyframesMustMatchTheFrontendsKeyframer) {
   TeamRunParams params;
   std::map<char, Trajectory> refs{{'a', Trajectory{}}};
   TeamRun run("t", refs, params, 1, 0);
-  OdometryResult r;
+  odometry::OdometryResult r;
   const auto kf = std::make_shared<const Scan>();
   EXPECT_THROW(run.add('a', frontend::OwnScan::prepared(1000, r, nullptr)), std::logic_error);  // keyframe 0 not prepared
   TeamRun run2("t", refs, params, 1, 0);
@@ -281,7 +275,7 @@ TEST(TeamRun, ReplaysARadioTraceInsteadOfTheDistanceModel) {
   // connectivity sample came from the trace.
   const auto& trials = team();
   const SequenceTiming timing = timingOf(trials, 5, 0.5);
-  const auto deliveredWith = [&](const RadioParams& radio, RadioStats* stats) {
+  const auto deliveredWith = [&](const comm::RadioParams& radio, comm::RadioStats* stats) {
     TeamRunParams params;
     params.frontend = frontend::FrontendParams::loadDir(defaultConfigDir());
     params.frontend.odometry = frontend::OdometryKind::Reference;
@@ -295,11 +289,11 @@ TEST(TeamRun, ReplaysARadioTraceInsteadOfTheDistanceModel) {
     *stats = run.radio().stats();
     return run.counts().transfers_delivered;
   };
-  RadioStats model, traced;
-  EXPECT_GT(deliveredWith(RadioParams::wifi(), &model), 0u);
-  RadioParams blackout = RadioParams::wifi();
+  comm::RadioStats model, traced;
+  EXPECT_GT(deliveredWith(comm::RadioParams::wifi(), &model), 0u);
+  comm::RadioParams blackout = comm::RadioParams::wifi();
   std::istringstream text("robot_a,robot_b,start,duration,throughput_Bps,latency,connected\na,b,-10,100000,0,0,0\n");
-  blackout.trace = std::make_shared<const RadioTrace>(RadioTrace::parse(text, "blackout.csv"));
+  blackout.trace = std::make_shared<const comm::RadioTrace>(comm::RadioTrace::parse(text, "blackout.csv"));
   EXPECT_EQ(deliveredWith(blackout, &traced), 0u);
   EXPECT_GT(traced.trace_samples, 0u);
   EXPECT_EQ(traced.fallback_samples, 0u);

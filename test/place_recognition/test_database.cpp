@@ -7,13 +7,13 @@
 
 #include "cosmo/place_recognition/place_recognizer.hpp"
 #include "cosmo/place_recognition/scan_context_database.hpp"
-#include "synthetic_scene.hpp"
+#include "cosmo/test_support/pillar_scene.hpp"
 
 namespace cosmo::place_recognition {
 namespace {
 
-const test::SyntheticScene& scene() {
-  static const test::SyntheticScene s(11);
+const test_support::PillarScene& scene() {
+  static const test_support::PillarScene s(11);
   return s;
 }
 

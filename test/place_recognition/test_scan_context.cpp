@@ -5,13 +5,13 @@
 #include <limits>
 
 #include "cosmo/place_recognition/scan_context.hpp"
-#include "synthetic_scene.hpp"
+#include "cosmo/test_support/pillar_scene.hpp"
 
 namespace cosmo::place_recognition {
 namespace {
 
-const test::SyntheticScene& scene() {
-  static const test::SyntheticScene s(7);
+const test_support::PillarScene& scene() {
+  static const test_support::PillarScene s(7);
   return s;
 }
 
@@ -42,7 +42,7 @@ TEST(ScanContext, RingKeyIsRotationInvariant) {
   ASSERT_GT(sc.ring_key.sum(), 1.0f);
   // Whole-sector turns move whole columns: the ring key is the same up to points on sector borders.
   for (int k : {1, 7, 30, 59}) {
-    const ScanContext turned = makeScanContext(test::turnSensor(scan, k * sectorWidth(p)), p);
+    const ScanContext turned = makeScanContext(test_support::turnSensor(scan, k * sectorWidth(p)), p);
     EXPECT_LE((turned.ring_key - sc.ring_key).cwiseAbs().maxCoeff(), 2.0f / 60.0f + 1e-6f) << "k=" << k;
   }
   // Arbitrary turns re-bin the points, which moves the ring key a little, but much less than moving to another
@@ -51,7 +51,7 @@ TEST(ScanContext, RingKeyIsRotationInvariant) {
   for (int i = 0; i < 20; ++i)
     others.push_back(makeScanContext(scene().scanAt(-120.0 + 13.0 * i, 40.0 - 7.0 * i, 0.0), p).ring_key);
   for (double yaw : {0.05, 1.0, -2.2, 3.1}) {
-    const ScanContext turned = makeScanContext(test::turnSensor(scan, yaw), p);
+    const ScanContext turned = makeScanContext(test_support::turnSensor(scan, yaw), p);
     const float own = (turned.ring_key - sc.ring_key).norm();
     for (const auto& o : others) EXPECT_LT(own, (turned.ring_key - o).norm()) << "yaw=" << yaw;
   }
@@ -62,14 +62,14 @@ TEST(ScanContext, RotatedScanGivesItsYaw) {
   const Scan scan = scene().scanAt(-40.0, 25.0, 1.0);
   const ScanContext candidate = makeScanContext(scan, p);
   for (int k : {1, 5, 15, 29, 30, 31, 45, 59}) {  // exact sector multiples: exact shift
-    const ScanContext query = makeScanContext(test::turnSensor(scan, k * sectorWidth(p)), p);
+    const ScanContext query = makeScanContext(test_support::turnSensor(scan, k * sectorWidth(p)), p);
     const DescriptorMatch m = scanContextDistance(query, candidate);
     EXPECT_EQ(m.shift, k);
     EXPECT_LT(m.distance, 0.05);
     EXPECT_NEAR(angleDiff(m.yaw, k * sectorWidth(p)), 0.0, 1e-9);
   }
   for (double yaw : {0.2, -0.7, 1.9, -2.9, 3.0}) {  // any yaw: within one sector
-    const ScanContext query = makeScanContext(test::turnSensor(scan, yaw), p);
+    const ScanContext query = makeScanContext(test_support::turnSensor(scan, yaw), p);
     const DescriptorMatch m = scanContextDistance(query, candidate);
     EXPECT_LE(angleDiff(m.yaw, yaw), sectorWidth(p)) << "yaw=" << yaw << " estimate=" << m.yaw;
     EXPECT_LT(m.distance, 0.25);
@@ -87,7 +87,7 @@ TEST(ScanContext, CoarseSearchFindsTheSameShiftOnAClearRotation) {
   const ScanContextParams p;
   const Scan scan = scene().scanAt(5.0, 5.0, 0.0);
   const ScanContext candidate = makeScanContext(scan, p);
-  const ScanContext query = makeScanContext(test::turnSensor(scan, 20 * sectorWidth(p)), p);
+  const ScanContext query = makeScanContext(test_support::turnSensor(scan, 20 * sectorWidth(p)), p);
   EXPECT_EQ(sectorKeyShift(query, candidate), 20);
   const DescriptorMatch coarse =
       scanContextDistance(query, candidate, EmptyColumnPolicy::kPenalizeOneSided, /*coarse_search_radius=*/3);

@@ -10,13 +10,13 @@
 using namespace cosmo;
 
 namespace {
-bool isClique(const ConsistencyGraph& g, const std::vector<int>& c) {
+bool isClique(const registration::ConsistencyGraph& g, const std::vector<int>& c) {
   for (std::size_t a = 0; a < c.size(); ++a)
     for (std::size_t b = a + 1; b < c.size(); ++b)
       if (!g.adjacent(c[a], c[b])) return false;
   return true;
 }
-std::size_t bruteForceCliqueSize(const ConsistencyGraph& g) {
+std::size_t bruteForceCliqueSize(const registration::ConsistencyGraph& g) {
   const int n = g.size();
   std::size_t best = 0;
   for (std::uint32_t mask = 1; mask < (1u << n); ++mask) {
@@ -31,7 +31,7 @@ std::size_t bruteForceCliqueSize(const ConsistencyGraph& g) {
 
 TEST(GraphPruning, CoreNumbersOfKnownGraph) {
   // K4 on {0,1,2,3}, a path 3-4-5, an isolated vertex 6, and a triangle 7-8-9 hanging on 4.
-  const auto g = ConsistencyGraph::fromEdges(
+  const auto g = registration::ConsistencyGraph::fromEdges(
       10, {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}, {3, 4}, {4, 5}, {7, 8}, {8, 9}, {7, 9}, {4, 7}});
   EXPECT_EQ(g.edgeCount(), 12u);
   const auto core = coreNumbers(g);
@@ -45,10 +45,10 @@ TEST(GraphPruning, CoreNumbersOfKnownGraph) {
 }
 
 TEST(GraphPruning, EmptyAndEdgelessGraphs) {
-  EXPECT_TRUE(maxClique(ConsistencyGraph(0)).vertices.empty());
-  EXPECT_TRUE(maxKCore(ConsistencyGraph(5)).empty());
-  EXPECT_EQ(maxClique(ConsistencyGraph(5)).vertices.size(), 1u);
-  EXPECT_EQ(maxClique(ConsistencyGraph(5)).max_core_size, 0u);
+  EXPECT_TRUE(maxClique(registration::ConsistencyGraph(0)).vertices.empty());
+  EXPECT_TRUE(maxKCore(registration::ConsistencyGraph(5)).empty());
+  EXPECT_EQ(maxClique(registration::ConsistencyGraph(5)).vertices.size(), 1u);
+  EXPECT_EQ(maxClique(registration::ConsistencyGraph(5)).max_core_size, 0u);
 }
 
 TEST(GraphPruning, MaxCliqueMatchesBruteForceOnRandomGraphs) {
@@ -61,7 +61,7 @@ TEST(GraphPruning, MaxCliqueMatchesBruteForceOnRandomGraphs) {
     for (int a = 0; a < n; ++a)
       for (int b = a + 1; b < n; ++b)
         if (edge(rng)) edges.emplace_back(a, b);
-    const auto g = ConsistencyGraph::fromEdges(n, edges);
+    const auto g = registration::ConsistencyGraph::fromEdges(n, edges);
     const auto c = maxClique(g);
     EXPECT_TRUE(isClique(g, c.vertices)) << "trial " << trial;
     EXPECT_EQ(c.vertices.size(), bruteForceCliqueSize(g)) << "trial " << trial;
@@ -78,7 +78,7 @@ TEST(GraphPruning, PlantedCliqueInNoiseIsFoundAndDeterministic) {
   for (int a = 0; a < 600; ++a)
     for (int b = a + 1; b < 600; ++b)
       if ((a % 3 == 0 && b % 3 == 0 && b < 120) || edge(rng)) edges.emplace_back(a, b);
-  const auto g = ConsistencyGraph::fromEdges(600, edges);
+  const auto g = registration::ConsistencyGraph::fromEdges(600, edges);
   const auto c1 = maxClique(g, 100000);
   const auto c2 = maxClique(g, 100000);
   EXPECT_TRUE(c1.proven_maximum);
@@ -100,7 +100,7 @@ TEST(GraphPruning, ConsistencyGraphFromCorrespondences) {
   const Eigen::Matrix3f R = Eigen::AngleAxisf(0.7f, Eigen::Vector3f::UnitZ()).toRotationMatrix();
   for (int i = 0; i < 3; ++i) t.push_back(R * s[i] + Eigen::Vector3f(3, -1, 2));
   t.push_back({40, 0, 0});
-  const auto g = ConsistencyGraph::fromCorrespondences(s, t, 0.05);
+  const auto g = registration::ConsistencyGraph::fromCorrespondences(s, t, 0.05);
   EXPECT_TRUE(g.adjacent(0, 1) && g.adjacent(0, 2) && g.adjacent(1, 2));
   EXPECT_EQ(g.degree(3), 0);
   EXPECT_EQ(maxClique(g).vertices, (std::vector<int>{0, 1, 2}));

@@ -14,7 +14,7 @@ using namespace cosmo;
 namespace {
 
 struct Scene {
-  FeatureCloud source, target;
+  registration::FeatureCloud source, target;
   Pose3 T_true, T_wrong;
 };
 
@@ -39,11 +39,11 @@ Scene makeScene(int n_true, int n_wrong, std::uint64_t seed) {
     s.source.normals.push_back((s.T_true.linear().transpose() * nt.cast<double>()).cast<float>());
   }
   const int k = n_true + n_wrong;
-  s.source.features = FpfhMatrix(kFpfhDim, k);
-  s.target.features = FpfhMatrix(kFpfhDim, k);
+  s.source.features = registration::FpfhMatrix(registration::kFpfhDim, k);
+  s.target.features = registration::FpfhMatrix(registration::kFpfhDim, k);
   for (int c = 0; c < k; ++c) {
     const int i = 7 * c + 3;  // a source point
-    for (int d = 0; d < kFpfhDim; ++d) s.source.features(d, c) = uf(rng);
+    for (int d = 0; d < registration::kFpfhDim; ++d) s.source.features(d, c) = uf(rng);
     s.target.features.col(c) = s.source.features.col(c);
     s.source.keypoints.push_back(i);
     if (c < n_true) {
@@ -62,40 +62,40 @@ Scene makeScene(int n_true, int n_wrong, std::uint64_t seed) {
 
 TEST(Hypotheses, WrongMaximumCliqueIsRejectedAndTheNextOneReported) {
   const Scene s = makeScene(8, 12, 5);
-  RegistrationParams p;
+  registration::RegistrationParams p;
   p.max_hypotheses = 1;
-  const RegistrationResult first_only = GlobalRegistration(p).align(s.source, s.target);
+  const registration::RegistrationResult first_only = registration::GlobalRegistration(p).align(s.source, s.target);
   EXPECT_FALSE(first_only.valid) << "the wrong maximum clique must fail the overlap gate";
   EXPECT_EQ(first_only.pruned_inliers, 12u);
   EXPECT_LT(first_only.overlap, 0.5);
-  EXPECT_LT(poseError(first_only.T_target_source, s.T_wrong).translation_m, 0.3);
+  EXPECT_LT(registration::poseError(first_only.T_target_source, s.T_wrong).translation_m, 0.3);
 
   p.max_hypotheses = 3;
-  const RegistrationResult r = GlobalRegistration(p).align(s.source, s.target);
+  const registration::RegistrationResult r = registration::GlobalRegistration(p).align(s.source, s.target);
   EXPECT_TRUE(r.valid) << r.reason;
   EXPECT_EQ(r.hypotheses, 2);
   EXPECT_EQ(r.hypothesis, 1);
   EXPECT_EQ(r.pruned_inliers, 8u);
   EXPECT_GT(r.overlap, 0.95);
-  const PoseError e = poseError(r.T_target_source, s.T_true);
+  const registration::PoseError e = registration::poseError(r.T_target_source, s.T_true);
   EXPECT_LT(e.translation_m, 0.05);
   EXPECT_LT(e.rotation_deg, 0.2);
 }
 
 TEST(Hypotheses, RightMaximumCliqueNeedsOneHypothesis) {
   const Scene s = makeScene(12, 8, 9);
-  const RegistrationResult r = GlobalRegistration().align(s.source, s.target);
+  const registration::RegistrationResult r = registration::GlobalRegistration().align(s.source, s.target);
   EXPECT_TRUE(r.valid) << r.reason;
   EXPECT_EQ(r.hypotheses, 1);
   EXPECT_EQ(r.hypothesis, 0);
-  EXPECT_LT(poseError(r.T_target_source, s.T_true).translation_m, 0.05);
+  EXPECT_LT(registration::poseError(r.T_target_source, s.T_true).translation_m, 0.05);
 }
 
 TEST(Hypotheses, NoHypothesisPassesOnUnrelatedClouds) {
   // Only the wrong, self-consistent set of correspondences: its solution overlaps poorly, nothing is left for
   // a next hypothesis, the result stays rejected.
   Scene s = makeScene(0, 12, 13);
-  const RegistrationResult r = GlobalRegistration().align(s.source, s.target);
+  const registration::RegistrationResult r = registration::GlobalRegistration().align(s.source, s.target);
   EXPECT_FALSE(r.valid);
   EXPECT_GE(r.hypotheses, 1);
 }

@@ -34,7 +34,7 @@ std::vector<Eigen::Vector3f> randomCloud(std::size_t n, std::uint32_t seed) {
 TEST(NeighbourPairs, MatchesBruteForce) {
   const auto pts = randomCloud(1500, 7);
   for (const float radius : {0.9f, 1.5f}) {
-    const NeighbourPairs pairs = findNeighbourPairs(pts, radius);
+    const registration::NeighbourPairs pairs = registration::findNeighbourPairs(pts, radius);
     std::set<std::pair<std::uint32_t, std::uint32_t>> got;
     for (std::size_t e = 0; e < pairs.size(); ++e) {
       const std::uint32_t i = pairs[e].first, j = pairs[e].second;
@@ -56,9 +56,9 @@ TEST(NeighbourPairs, MatchesBruteForce) {
 TEST(NeighbourPairs, CellOrderNumberingIsTheSameSequence) {
   auto pts = randomCloud(1500, 9);
   pts.emplace_back(std::nanf(""), 0.f, 0.f);  // no position in the grid
-  const NeighbourPairs plain = findNeighbourPairs(pts, 1.5f);
+  const registration::NeighbourPairs plain = registration::findNeighbourPairs(pts, 1.5f);
   std::vector<std::uint32_t> order;
-  const NeighbourPairs numbered = findNeighbourPairs(pts, 1.5f, order);
+  const registration::NeighbourPairs numbered = registration::findNeighbourPairs(pts, 1.5f, order);
   EXPECT_EQ(order.size(), pts.size() - 1);
   std::vector<int> seen(pts.size(), 0);
   for (const std::uint32_t i : order) {
@@ -76,15 +76,15 @@ TEST(NeighbourPairs, CellOrderNumberingIsTheSameSequence) {
 }
 
 TEST(NeighbourPairs, EmptyAndSingle) {
-  EXPECT_EQ(findNeighbourPairs({}, 1.f).size(), 0u);
-  EXPECT_EQ(findNeighbourPairs({Eigen::Vector3f(1, 2, 3)}, 1.f).size(), 0u);
+  EXPECT_EQ(registration::findNeighbourPairs({}, 1.f).size(), 0u);
+  EXPECT_EQ(registration::findNeighbourPairs({Eigen::Vector3f(1, 2, 3)}, 1.f).size(), 0u);
 }
 
 TEST(FastFeatures, Deterministic) {
   const auto pts = randomCloud(3000, 11);
-  FastFeatureParams p;
+  registration::FastFeatureParams p;
   p.keypoint_voxel = 0.9;
-  const FastFeatures a = computeFastFeatures(pts, p), b = computeFastFeatures(pts, p);
+  const registration::FastFeatures a = computeFastFeatures(pts, p), b = computeFastFeatures(pts, p);
   ASSERT_EQ(a.kept, b.kept);
   ASSERT_EQ(a.keypoints, b.keypoints);
   ASSERT_GT(a.keypoints.size(), 10u);
@@ -155,9 +155,9 @@ TEST(FastFeatures, MatchDefinition) {
   for (int k = 0; k < 400; ++k) pts.emplace_back(noise(rng), u(rng), 0.5f * u(rng));        // wall
   for (int k = 0; k < 300; ++k) pts.emplace_back(u(rng), noise(rng) + 4.f, 0.5f * u(rng));  // wall
   for (auto& p : pts) p += Eigen::Vector3f(3.f, -2.f, -1.5f);
-  FastFeatureParams p;
+  registration::FastFeatureParams p;
   p.keypoint_voxel = 1.0;
-  const FastFeatures f = computeFastFeatures(pts, p);
+  const registration::FastFeatures f = computeFastFeatures(pts, p);
   std::vector<Eigen::Vector3f> nrm(pts.size(), Eigen::Vector3f::Zero());
   std::vector<char> valid(pts.size(), 0);
   for (std::size_t c = 0; c < f.kept.size(); ++c) {

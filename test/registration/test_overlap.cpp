@@ -25,12 +25,13 @@ TEST(Overlap, OnePassEqualsTwoCalls) {
   T.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   T.translation() = Eigen::Vector3d(0.4, -0.2, 0.1);
   for (const double d : {0.3, 0.9}) {
-    const Overlaps o = overlapFractions(source, flags, tree, T, d);
-    EXPECT_EQ(o.all, overlapFraction(source, tree, T, d));
-    EXPECT_EQ(o.flagged, overlapFraction(flagged_points, tree, T, d));
+    const registration::Overlaps o = registration::overlapFractions(source, flags, tree, T, d);
+    EXPECT_EQ(o.all, registration::overlapFraction(source, tree, T, d));
+    EXPECT_EQ(o.flagged, registration::overlapFraction(flagged_points, tree, T, d));
     EXPECT_GT(o.all, 0.0);
     EXPECT_LT(o.all, 1.0);
   }
-  const Overlaps none = overlapFractions(source, std::vector<unsigned char>(source.size(), 0), tree, T, 0.9);
+  const registration::Overlaps none =
+      registration::overlapFractions(source, std::vector<unsigned char>(source.size(), 0), tree, T, 0.9);
   EXPECT_EQ(none.flagged, 0.0);
 }

@@ -33,15 +33,15 @@ Problem makeProblem(int n, double outlier_ratio, double noise, std::uint64_t see
   }
   return p;
 }
-RigidEstimate pruneAndSolve(const Problem& p, double noise_bound, std::vector<int>& clique) {
-  const auto graph = ConsistencyGraph::fromCorrespondences(p.source, p.target, 2.0 * noise_bound);
+registration::RigidEstimate pruneAndSolve(const Problem& p, double noise_bound, std::vector<int>& clique) {
+  const auto graph = registration::ConsistencyGraph::fromCorrespondences(p.source, p.target, 2.0 * noise_bound);
   clique = maxClique(graph, 100000).vertices;
   std::vector<Eigen::Vector3d> s, t;
   for (const int i : clique) {
     s.push_back(p.source[static_cast<std::size_t>(i)].cast<double>());
     t.push_back(p.target[static_cast<std::size_t>(i)].cast<double>());
   }
-  GncParams gnc;
+  registration::GncParams gnc;
   gnc.noise_bound = noise_bound;
   return solveRobustRigid(s, t, gnc, 20000);
 }
@@ -50,14 +50,14 @@ RigidEstimate pruneAndSolve(const Problem& p, double noise_bound, std::vector<in
 TEST(RobustSolver, ExactRecoveryWithHalfOutliers) {
   const Problem p = makeProblem(400, 0.5, 0.0, 11);
   std::vector<int> clique;
-  const RigidEstimate est = pruneAndSolve(p, 0.05, clique);
+  const registration::RigidEstimate est = pruneAndSolve(p, 0.05, clique);
   ASSERT_TRUE(est.ok);
   // The clique holds every inlier and no outlier.
   int inliers_in_clique = 0;
   for (const int i : clique) inliers_in_clique += p.inlier[static_cast<std::size_t>(i)];
   EXPECT_EQ(inliers_in_clique, 200);
   EXPECT_EQ(clique.size(), 200u);
-  const PoseError e = poseError(est.T, p.T);
+  const registration::PoseError e = registration::poseError(est.T, p.T);
   EXPECT_LT(e.translation_m, 1e-4);
   EXPECT_LT(e.rotation_deg, 1e-4);
 }
@@ -65,9 +65,9 @@ TEST(RobustSolver, ExactRecoveryWithHalfOutliers) {
 TEST(RobustSolver, NoisyInliersWithHalfOutliers) {
   const Problem p = makeProblem(1000, 0.5, 0.03, 12);
   std::vector<int> clique;
-  const RigidEstimate est = pruneAndSolve(p, 0.15, clique);
+  const registration::RigidEstimate est = pruneAndSolve(p, 0.15, clique);
   ASSERT_TRUE(est.ok);
-  const PoseError e = poseError(est.T, p.T);
+  const registration::PoseError e = registration::poseError(est.T, p.T);
   EXPECT_LT(e.translation_m, 0.05);
   EXPECT_LT(e.rotation_deg, 0.2);
   EXPECT_GE(est.inliers.size(), 400u);
@@ -84,9 +84,9 @@ TEST(RobustSolver, GncRotationRejectsOutliersWithoutPruning) {
     a.push_back(v);
     b.push_back(i < 80 ? Eigen::Vector3d(10 * g(rng), 10 * g(rng), 10 * g(rng)) : Eigen::Vector3d(R * v));
   }
-  GncParams params;
+  registration::GncParams params;
   params.noise_bound = 0.1;
-  const RotationEstimate est = gncTlsRotation(a, b, params);
+  const registration::RotationEstimate est = gncTlsRotation(a, b, params);
   EXPECT_LT(Eigen::AngleAxisd(est.R.transpose() * R).angle(), 1e-6);
 }
 
@@ -94,7 +94,7 @@ TEST(RobustSolver, TlsTranslationIgnoresOutliers) {
   std::vector<Eigen::Vector3d> v;
   for (int i = 0; i < 30; ++i) v.emplace_back(1.0 + 0.01 * (i % 3), -2.0, 0.5);
   for (int i = 0; i < 20; ++i) v.emplace_back(10.0 * i, 5.0 - i, 3.0 * i);
-  const TranslationEstimate t = tlsTranslation(v, 0.1);
+  const registration::TranslationEstimate t = registration::tlsTranslation(v, 0.1);
   EXPECT_NEAR(t.t.x(), 1.01, 1e-9);
   EXPECT_NEAR(t.t.y(), -2.0, 1e-9);
   EXPECT_NEAR(t.t.z(), 0.5, 1e-9);
@@ -104,13 +104,13 @@ TEST(RobustSolver, TlsTranslationIgnoresOutliers) {
 }
 
 TEST(RobustSolver, DegenerateInputDoesNotCrash) {
-  GncParams params;
+  registration::GncParams params;
   EXPECT_FALSE(solveRobustRigid({}, {}, params, 100).ok);
   EXPECT_FALSE(solveRobustRigid({Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones()},
                                 {Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones()}, params, 100)
                    .ok);
   // Identical points: a solution, no NaN.
   const std::vector<Eigen::Vector3d> same(5, Eigen::Vector3d(1, 2, 3));
-  const RigidEstimate e = solveRobustRigid(same, same, params, 100);
+  const registration::RigidEstimate e = solveRobustRigid(same, same, params, 100);
   EXPECT_TRUE(e.T.matrix().allFinite());
 }

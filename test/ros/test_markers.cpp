@@ -47,7 +47,7 @@ TEST(Markers, ClosuresAreLiftedAndColouredByTheirLabel) {
 }
 
 TEST(Markers, NoLinksIsADelete) {
-  RadioSimulator radio(RadioParams::wifi(), {'a', 'b'}, 1);
+  comm::RadioSimulator radio(comm::RadioParams::wifi(), {'a', 'b'}, 1);
   const auto array = ros_glue::linkMarkers(radio, {}, 0.0, "world", ros::Time(1.0));
   ASSERT_EQ(array.markers.size(), 1u);
   EXPECT_EQ(array.markers[0].action, visualization_msgs::Marker::DELETE);

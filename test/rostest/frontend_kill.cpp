@@ -58,9 +58,9 @@ TEST(FrontendKill, LockstepStopsWithinThirtySecondsAndTheDatasetIsMarkedIncomple
   };
   ASSERT_TRUE(cosmo::test::spinUntil(written, 30.0)) << "the recorder did not report an incomplete write";
   std::cout << "recorder: " << progress->written << std::endl;
-  ASSERT_TRUE(cosmo::test::spinUntil([&] { return !cosmo::test::readFile(status_file).empty(); }, 40.0));
-  EXPECT_EQ(cosmo::test::readFile(status_file).rfind("stopped: ", 0), 0u) << cosmo::test::readFile(status_file);
-  const std::string metadata = cosmo::test::readFile(jrl_path.substr(0, jrl_path.size() - 4) + ".recorder.yaml");
+  ASSERT_TRUE(cosmo::test::spinUntil([&] { return !cosmo::readWholeFileOrEmpty(status_file).empty(); }, 40.0));
+  EXPECT_EQ(cosmo::readWholeFileOrEmpty(status_file).rfind("stopped: ", 0), 0u) << cosmo::readWholeFileOrEmpty(status_file);
+  const std::string metadata = cosmo::readWholeFileOrEmpty(jrl_path.substr(0, jrl_path.size() - 4) + ".recorder.yaml");
   EXPECT_NE(metadata.find("complete: false"), std::string::npos) << metadata;
   EXPECT_NE(metadata.find("incomplete: \"the player stopped the run: the front-end of robot b"), std::string::npos)
       << metadata;

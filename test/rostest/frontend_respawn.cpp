@@ -47,7 +47,7 @@ TEST(FrontendRespawn, RealtimeCarriesOnAndRecordsTheRestart) {
       30.0))
       << "the front-end of b was not respawned";
   ASSERT_TRUE(cosmo::test::spinUntil([&] { return done.load(); }, 300.0)) << "the player did not finish";
-  EXPECT_EQ(cosmo::test::readFile(status_file), "done\n");
+  EXPECT_EQ(cosmo::readWholeFileOrEmpty(status_file), "done\n");
 
   ASSERT_TRUE(ros::service::waitForService("/recorder/write", ros::Duration(30.0)));
   std_srvs::Trigger trigger;
@@ -60,7 +60,7 @@ TEST(FrontendRespawn, RealtimeCarriesOnAndRecordsTheRestart) {
   for (int i = 0; i <= recorded; ++i)
     EXPECT_TRUE(ds.initialization->at('b').count(cosmo::jrl::symbol('b', static_cast<std::uint64_t>(i))))
         << "keyframe b" << i << ", recorded before the death, is missing";
-  const std::string metadata = cosmo::test::readFile(jrl_path.substr(0, jrl_path.size() - 4) + ".recorder.yaml");
+  const std::string metadata = cosmo::readWholeFileOrEmpty(jrl_path.substr(0, jrl_path.size() - 4) + ".recorder.yaml");
   EXPECT_NE(metadata.find("frontend_restarts: {a: 0, b: 1, c: 0}"), std::string::npos) << metadata;
   EXPECT_NE(metadata.find("  - {robot: b, from: b"), std::string::npos) << metadata;
   EXPECT_NE(metadata.find("rule: reference}"), std::string::npos) << metadata;

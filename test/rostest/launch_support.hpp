@@ -14,6 +14,7 @@
 #include <string>
 
 #include "cosmo/ros/peer_probe.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 namespace cosmo::test {
 
@@ -25,13 +26,6 @@ inline std::string siblingProgram(const std::string& name) {
     if (std::filesystem::exists(p)) return p.string();
   }
   return name;
-}
-
-inline std::string readFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 inline std::string shellQuote(const std::string& s) { return "'" + s + "'"; }
@@ -91,7 +85,7 @@ struct OfflineRun {
 
 /// Empty when the two files hold the same bytes, else where they first differ, with the text around it.
 inline std::string firstDifference(const std::string& a_path, const std::string& b_path) {
-  const std::string a = readFile(a_path), b = readFile(b_path);
+  const std::string a = cosmo::readWholeFileOrEmpty(a_path), b = cosmo::readWholeFileOrEmpty(b_path);
   if (a == b) return "";
   std::size_t at = 0;
   while (at < a.size() && at < b.size() && a[at] == b[at]) ++at;

@@ -71,7 +71,7 @@ TEST(RecorderKill, TwoSigkillsLeaveTheJrlByteIdentical) {
   ASSERT_TRUE(ros::service::call("/recorder/write", trigger));
   ASSERT_TRUE(trigger.response.success) << trigger.response.message;
   std::cout << trigger.response.message << std::endl;
-  const std::string metadata = cosmo::test::readFile(jrl_path.substr(0, jrl_path.size() - 4) + ".recorder.yaml");
+  const std::string metadata = cosmo::readWholeFileOrEmpty(jrl_path.substr(0, jrl_path.size() - 4) + ".recorder.yaml");
   EXPECT_NE(metadata.find("recorder_sessions: 3"), std::string::npos) << metadata;
   EXPECT_NE(metadata.find("complete: true"), std::string::npos) << metadata;
 
@@ -83,7 +83,7 @@ TEST(RecorderKill, TwoSigkillsLeaveTheJrlByteIdentical) {
   EXPECT_TRUE(diff.empty()) << diff;
   if (diff.empty())
     std::cout << "after two SIGKILLs of the recorder, the JRL is byte-identical to the uninterrupted run's ("
-              << cosmo::test::readFile(jrl_path).size() << " bytes)" << std::endl;
+              << cosmo::readWholeFileOrEmpty(jrl_path).size() << " bytes)" << std::endl;
 }
 
 int main(int argc, char** argv) {

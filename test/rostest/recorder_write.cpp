@@ -117,7 +117,7 @@ TEST(RecorderNode, WritesOnRequest) {
   ASSERT_TRUE(writeWhen("keyframes a 5 b 5 | loop closures 2"));
 
   ASSERT_TRUE(std::filesystem::exists(output)) << output;
-  ASSERT_TRUE(std::filesystem::exists(cosmo::DatasetRecorder::metadataPath(output)));
+  ASSERT_TRUE(std::filesystem::exists(cosmo::dataset::DatasetRecorder::metadataPath(output)));
   cosmo::jrl::Dataset ds = cosmo::jrl::readJrl(output);
   for (const auto& v : cosmo::jrl::validate(ds)) ADD_FAILURE() << v.str();
   EXPECT_EQ(ds.name, "recorder_rostest");

@@ -20,6 +20,7 @@
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/stats.hpp"
 #include "cosmo/jrl/validate.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 namespace {
 
@@ -31,13 +32,6 @@ std::string siblingProgram(const std::string& name) {
     if (std::filesystem::exists(p)) return p.string();
   }
   return name;
-}
-
-std::string readFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 std::string shellQuote(const std::string& s) { return "'" + s + "'"; }
@@ -101,7 +95,8 @@ TEST(SequenceLaunch, WritesAValidJrl) {
         const cosmo::Pose3 truth =
             cosmo::jrl::pose3At(gt, factor.keys[0]).inverse() * cosmo::jrl::pose3At(gt, factor.keys[1]);
         const cosmo::Matrix6 cov = factor.covarianceMatrix();
-        const bool outlier = cosmo::isOutlier(factor.pose3(), truth, cov, cosmo::OutlierRule::Fidelity);
+        const bool outlier =
+            cosmo::dataset::isOutlier(factor.pose3(), truth, cov, cosmo::dataset::OutlierRule::Fidelity);
         EXPECT_EQ(outlier, listed(*ds.outliers, r, id)) << r << " entry " << e << " factor " << f;
         ++checked;
       }
@@ -140,7 +135,8 @@ TEST(SequenceLaunch, LockstepJrlIsByteIdenticalToTheOfflineDriver) {
 
   const std::string offline_path = out_dir + "/" + std::filesystem::path(jrl_path).filename().string();
   ASSERT_TRUE(std::filesystem::exists(offline_path)) << offline_path << " (" << cmd.str() << ")";
-  const std::string ros_bytes = readFile(jrl_path), offline_bytes = readFile(offline_path);
+  const std::string ros_bytes = cosmo::readWholeFileOrEmpty(jrl_path),
+                    offline_bytes = cosmo::readWholeFileOrEmpty(offline_path);
   if (ros_bytes == offline_bytes) {
     std::cout << "lockstep launch and cosmo_generate wrote the same " << ros_bytes.size() << " bytes" << std::endl;
     return;

@@ -15,7 +15,7 @@ TEST(GateThreshold, SetsTheStrictGatesStructureOverlapOnTopOfTheSequencesKeys) {
   for (double threshold : {0.0, 0.45, 0.62, 0.7}) {
     SequenceConfig variant = demo;
     applyGateThreshold(variant, threshold);
-    const RegistrationParams p = registrationParamsWith(defaultConfigDir(), variant.registration, "variant");
+    const registration::RegistrationParams p = registrationParamsWith(defaultConfigDir(), variant.registration, "variant");
     EXPECT_EQ(p.gate, "strict");
     EXPECT_DOUBLE_EQ(p.min_structure_overlap, threshold);
     EXPECT_FALSE(p.refine);                                                             // the sequence's key stays

@@ -195,7 +195,7 @@ TEST(SequenceConfig, RegistrationKeysGoOnTopOfTheConfigFolderAndReachRegistratio
                                               "  min_overlap: 0.4\n";
   const auto plain = SequenceConfig::load(writeTemp("seq_reg_none.yaml", std::string("name: s\n") + kTwoTrials));
   EXPECT_TRUE(plain.registration.empty());
-  const RegistrationParams folder = plain.registrationParams(dir.string());
+  const registration::RegistrationParams folder = plain.registrationParams(dir.string());
   EXPECT_TRUE(folder.refine);
   EXPECT_EQ(folder.gate, "strict");
   EXPECT_EQ(folder.icp_iterations, 7);
@@ -204,7 +204,7 @@ TEST(SequenceConfig, RegistrationKeysGoOnTopOfTheConfigFolderAndReachRegistratio
   const auto paper = SequenceConfig::load(writeTemp(
       "seq_reg_paper.yaml", std::string("name: s\nregistration:\n  refine: false\n  gate: paper\n") + kTwoTrials));
   ASSERT_EQ(paper.registration.size(), 2u);
-  const RegistrationParams p = paper.registrationParams(dir.string());
+  const registration::RegistrationParams p = paper.registrationParams(dir.string());
   EXPECT_FALSE(p.refine);
   EXPECT_EQ(p.gate, "paper");
   EXPECT_DOUBLE_EQ(p.min_overlap, 0.0);  // the paper gate: KISS-Matcher's own checks only
@@ -212,7 +212,8 @@ TEST(SequenceConfig, RegistrationKeysGoOnTopOfTheConfigFolderAndReachRegistratio
   EXPECT_EQ(p.icp_iterations, 7);  // every other key stays the folder's
 
   // The same keys handed over without the sequence (the front-end nodes get them as a parameter).
-  const RegistrationParams handed = registrationParamsWith(dir.string(), paper.registration, "the player");
+  const registration::RegistrationParams handed =
+      registrationParamsWith(dir.string(), paper.registration, "the player");
   EXPECT_FALSE(handed.refine);
   EXPECT_EQ(handed.gate, "paper");
   EXPECT_EQ(handed.icp_iterations, 7);
@@ -223,11 +224,12 @@ TEST(SequenceConfig, RegistrationKeysGoOnTopOfTheConfigFolderAndReachRegistratio
   std::filesystem::create_directories(empty_dir);
   std::filesystem::remove(empty_dir / "registration.yaml");
   EXPECT_FALSE(paper.registrationParams(empty_dir.string()).refine);
-  EXPECT_EQ(paper.registrationParams(empty_dir.string()).icp_iterations, RegistrationParams{}.icp_iterations);
+  EXPECT_EQ(paper.registrationParams(empty_dir.string()).icp_iterations,
+            registration::RegistrationParams{}.icp_iterations);
 
   // The shipped folder: a sequence without the key gets what every front-end gets from it.
-  const RegistrationParams shipped = plain.registrationParams(defaultConfigDir());
-  const RegistrationParams front = frontend::FrontendParams::loadDir(defaultConfigDir()).registration;
+  const registration::RegistrationParams shipped = plain.registrationParams(defaultConfigDir());
+  const registration::RegistrationParams front = frontend::FrontendParams::loadDir(defaultConfigDir()).registration;
   EXPECT_EQ(shipped.refine, front.refine);
   EXPECT_EQ(shipped.gate, front.gate);
   EXPECT_DOUBLE_EQ(shipped.min_structure_overlap, front.min_structure_overlap);
@@ -253,7 +255,7 @@ TEST(SequenceConfig, TheDemoWritesThePaperRegistrationIntoItsSequenceAndTheCiSeq
   const auto demo = sim::SimulationParams::load(sim_dir + "default.yaml");
   const std::string demo_path = writeTemp("demo_seq.yaml", "");
   sim::writeSequenceConfig(demo_path, demo);
-  const RegistrationParams p = SequenceConfig::load(demo_path).registrationParams(defaultConfigDir());
+  const registration::RegistrationParams p = SequenceConfig::load(demo_path).registrationParams(defaultConfigDir());
   EXPECT_FALSE(p.refine);
   EXPECT_EQ(p.gate, "paper");
   EXPECT_NE(demo.describe().find("registration:"), std::string::npos);  // part of the cache key

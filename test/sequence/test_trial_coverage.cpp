@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "cosmo/odometry/dewarp.hpp"
-#include "cosmo/odometry/synthetic_scene.hpp"
+#include "cosmo/test_support/street_scene.hpp"
 #include "cosmo/sequence/scan_stream.hpp"
 #include "cosmo/sequence/trial_coverage.hpp"
 
@@ -30,8 +30,8 @@ Pose3 truePose(double t) {
   return p;
 }
 
-SyntheticLidar smallLidar() {
-  SyntheticLidar l;
+test_support::SyntheticLidar smallLidar() {
+  test_support::SyntheticLidar l;
   l.rings = 16;
   l.columns = 512;
   return l;
@@ -39,7 +39,7 @@ SyntheticLidar smallLidar() {
 
 /// n sweeps of 0.1 s stamped at their end (the latest point at time 0), sweep k ending at kT0 + 0.1 k.
 std::vector<Scan> endStamped(int n) {
-  static const SyntheticScene scene = SyntheticScene::street(300.0);
+  static const test_support::SyntheticScene scene = test_support::SyntheticScene::street(300.0);
   std::vector<Scan> scans;
   for (int k = 0; k < n; ++k) {
     const double t_end = 0.1 * k;
@@ -85,7 +85,7 @@ TEST(StampConvention, DewarpPutsBothCopiesOnTheSameWorldPoints) {
   const auto start = startStamped(end);
   auto pose_at = [](StampNs t) { return truePose(toSeconds(t) - kT0); };
   for (std::size_t k = 0; k < end.size(); ++k) {
-    const Scan de = dewarp(end[k], pose_at), ds = dewarp(start[k], pose_at);
+    const Scan de = odometry::dewarp(end[k], pose_at), ds = odometry::dewarp(start[k], pose_at);
     const Pose3 te = pose_at(end[k].stamp), ts = pose_at(start[k].stamp);
     ASSERT_EQ(de.size(), ds.size());
     double worst = 0.0;
@@ -111,7 +111,7 @@ TEST(StampConvention, ConstantVelocityDeskewCoversStartStampedSweeps) {
   const std::vector<Eigen::Vector3d> pts{Eigen::Vector3d(5, 0, 0), Eigen::Vector3d(5, 0, 0)};
   const std::vector<float> times{0.08f, -0.08f};
   std::vector<Eigen::Vector3d> out;
-  deskewConstantVelocity(pts, times, delta, 0.1, out);
+  odometry::deskewConstantVelocity(pts, times, delta, 0.1, out);
   EXPECT_NEAR(out[0].x(), 5.8, 0.01);
   EXPECT_NEAR(out[1].x(), 4.2, 0.01);
 }

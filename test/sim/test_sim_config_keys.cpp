@@ -11,17 +11,13 @@
 #include <string>
 
 #include "cosmo/sim/simulation_params.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 using namespace cosmo;
 using namespace cosmo::sim;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
 
 /// The error message of loading `text` (empty: it loaded).
 std::string loadError(const std::string& text) {
@@ -33,7 +29,7 @@ std::string loadError(const std::string& text) {
   return "";
 }
 
-std::string ciConfig() { return readText(fs::path(COSMO_SOURCE_DIR) / "config/sim/ci.yaml"); }
+std::string ciConfig() { return cosmo::readWholeFileOrEmpty(fs::path(COSMO_SOURCE_DIR) / "config/sim/ci.yaml"); }
 
 /// `text` with the first match of `pattern` replaced (the test fails if there is none).
 std::string replaced(const std::string& text, const std::string& pattern, const std::string& with) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cosmo/suite/child_process.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 namespace suite_e2e {
 
@@ -26,13 +27,6 @@ struct Outcome {
 
 inline fs::path binDir() { return fs::read_symlink("/proc/self/exe").parent_path(); }
 
-inline std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 /// Runs a tool found beside this test, its output (stdout and stderr) captured.
 inline Outcome runTool(const std::string& tool, const std::vector<std::string>& args) {
   static int n = 0;
@@ -41,7 +35,7 @@ inline Outcome runTool(const std::string& tool, const std::vector<std::string>& 
   std::vector<std::string> argv{(binDir() / tool).string()};
   argv.insert(argv.end(), args.begin(), args.end());
   const cosmo::suite::ChildResult r = cosmo::suite::runChild(argv, log.string());
-  Outcome out{r.exit_code, readFile(log)};
+  Outcome out{r.exit_code, cosmo::readWholeFileOrEmpty(log)};
   fs::remove(log);
   return out;
 }
@@ -52,11 +46,11 @@ inline int processesMentioning(const std::string& text) {
   for (const auto& e : fs::directory_iterator("/proc")) {
     const std::string name = e.path().filename().string();
     if (name.find_first_not_of("0123456789") != std::string::npos || name == std::to_string(::getpid())) continue;
-    std::string cmd = readFile(e.path() / "cmdline");
+    std::string cmd = cosmo::readWholeFileOrEmpty(e.path() / "cmdline");
     for (char& c : cmd)
       if (c == '\0') c = ' ';
     if (cmd.find(text) != std::string::npos && cmd.find("zombie") == std::string::npos) {
-      const std::string stat = readFile(e.path() / "stat");
+      const std::string stat = cosmo::readWholeFileOrEmpty(e.path() / "stat");
       const auto close = stat.rfind(')');
       if (close != std::string::npos && close + 2 < stat.size() && stat[close + 2] != 'Z') ++n;
     }
@@ -80,7 +74,7 @@ inline void expectSameFiles(const fs::path& got, const fs::path& want) {
   EXPECT_EQ(g, w) << got << " vs " << want;
   for (const auto& f : g) {
     if (std::find(w.begin(), w.end(), f) == w.end()) continue;
-    EXPECT_TRUE(readFile(got / f) == readFile(want / f)) << f << " differs: " << got << " vs " << want;
+    EXPECT_TRUE(cosmo::readWholeFileOrEmpty(got / f) == cosmo::readWholeFileOrEmpty(want / f)) << f << " differs: " << got << " vs " << want;
   }
 }
 

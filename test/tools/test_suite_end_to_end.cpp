@@ -50,10 +50,10 @@ TEST_F(SuiteEndToEnd, EveryDatasetIsThereValidAndWhatCosmoGenerateWritesAlone) {
   std::size_t lines = 0;
   for (std::string l; std::getline(manifest, l);) ++lines;
   EXPECT_EQ(lines, groups().size() + 1);  // + the estimate
-  const std::string html = readFile(a / "report.html");
+  const std::string html = cosmo::readWholeFileOrEmpty(a / "report.html");
   EXPECT_NE(html.find("data:image/svg+xml;base64,"), std::string::npos);
   EXPECT_EQ(html.find("src=\"ci_"), std::string::npos) << "the report reads figures from beside it";
-  EXPECT_NE(readFile(a / "report.md").find("| ci_mcd_s2_odom-reference_wifi | done |"), std::string::npos);
+  EXPECT_NE(cosmo::readWholeFileOrEmpty(a / "report.md").find("| ci_mcd_s2_odom-reference_wifi | done |"), std::string::npos);
 
   // the estimate and each group, by cosmo_generate alone into a folder of its own
   const fs::path alone = root() / "alone";
@@ -61,7 +61,7 @@ TEST_F(SuiteEndToEnd, EveryDatasetIsThereValidAndWhatCosmoGenerateWritesAlone) {
   Outcome e = runTool("cosmo_generate", {sequence("cu-multi"), "--estimate-noise-models", "b", "--estimate-only",
                                      "--noise-models-out", estimate.string()});
   ASSERT_EQ(e.status, 0) << e.output;
-  EXPECT_EQ(readFile(estimate), readFile(a / "noise_models/synthetic_cu/synthetic_cu.yaml"));
+  EXPECT_EQ(cosmo::readWholeFileOrEmpty(estimate), cosmo::readWholeFileOrEmpty(a / "noise_models/synthetic_cu/synthetic_cu.yaml"));
   for (const auto& g : groups()) {
     const fs::path out = alone / g.id;
     std::vector<std::string> args{sequence(g.layout), "--comm", "wifi,proradio", "--seed", g.seed, "--odometry", "reference",
@@ -87,7 +87,7 @@ TEST_F(SuiteEndToEnd, KilledAtARandomMomentAndRunAgainGivesTheSameBytes) {
   const fs::path log = root() / "killed.log";
   const pid_t pid = suite::spawnChild(suiteCommand(b, {"--jobs", "1"}), log.string());
   const auto started = [&] {
-    const std::string text = readFile(log);
+    const std::string text = cosmo::readWholeFileOrEmpty(log);
     int n = 0;
     for (std::size_t p = 0; (p = text.find("[suite] start ", p)) != std::string::npos; ++p) ++n;
     return n;
@@ -98,7 +98,7 @@ TEST_F(SuiteEndToEnd, KilledAtARandomMomentAndRunAgainGivesTheSameBytes) {
   std::this_thread::sleep_for(std::chrono::duration<double>(delay));
   // while it runs, a second suite on the same folder is refused
   const Outcome second = runTool("cosmo_suite", {ciSuite(), "--out", b.string()});
-  ASSERT_EQ(::waitpid(pid, &status, WNOHANG), 0) << "the run ended before it could be killed:\n" << readFile(log);
+  ASSERT_EQ(::waitpid(pid, &status, WNOHANG), 0) << "the run ended before it could be killed:\n" << cosmo::readWholeFileOrEmpty(log);
   ::kill(pid, SIGKILL);
   ::waitpid(pid, &status, 0);
   EXPECT_EQ(second.status, 2) << second.output;
@@ -117,7 +117,7 @@ TEST_F(SuiteEndToEnd, AChangedSequenceFileRedoesExactlyItsDatasets) {
   const fs::path a = runA();
   const fs::path seq = sequence("mcd");
   const std::string mcd = groups()[0].id, cu = groups()[1].id;
-  const std::string original = readFile(seq), jrl = readFile(a / mcd / "suite_light_wifi.jrl");
+  const std::string original = cosmo::readWholeFileOrEmpty(seq), jrl = cosmo::readWholeFileOrEmpty(a / mcd / "suite_light_wifi.jrl");
   std::ofstream(seq, std::ios::app) << "# changed by the test\n";
   const Outcome r = runTool("cosmo_suite", {ciSuite(), "--out", a.string()});
   std::ofstream(seq, std::ios::trunc) << original;
@@ -128,12 +128,12 @@ TEST_F(SuiteEndToEnd, AChangedSequenceFileRedoesExactlyItsDatasets) {
     EXPECT_NE(r.output.find(id + ": current -> skipped"), std::string::npos) << id << "\n" << r.output;
   EXPECT_NE(r.output.find("4 datasets: 2 done, 2 skipped as current, 0 failed"), std::string::npos) << r.output;
   // a comment changes no output: the redone datasets are the same bytes
-  EXPECT_TRUE(readFile(a / mcd / "suite_light_wifi.jrl") == jrl);
+  EXPECT_TRUE(cosmo::readWholeFileOrEmpty(a / mcd / "suite_light_wifi.jrl") == jrl);
 }
 
 TEST_F(SuiteEndToEnd, ABadSuiteFileStopsBeforeAnythingRunsNamingTheFileAndTheKey) {
   const fs::path bad = root() / "bad_suite.yaml";
-  std::ofstream(bad) << readFile(ciSuite()) << "  sed: [3]\n";
+  std::ofstream(bad) << cosmo::readWholeFileOrEmpty(ciSuite()) << "  sed: [3]\n";
   const fs::path out = root() / "bad_out";
   const Outcome r = runTool("cosmo_suite", {bad.string(), "--out", out.string()});
   EXPECT_EQ(r.status, 2) << r.output;
@@ -168,7 +168,7 @@ TEST_F(SuiteEndToEnd, OnASingleNodeSlurmClusterTheOutputsAreThoseOfTheLocalRun) 
 /// file): the estimate is written beside the outputs, the output says where, and the dataset uses it.
 TEST_F(SuiteEndToEnd, AnEstimateWithoutAModelFileIsWrittenBesideTheOutputsAndUsed) {
   const fs::path cached = sequence("cu-multi");
-  std::string yaml = readFile(cached);
+  std::string yaml = cosmo::readWholeFileOrEmpty(cached);
   yaml = std::regex_replace(yaml, std::regex("\nenvironment: [a-z_]+\n"), "\n");
   yaml = std::regex_replace(yaml, std::regex("\nname: suite_light\n"), "\nname: no_models\ndata_root: " +
                                                                            cached.parent_path().string() + "\n");
@@ -184,8 +184,8 @@ TEST_F(SuiteEndToEnd, AnEstimateWithoutAModelFileIsWrittenBesideTheOutputsAndUse
   const fs::path models = out / "no_models.noise_models.yaml";
   EXPECT_NE(r.output.find("wrote the estimate to " + models.string()), std::string::npos) << r.output;
   ASSERT_TRUE(fs::exists(models));
-  EXPECT_NE(readFile(models).find("from trial suite_b"), std::string::npos) << readFile(models);
-  EXPECT_NE(readFile(out / "no_models_wifi.recorder.yaml").find(models.string()), std::string::npos);
+  EXPECT_NE(cosmo::readWholeFileOrEmpty(models).find("from trial suite_b"), std::string::npos) << cosmo::readWholeFileOrEmpty(models);
+  EXPECT_NE(cosmo::readWholeFileOrEmpty(out / "no_models_wifi.recorder.yaml").find(models.string()), std::string::npos);
 }
 
 /// The gate-threshold variant's option is the sequence's own `registration:` keys: `--gate-threshold 0.7` gives the
@@ -193,7 +193,7 @@ TEST_F(SuiteEndToEnd, AnEstimateWithoutAModelFileIsWrittenBesideTheOutputsAndUse
 /// stops before anything runs, naming the option.
 TEST_F(SuiteEndToEnd, TheGateThresholdOptionIsTheSequencesOwnKeys) {
   const fs::path cached = sequence("mcd");
-  std::string yaml = readFile(cached);
+  std::string yaml = cosmo::readWholeFileOrEmpty(cached);
   ASSERT_EQ(yaml.find("\nregistration:"), std::string::npos) << cached;
   yaml += "\ndata_root: " + cached.parent_path().string() + "\nregistration:\n  gate: strict\n  min_structure_overlap: 0.7\n";
   const fs::path keys_dir = root() / "gate_keys";
@@ -208,7 +208,7 @@ TEST_F(SuiteEndToEnd, TheGateThresholdOptionIsTheSequencesOwnKeys) {
   ASSERT_EQ(a.status, 0) << a.output;
   ASSERT_EQ(b.status, 0) << b.output;
   const std::string jrl = "suite_light_wifi.jrl";
-  EXPECT_TRUE(readFile(root() / "gate_a" / jrl) == readFile(root() / "gate_b" / jrl));
+  EXPECT_TRUE(cosmo::readWholeFileOrEmpty(root() / "gate_a" / jrl) == cosmo::readWholeFileOrEmpty(root() / "gate_b" / jrl));
   const Outcome bad = runTool("cosmo_generate", {cached.string(), "--gate-threshold", "1.5", "--out",
                                                  (root() / "gate_c").string()});
   EXPECT_EQ(bad.status, 1) << bad.output;

@@ -21,6 +21,7 @@
 #include "cosmo/ros/trial_layout_writer.hpp"
 #include "cosmo/sim/sequence_planner.hpp"
 #include "cosmo/trials/trial_reference.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 namespace fs = std::filesystem;
 using namespace cosmo;
@@ -50,13 +51,6 @@ ToolRun runTool(const std::string& tool, const std::string& args, const std::str
   const int status = ::pclose(p);
   r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
-}
-
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 /// Two robots on a one-block campus: a walker along one side (27 s), an ATV along two (26 s).
@@ -165,7 +159,7 @@ class ToolsOnFixtures : public ::testing::Test {
     std::snprintf(line, sizeof line, "reference_offset: [%.3f, %.3f, %.3f]", offset.x(), offset.y(), offset.z());
     std::string recorder_yaml = jrl_path.string();
     recorder_yaml.replace(recorder_yaml.size() - 4, 4, ".recorder.yaml");
-    EXPECT_NE(readFile(recorder_yaml).find(line), std::string::npos) << line;
+    EXPECT_NE(cosmo::readWholeFileOrEmpty(recorder_yaml).find(line), std::string::npos) << line;
     ASSERT_EQ(ds.robots.size(), 2u);
     for (const char r : ds.robots) {
       const auto& gt = ds.groundtruth->at(r);
@@ -244,7 +238,7 @@ TEST_F(ToolsOnFixtures, CheckReportsCuMultiTrials) {
 
 TEST_F(ToolsOnFixtures, CheckNamesTheTopicsOfABagWithoutTheConfiguredOne) {
   for (const Fixture* f : {&mcd(), &cuMulti()}) {
-    std::string text = readFile(f->sequence);
+    std::string text = cosmo::readWholeFileOrEmpty(f->sequence);
     const std::string topic = f == &mcd() ? "/os_cloud_node/points" : "robot1/ouster/points";
     text.replace(text.find("topic: " + topic), 7 + topic.size(), "topic: /wrong/points");
     const fs::path bad = f->dir / "wrong_topic.yaml";
@@ -276,8 +270,8 @@ TEST_F(ToolsOnFixtures, GenerateOnCuMultiLayoutWritesTheTrueGroundtruth) {
 TEST_F(ToolsOnFixtures, JrlIsByteIdenticalWithoutWithAColdAndWithAWarmScanCache) {
   const Fixture& f = mcd();
   const fs::path cache = root() / "scan_cache";
-  const std::string off = readFile(generate(f, root() / "cache_off", "off", true));
-  const std::string cold = readFile(generate(f, root() / "cache_cold", cache.string(), true));
+  const std::string off = cosmo::readWholeFileOrEmpty(generate(f, root() / "cache_off", "off", true));
+  const std::string cold = cosmo::readWholeFileOrEmpty(generate(f, root() / "cache_cold", cache.string(), true));
   std::size_t scans = 0, spans = 0;
   for (const auto& e : fs::directory_iterator(cache)) {
     scans += e.path().extension() == ".scans";
@@ -285,7 +279,7 @@ TEST_F(ToolsOnFixtures, JrlIsByteIdenticalWithoutWithAColdAndWithAWarmScanCache)
   }
   EXPECT_EQ(scans, 2u) << "the cold run fills the cache: one file of scans per trial";
   EXPECT_EQ(spans, 2u) << "and one span per trial";
-  const std::string warm = readFile(generate(f, root() / "cache_warm", cache.string(), true));
+  const std::string warm = cosmo::readWholeFileOrEmpty(generate(f, root() / "cache_warm", cache.string(), true));
   ASSERT_GT(off.size(), 1000u);
   EXPECT_TRUE(off == cold) << "cache off and cold cache differ";
   EXPECT_TRUE(off == warm) << "cache off and warm cache differ";

@@ -123,7 +123,7 @@ SequenceRun runSequence(const std::string& config_path) {
   Scan scan;
   while (stream.next(robot, scan)) run.add(robot, frontend::OwnScan::of(scan));
   run.finish(r.timing.end());
-  BuildReport report;
+  dataset::BuildReport report;
   run.recorder().build(&report);
   r.labelled = report.labelled;
   r.keyframes = run.frontend('a').keyframes();

@@ -23,6 +23,7 @@
 #include "cosmo/trials/trial_scans.hpp"
 
 #include "tiny_trial.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 using namespace cosmo;
 namespace fs = std::filesystem;
@@ -82,13 +83,6 @@ void expectSameAsLibrosbag(const std::string& bag, bool stamp_at_end, int thread
   }
   EXPECT_FALSE(ours.next(a));
   EXPECT_GT(n, 0u);
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 void spit(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
@@ -196,7 +190,7 @@ TEST(Ros1Bag, IndexCountsOfAnMcdBagEndWithAMessage) {
   // read the next record's bytes as a second index entry, whose offset lies 1.8 GB past the chunk. The same with
   // the chunk info's `count`.
   TempDir dir;
-  const std::string bytes = slurp(writeBag(dir.path, "good.bag", ros_glue::BagCompression::Bz2, 3));
+  const std::string bytes = cosmo::readWholeFileOrEmpty(writeBag(dir.path, "good.bag", ros_glue::BagCompression::Bz2, 3));
   for (std::uint32_t count : {2u, 0u, 1000u, 0xffffffffu}) {
     const std::string tag = std::to_string(count) + ".bag";
     expectMessageFromProbeAndSpan(mutated(dir.path, "index_" + tag, bytes, countOffset(bytes, '\x04'), count),
@@ -209,7 +203,7 @@ TEST(Ros1Bag, IndexCountsOfAnMcdBagEndWithAMessage) {
 TEST(Ros1Bag, DamagedBagsEndWithAMessageNamingTheRecord) {
   TempDir dir;
   const std::string good = writeBag(dir.path, "good.bag", ros_glue::BagCompression::Bz2, 3);
-  const std::string bytes = slurp(good);
+  const std::string bytes = cosmo::readWholeFileOrEmpty(good);
   auto damaged = [&](const std::string& name, std::string mutated) {
     const std::string path = (dir.path / name).string();
     spit(path, mutated);
@@ -263,7 +257,7 @@ TEST(Ros1Bag, ABagThatRecordsNothingReadsAsARecordingOfNothing) {
   EXPECT_NE(probe.error.find("records nothing"), std::string::npos) << probe.error;
 
   // index_pos at the end of the file but connections announced: the index is missing, the bag damaged.
-  std::string bytes = slurp(path);
+  std::string bytes = cosmo::readWholeFileOrEmpty(path);
   const std::size_t conn_count = bytes.find("conn_count=") + 11;
   bytes[conn_count] = 1;
   const std::string announced = (dir.path / "announced.bag").string();
@@ -299,7 +293,7 @@ TEST(Ros1Bag, TheCheckNamesWhatIsWrongWithATrialsBag) {
 
   const std::string good = writeBag(dir.path, "good.bag", ros_glue::BagCompression::None, 2);
   const std::string truncated = (dir.path / "truncated.bag").string();
-  const std::string bytes = slurp(good);
+  const std::string bytes = cosmo::readWholeFileOrEmpty(good);
   spit(truncated, bytes.substr(0, bytes.size() / 2));
   const auto damaged = check(truncated);
   EXPECT_EQ(damaged.first, sequence::BagState::Damaged);

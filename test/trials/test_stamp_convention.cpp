@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "cosmo/odometry/loam_odometry.hpp"
-#include "cosmo/odometry/synthetic_scene.hpp"
+#include "cosmo/test_support/street_scene.hpp"
 #include "cosmo/sequence/trial_coverage.hpp"
 #include "cosmo/trials/ouster_cloud.hpp"
 #include "cosmo/trials/point_cloud_decode.hpp"
@@ -38,8 +38,8 @@ trials::OusterSweep sweepOf(bool stamp_at_end) {
 
 /// n simulated sweeps written as organised Ouster clouds with the given convention and decoded with it.
 std::vector<Scan> decodedSweeps(int n, bool stamp_at_end) {
-  static const SyntheticScene scene = SyntheticScene::street(300.0);
-  SyntheticLidar lidar;
+  static const test_support::SyntheticScene scene = test_support::SyntheticScene::street(300.0);
+  test_support::SyntheticLidar lidar;
   lidar.rings = 16;
   lidar.columns = 500;
   std::vector<Scan> out;
@@ -72,11 +72,11 @@ TEST(StampConvention, SameOdometryFromBothCopies) {
   auto run = [](std::vector<Scan> scans) {
     sequence::CoveredScanSource source(std::make_unique<sequence::VectorScanSource>(std::move(scans)),
                                        sequence::TrialCoverage{});
-    LoamOdometry odom;
+    odometry::LoamOdometry odom;
     std::vector<std::pair<StampNs, Pose3>> poses;
     Scan s;
     while (source.next(s)) {
-      const OdometryResult r = odom.update(s);
+      const odometry::OdometryResult r = odom.update(s);
       EXPECT_TRUE(r.ok) << r.warning;
       poses.push_back({s.stamp, r.pose});
     }

@@ -24,11 +24,11 @@ inline std::string need(const std::filesystem::path& p) {
 
 /// KITTI 00 0-1, 0-2, 94-95, 198-199, 0-20, 20-40, the hdl32 pair, and consecutive MulRan KAIST03 keyframes
 /// 0..20 when `all_mulran` (else 0-1 and 5-6), for the snippets folder `root`. Missing files throw naming the file.
-inline std::vector<ScanPair> snippetPairs(const std::string& root_str, bool all_mulran = true) {
+inline std::vector<registration::ScanPair> snippetPairs(const std::string& root_str, bool all_mulran = true) {
   using snippet_detail::need;
   namespace fs = std::filesystem;
   const fs::path root(root_str);
-  std::vector<ScanPair> pairs;
+  std::vector<registration::ScanPair> pairs;
   // KITTI 00: LiDAR poses from the camera ground truth and Tr.
   {
     const fs::path k = root / "kitti00";
@@ -41,7 +41,7 @@ inline std::vector<ScanPair> snippetPairs(const std::string& root_str, bool all_
     };
     const int kitti[][2] = {{0, 1}, {0, 2}, {94, 95}, {198, 199}, {0, 20}, {20, 40}};
     for (const auto& ij : kitti) {
-      ScanPair p;
+      registration::ScanPair p;
       p.name = "kitti00_" + std::to_string(ij[0]) + "-" + std::to_string(ij[1]);
       // source = the later frame j, target = frame i: T_target_source = T_i^-1 T_j.
       p.source = bin(ij[1]);
@@ -53,7 +53,7 @@ inline std::vector<ScanPair> snippetPairs(const std::string& root_str, bool all_
   }
   {
     const fs::path h = root / "hdl32_pair";
-    ScanPair p;
+    registration::ScanPair p;
     p.name = "hdl32";
     p.source = need(h / "251371071.pcd");
     p.target = need(h / "251370668.pcd");
@@ -74,7 +74,7 @@ inline std::vector<ScanPair> snippetPairs(const std::string& root_str, bool all_
     else
       starts = {0, 5};
     for (const int i : starts) {
-      ScanPair p;
+      registration::ScanPair p;
       p.name = "kaist03_" + std::to_string(i) + "-" + std::to_string(i + 1);
       p.source = pcd(i + 1);
       p.target = pcd(i);

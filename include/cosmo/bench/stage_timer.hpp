@@ -10,9 +10,9 @@
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/registration/stage_observer.hpp"
 
-namespace cosmo {
+namespace cosmo::bench {
 
-class StageTimer : public StageObserver {
+class StageTimer : public registration::StageObserver {
  public:
   void restart() {
     ms_.clear();
@@ -47,4 +47,4 @@ class StageTimer : public StageObserver {
 inline const char* const kRegistrationStages[] = {"downsample", "neighbours", "normals", "spfh",   "fpfh",
                                                   "matching",   "pruning",    "solve",   "refine", "gate"};
 
-}  // namespace cosmo
+}  // namespace cosmo::bench

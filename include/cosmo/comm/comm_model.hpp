@@ -10,7 +10,7 @@
 
 #include "cosmo/comm/radio_params.hpp"
 
-namespace cosmo {
+namespace cosmo::comm {
 
 struct CommModel {
   std::string label;  ///< what the dataset's name says: the name (proradio for its spellings) or the file's stem
@@ -22,4 +22,4 @@ struct CommModel {
 /// `config_dir` empty: names are the built-in models. Throws std::runtime_error naming what it cannot read or know.
 CommModel resolveCommModel(const std::string& comm, const std::string& config_dir);
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

@@ -12,7 +12,7 @@
 #include "cosmo/comm/radio_params.hpp"
 #include "cosmo/comm/radio_trace.hpp"
 
-namespace cosmo {
+namespace cosmo::comm {
 
 struct LinkSample {
   bool connected = false;
@@ -45,4 +45,4 @@ class LinkModel {
   std::vector<LinkRecord> records_;
 };
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

@@ -15,7 +15,7 @@
 
 #include "cosmo/common/scan.hpp"
 
-namespace cosmo {
+namespace cosmo::comm {
 
 class PayloadStore {
  public:
@@ -55,4 +55,4 @@ class PayloadStore {
   std::map<std::pair<char, std::size_t>, Payload> items_;
 };
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

@@ -7,7 +7,7 @@
 
 #include "cosmo/common/config.hpp"
 
-namespace cosmo {
+namespace cosmo::comm {
 
 class RadioTrace;
 
@@ -90,4 +90,4 @@ RadioParams::TimeoutMode timeoutModeFromString(const std::string& s, const std::
 /// "paper" | "real"; throws std::invalid_argument naming `where` otherwise.
 RadioParams::SizeModel sizeModelFromString(const std::string& s, const std::string& where = "size_model");
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <random>
 
-namespace cosmo::radio_random {
+namespace cosmo::comm::radio_random {
 
 /// Uniform in [0, 1) from the top 53 bits.
 inline double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
@@ -19,4 +19,4 @@ double normal(std::mt19937_64& rng, double mean, double stddev);
 /// A well-mixed 64-bit value of the inputs (splitmix64), for per-item seeds independent of call order.
 std::uint64_t mixSeed(std::uint64_t a, std::uint64_t b, std::uint64_t c = 0);
 
-}  // namespace cosmo::radio_random
+}  // namespace cosmo::comm::radio_random

@@ -40,7 +40,7 @@
 #include "cosmo/comm/transfer.hpp"
 #include "cosmo/common/time.hpp"
 
-namespace cosmo {
+namespace cosmo::comm {
 
 /// A communication in progress (for link display and statistics).
 struct ActiveCommunication {
@@ -164,4 +164,4 @@ class RadioSimulator {
   double last_time_ = 0.0;
 };
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

@@ -8,7 +8,7 @@
 
 #include "cosmo/comm/radio_simulator.hpp"
 
-namespace cosmo {
+namespace cosmo::comm {
 
 /// transferSummary() at radio time `t` (s), with the active transfers ("active") and the undelivered keyframes
 /// per ordered pair of robots ("pending", keys "a->b").
@@ -21,4 +21,4 @@ double linkThroughputFraction(const ActiveCommunication& link, double t, const R
 /// The links of the latest step, one per (sender, receiver).
 std::map<std::pair<char, char>, ActiveCommunication> lastStepLinks(const RadioSimulator& radio);
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

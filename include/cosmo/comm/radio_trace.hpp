@@ -24,7 +24,7 @@
 #include <utility>
 #include <vector>
 
-namespace cosmo {
+namespace cosmo::comm {
 
 struct TraceWindow {
   char robot_a = 0, robot_b = 0;  ///< robot_a < robot_b
@@ -76,4 +76,4 @@ class RadioTrace {
   std::map<std::pair<char, char>, std::vector<TraceWindow>> pairs_;  ///< sorted by start
 };
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

@@ -8,7 +8,7 @@
 
 #include "cosmo/common/scan.hpp"
 
-namespace cosmo {
+namespace cosmo::comm {
 
 /// Uncompressed payload size S of a scan: 12 bytes per point.
 inline std::size_t rawPayloadBytes(const Scan& scan) { return 12 * scan.size(); }
@@ -18,4 +18,4 @@ std::vector<std::uint8_t> compressScan(const Scan& scan, std::uint32_t preset = 
 /// Inverse of compressScan; throws std::runtime_error when the bytes are not an xz stream of whole points.
 Scan decompressScan(const std::vector<std::uint8_t>& bytes);
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

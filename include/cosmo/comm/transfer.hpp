@@ -4,7 +4,7 @@
 #include <limits>
 #include <string>
 
-namespace cosmo {
+namespace cosmo::comm {
 
 struct Transfer {
   char sender = 0;
@@ -27,4 +27,4 @@ std::string toString(Transfer::Outcome outcome);
 /// "distance" | "trace" | "mixed".
 std::string toString(Transfer::Link link);
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

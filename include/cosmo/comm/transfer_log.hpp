@@ -15,7 +15,7 @@
 
 #include "cosmo/comm/radio_simulator.hpp"
 
-namespace cosmo {
+namespace cosmo::comm {
 
 void writeTransferCsv(std::ostream& out, const std::vector<Transfer>& transfers);
 /// Summary counters and the parameters as a JSON object.
@@ -31,4 +31,4 @@ void writeTransferLog(const std::string& csv_path, const std::vector<Transfer>& 
 /// The radio's whole log (transferSummary(radio) as the summary).
 void writeTransferLog(const std::string& csv_path, const RadioSimulator& radio);
 
-}  // namespace cosmo
+}  // namespace cosmo::comm

@@ -40,7 +40,7 @@
 #include "cosmo/dataset/outlier_rule.hpp"
 #include "cosmo/jrl/dataset.hpp"
 
-namespace cosmo {
+namespace cosmo::dataset {
 
 /// A loop-closure measurement: measurement = T_key1^-1 * T_key2 (JRL BetweenFactor semantics), key1 owned by
 /// `owner` (when only key2 is, the recorder swaps the keys and inverts the measurement).
@@ -180,4 +180,4 @@ class DatasetRecorder {
   RecorderCounts counts_;
 };
 
-}  // namespace cosmo
+}  // namespace cosmo::dataset

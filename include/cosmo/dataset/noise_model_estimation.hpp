@@ -12,7 +12,7 @@
 #include "cosmo/dataset/noise_models.hpp"
 #include "cosmo/jrl/dataset.hpp"
 
-namespace cosmo {
+namespace cosmo::dataset {
 
 /// A measured relative pose and its reference ("true") value, both T_1^-1 * T_2.
 struct MeasurementWithTruth {
@@ -61,4 +61,4 @@ struct MeasurementSets {
 };
 MeasurementSets collectMeasurements(const jrl::Dataset& dataset, std::optional<char> robot = std::nullopt);
 
-}  // namespace cosmo
+}  // namespace cosmo::dataset

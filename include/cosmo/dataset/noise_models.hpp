@@ -33,7 +33,7 @@
 #include "cosmo/common/config.hpp"
 #include "cosmo/common/pose.hpp"
 
-namespace cosmo {
+namespace cosmo::dataset {
 
 /// What an estimated model was computed from (the YAML's `estimated_from`).
 struct NoiseModelRecord {
@@ -85,4 +85,4 @@ struct NoiseModels {
 /// definite.
 void checkCovariance(const Matrix6& cov, const std::string& what);
 
-}  // namespace cosmo
+}  // namespace cosmo::dataset

@@ -22,7 +22,7 @@
 #include "cosmo/dataset/outlier_kinds.hpp"
 #include "cosmo/jrl/dataset.hpp"
 
-namespace cosmo {
+namespace cosmo::dataset {
 
 enum class RateOf { Injected, All };
 
@@ -63,4 +63,4 @@ jrl::Dataset injectOutliers(const jrl::Dataset& dataset, const InjectionParams& 
 /// 10.6 % injected, 20.4 % outliers".
 std::string formatInjection(const InjectionReport& report, OutlierKind kind);
 
-}  // namespace cosmo
+}  // namespace cosmo::dataset

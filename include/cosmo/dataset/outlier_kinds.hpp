@@ -25,7 +25,7 @@
 #include "cosmo/dataset/outlier_rule.hpp"
 #include "cosmo/dataset/team_poses.hpp"
 
-namespace cosmo {
+namespace cosmo::dataset {
 
 enum class OutlierKind { Random, Local, Group, Mixed };
 /// Which pose pairs: within one robot, between robots, or both.
@@ -91,4 +91,4 @@ class OutlierDrawer {
   std::mt19937_64 rng_;
 };
 
-}  // namespace cosmo
+}  // namespace cosmo::dataset

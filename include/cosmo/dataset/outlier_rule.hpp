@@ -10,7 +10,7 @@
 
 #include "cosmo/common/pose.hpp"
 
-namespace cosmo {
+namespace cosmo::dataset {
 
 enum class OutlierRule { Fidelity, Squared };
 
@@ -33,4 +33,4 @@ bool exceedsRule(double d2, OutlierRule rule, double critical_value = kChi2Criti
 bool isOutlier(const Pose3& measurement, const Pose3& truth, const Matrix6& cov,
                OutlierRule rule = OutlierRule::Fidelity, double critical_value = kChi2Critical95Dof6);
 
-}  // namespace cosmo
+}  // namespace cosmo::dataset

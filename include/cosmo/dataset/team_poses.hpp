@@ -11,7 +11,7 @@
 #include "cosmo/common/time.hpp"
 #include "cosmo/jrl/pose_graph.hpp"
 
-namespace cosmo {
+namespace cosmo::dataset {
 
 struct TeamPose {
   jrl::Key key = 0;
@@ -34,4 +34,4 @@ struct TeamPoses {
 /// entries are left out.
 TeamPoses teamPoses(const jrl::PoseGraph& graph);
 
-}  // namespace cosmo
+}  // namespace cosmo::dataset

@@ -20,18 +20,19 @@ enum class ClosureLabel { Rejected, Inlier, Outlier, Unlabelled };
 class ClosureLabeller {
  public:
   /// `noise`: the noise models the loop-closure covariance comes from (none: accepted closures are unlabelled).
-  explicit ClosureLabeller(std::optional<NoiseModels> noise, OutlierRule rule = OutlierRule::Fidelity);
+  explicit ClosureLabeller(std::optional<dataset::NoiseModels> noise,
+                           dataset::OutlierRule rule = dataset::OutlierRule::Fidelity);
 
   /// The reference pose (world frame) of keyframe `index` of `robot`: own keyframes and teammates' received scans.
   void addReference(char robot, std::size_t index, const Pose3& reference);
   ClosureLabel label(const LoopClosureAttempt& attempt) const;
   bool hasNoiseModels() const { return noise_.has_value(); }
   /// Noise models known only later (a lockstep front-end learns its sequence from the player).
-  void setNoiseModels(NoiseModels noise) { noise_ = std::move(noise); }
+  void setNoiseModels(dataset::NoiseModels noise) { noise_ = std::move(noise); }
 
  private:
-  std::optional<NoiseModels> noise_;
-  OutlierRule rule_;
+  std::optional<dataset::NoiseModels> noise_;
+  dataset::OutlierRule rule_;
   std::map<std::pair<char, std::size_t>, Pose3> references_;
 };
 

@@ -30,30 +30,32 @@ struct FeatureCacheFootprint {
 };
 
 /// Bytes of a FeatureCloud's arrays.
-std::size_t featureCloudBytes(const FeatureCloud& f);
+std::size_t featureCloudBytes(const registration::FeatureCloud& f);
 
 class FeatureCache {
  public:
-  using Prepare = std::function<FeatureCloud(const Scan&)>;
+  using Prepare = std::function<registration::FeatureCloud(const Scan&)>;
   /// `spill`: where computed features go (nullptr: kept in memory).
   explicit FeatureCache(std::shared_ptr<SpillFile> spill = nullptr) : spill_(std::move(spill)) {}
 
   /// The features of `scan`, computed with `prepare` on the first request (the entry keeps the KeptScan, not its
   /// points). An exception of `prepare` is rethrown to every caller of that scan.
-  std::shared_ptr<const FeatureCloud> get(const std::shared_ptr<const KeptScan>& scan, const Prepare& prepare);
+  std::shared_ptr<const registration::FeatureCloud> get(const std::shared_ptr<const KeptScan>& scan,
+                                                        const Prepare& prepare);
   std::size_t size() const;
   FeatureCacheFootprint footprint() const;
 
  private:
   struct Entry {
     std::shared_ptr<const KeptScan> scan;
-    std::shared_future<std::shared_ptr<const FeatureCloud>> computing;  ///< until spilled (or held, or failed)
-    std::shared_ptr<const FeatureCloud> held;                           ///< without a spill file
+    std::shared_future<std::shared_ptr<const registration::FeatureCloud>>
+        computing;                                           ///< until spilled (or held, or failed)
+    std::shared_ptr<const registration::FeatureCloud> held;  ///< without a spill file
     bool spilled = false;
     SpillFile::Extent extent;
-    std::weak_ptr<const FeatureCloud> in_use;
+    std::weak_ptr<const registration::FeatureCloud> in_use;
   };
-  std::shared_ptr<const FeatureCloud> load(const Entry& e) const;
+  std::shared_ptr<const registration::FeatureCloud> load(const Entry& e) const;
 
   std::shared_ptr<SpillFile> spill_;
   mutable std::mutex mutex_;
@@ -61,7 +63,7 @@ class FeatureCache {
 };
 
 /// FeatureCloud <-> bytes (the spill file's block), exact.
-std::vector<char> serializeFeatureCloud(const FeatureCloud& f);
-FeatureCloud deserializeFeatureCloud(const std::vector<char>& bytes);
+std::vector<char> serializeFeatureCloud(const registration::FeatureCloud& f);
+registration::FeatureCloud deserializeFeatureCloud(const std::vector<char>& bytes);
 
 }  // namespace cosmo::frontend

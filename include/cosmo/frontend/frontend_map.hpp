@@ -27,7 +27,7 @@ struct ClosureSegment {
 class FrontendMap {
  public:
   /// `noise`: the noise models the labels use (none: accepted closures are unlabelled).
-  explicit FrontendMap(char robot, std::optional<NoiseModels> noise = std::nullopt);
+  explicit FrontendMap(char robot, std::optional<dataset::NoiseModels> noise = std::nullopt);
 
   /// One of the robot's own keyframes.
   void addKeyframe(const KeyframeRecord& keyframe);
@@ -38,7 +38,7 @@ class FrontendMap {
 
   bool hasNoiseModels() const { return labeller_.hasNoiseModels(); }
   /// Noise models known only later (a lockstep front-end learns its sequence from the player).
-  void setNoiseModels(NoiseModels noise) { labeller_.setNoiseModels(std::move(noise)); }
+  void setNoiseModels(dataset::NoiseModels noise) { labeller_.setNoiseModels(std::move(noise)); }
 
   /// The odometry frame in the world frame.
   const Pose3& worldFromOdometry() const { return world_T_odom_; }

@@ -34,9 +34,9 @@ struct FrontendParams {
   /// cosmo_generate's --odometry), not a key of frontend.yaml.
   OdometryKind odometry = OdometryKind::Loam;
 
-  LoamParams loam;
+  odometry::LoamParams loam;
   place_recognition::PlaceRecognitionParams place;
-  RegistrationParams registration;
+  registration::RegistrationParams registration;
 
   /// The front-end's own keys (root or `frontend` section of config/frontend.yaml).
   static FrontendParams fromConfig(const ConfigNode& node);

@@ -16,7 +16,7 @@ class KeyframeTaker {
  public:
   explicit KeyframeTaker(const FrontendParams& params);
   /// Feeds the next scan's odometry pose (stamps increasing): the keyframer's decision.
-  KeyframeDecision update(StampNs stamp, const Pose3& odom_pose);
+  odometry::KeyframeDecision update(StampNs stamp, const Pose3& odom_pose);
   /// The keyframe scan of `scan`, the scan last given to update(); `reference`: the robot's sensor trajectory in
   /// the world frame (empty: dewarped with the odometry).
   Scan keyframeScan(const Scan& scan, const Trajectory& reference) const;
@@ -24,7 +24,7 @@ class KeyframeTaker {
  private:
   double min_range_;
   bool dewarp_with_reference_;
-  Keyframer keyframer_;
+  odometry::Keyframer keyframer_;
   Trajectory recent_odometry_;  ///< the odometry of the last two scans (the sweep of the latest one)
 };
 

@@ -39,7 +39,7 @@ namespace cosmo::frontend {
 struct AheadScan {
   char robot = 'a';
   StampNs stamp = 0;  ///< sequence time
-  OdometryResult odometry;
+  odometry::OdometryResult odometry;
   std::shared_ptr<const Scan> keyframe_scan;  ///< the keyframe scan when the scan is a keyframe
 };
 
@@ -72,7 +72,7 @@ class OdometryRunAhead {
         : robot(r), stream(std::move(s)), odometry(params.loam), taker(params), reference(std::move(ref)) {}
     char robot;
     sequence::MergedScanStream stream;
-    LoamOdometry odometry;
+    odometry::LoamOdometry odometry;
     KeyframeTaker taker;
     Trajectory reference;
     std::deque<AheadScan> results;

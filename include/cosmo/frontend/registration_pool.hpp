@@ -20,7 +20,7 @@ namespace cosmo::frontend {
 
 class RegistrationPool {
  public:
-  using Job = std::function<RegistrationResult()>;
+  using Job = std::function<registration::RegistrationResult()>;
   /// Starts `threads` threads; zero: every job runs inline in submit() (its result is ready when submit returns).
   explicit RegistrationPool(unsigned threads);
   /// Stops the threads after their current job; jobs not started are abandoned (their futures report a broken
@@ -30,7 +30,7 @@ class RegistrationPool {
   RegistrationPool& operator=(const RegistrationPool&) = delete;
 
   /// Queues `job`; its result (or exception) arrives in the returned future.
-  std::shared_future<RegistrationResult> submit(Job job);
+  std::shared_future<registration::RegistrationResult> submit(Job job);
   unsigned threads() const { return static_cast<unsigned>(threads_.size()); }
   /// Jobs finished so far.
   std::size_t jobsDone() const;
@@ -40,7 +40,7 @@ class RegistrationPool {
  private:
   struct Queued {
     Job job;
-    std::promise<RegistrationResult> result;
+    std::promise<registration::RegistrationResult> result;
   };
   void run(std::size_t slot);
 

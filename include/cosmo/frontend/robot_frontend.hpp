@@ -79,7 +79,7 @@ struct LoopClosureAttempt {
 /// turns it into the attempt.
 struct PendingLoopClosure {
   LoopClosureAttempt attempt;  ///< keys, owner, computed_at, descriptor distance; not yet the measurement
-  std::shared_future<RegistrationResult> result;
+  std::shared_future<registration::RegistrationResult> result;
   bool ready() const;  ///< the result has arrived (complete() will not wait)
 };
 
@@ -89,12 +89,12 @@ struct PendingLoopClosure {
 struct OwnScan {
   StampNs stamp = 0;
   const Scan* points = nullptr;               ///< the scan, sensor frame (nullptr when prepared); not kept
-  std::optional<OdometryResult> loam;         ///< its LOAM result computed elsewhere (used with LOAM odometry)
+  std::optional<odometry::OdometryResult> loam;         ///< its LOAM result computed elsewhere (used with LOAM odometry)
   std::shared_ptr<const Scan> keyframe_scan;  ///< prepared: its keyframe scan when it is a keyframe
 
   static OwnScan of(const Scan& scan) { return OwnScan{scan.stamp, &scan, std::nullopt, nullptr}; }
-  static OwnScan withLoam(const Scan& scan, const OdometryResult& loam) { return OwnScan{scan.stamp, &scan, loam, nullptr}; }
-  static OwnScan prepared(StampNs stamp, const OdometryResult& loam, std::shared_ptr<const Scan> keyframe_scan) {
+  static OwnScan withLoam(const Scan& scan, const odometry::OdometryResult& loam) { return OwnScan{scan.stamp, &scan, loam, nullptr}; }
+  static OwnScan prepared(StampNs stamp, const odometry::OdometryResult& loam, std::shared_ptr<const Scan> keyframe_scan) {
     return OwnScan{stamp, nullptr, loam, std::move(keyframe_scan)};
   }
 };
@@ -134,7 +134,7 @@ struct OdometryPose {
 /// What one input produced.
 struct Step {
   bool dropped = false;                    ///< a scan that was not processed (no odometry for it, stamp not increasing)
-  OdometryResult odometry;                 ///< a processed scan: pose (sensor, odometry frame) at its stamp
+  odometry::OdometryResult odometry;                 ///< a processed scan: pose (sensor, odometry frame) at its stamp
   std::optional<KeyframeRecord> keyframe;  ///< set when the scan became a keyframe
   std::vector<PendingLoopClosure> closures;  ///< complete() each, in order
   std::vector<std::string> notices;          ///< what the driver should tell (odometry fallbacks, dropped inputs)
@@ -207,9 +207,9 @@ class RobotFrontend {
 
  private:
   /// The scan's odometry as the OdometrySource chooses it; nullopt: dropped (with a notice in `step`).
-  std::optional<OdometryResult> odometryOf(const OwnScan& scan, Step& step);
+  std::optional<odometry::OdometryResult> odometryOf(const OwnScan& scan, Step& step);
   /// `take_keyframe`: the keyframe scan of this scan when it becomes one.
-  void afterOdometry(StampNs stamp, OdometryResult odometry,
+  void afterOdometry(StampNs stamp, odometry::OdometryResult odometry,
                      const std::function<std::shared_ptr<const Scan>()>& take_keyframe, Step& step);
   /// Starts the registration of candidate `c` on the pool.
   PendingLoopClosure registerPair(const place_recognition::LoopCandidate& c, StampNs computed_at);
@@ -219,10 +219,10 @@ class RobotFrontend {
   FrontendParams params_;
   Trajectory reference_;
   OdometrySource odometry_source_;
-  LoamOdometry odometry_;
+  odometry::LoamOdometry odometry_;
   KeyframeTaker taker_;
   place_recognition::PlaceRecognizer recognizer_;
-  GlobalRegistration registration_;
+  registration::GlobalRegistration registration_;
 
   std::vector<KeyframeRecord> keyframes_;
   std::shared_ptr<SpillFile> spill_;  ///< nullptr: kept scans and features stay in memory

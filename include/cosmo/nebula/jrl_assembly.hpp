@@ -36,15 +36,15 @@ enum class NoiseSource {
 struct ConversionParams {
   std::string name = "nebula";
   NoiseSource noise = NoiseSource::Recorded;
-  NoiseModels models;                     ///< used with NoiseSource::Given
-  NoiseModelEstimationParams estimation;  ///< used with NoiseSource::Estimated
-  OutlierRule rule = OutlierRule::Fidelity;
-  double critical_value = kChi2Critical95Dof6;
+  dataset::NoiseModels models;                     ///< used with NoiseSource::Given
+  dataset::NoiseModelEstimationParams estimation;  ///< used with NoiseSource::Estimated
+  dataset::OutlierRule rule = dataset::OutlierRule::Fidelity;
+  double critical_value = dataset::kChi2Critical95Dof6;
 };
 
 struct ConversionReport {
-  std::optional<NoiseModelEstimate> estimate;  ///< with NoiseSource::Estimated
-  std::optional<NoiseModels> models;           ///< the constant models used (Given / Estimated)
+  std::optional<dataset::NoiseModelEstimate> estimate;  ///< with NoiseSource::Estimated
+  std::optional<dataset::NoiseModels> models;           ///< the constant models used (Given / Estimated)
   std::size_t odometry = 0, intra = 0, inter = 0, intra_outliers = 0, inter_outliers = 0;
   std::size_t inverted = 0;  ///< loop closures stored the other way round (key1 = the later pose)
 };

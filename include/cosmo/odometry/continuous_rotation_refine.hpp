@@ -9,7 +9,7 @@
 // oscillated); left free, a deformation shared with the map's scans is not observable (it drifted).
 #include "cosmo/odometry/feature_registration.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 /// Gauss-Newton on `previous`' constraints (its map lines / planes; no new association) for the scan's pose
 /// (update about the sensor position, as robustGaussNewtonStep) and the rotation at the sweep's start, which is
@@ -24,4 +24,4 @@ FeatureRegistrationResult refineContinuousRotation(const LoamFeatures& features,
                                                    const Pose3& predicted_delta, double period, double tie,
                                                    int max_steps);
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

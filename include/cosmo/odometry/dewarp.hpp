@@ -7,7 +7,7 @@
 #include "cosmo/common/pose.hpp"
 #include "cosmo/common/scan.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 /// Returns `scan` with each point p taken at stamp + time[i] mapped to T(stamp)^-1 * T(stamp + time[i]) * p,
 /// where T = sensor_pose_at (sensor pose in any fixed frame). Per-point times are zeroed in the result. A scan
@@ -21,4 +21,4 @@ Scan dewarp(const Scan& scan, const std::function<Pose3(StampNs)>& sensor_pose_a
 void deskewConstantVelocity(const std::vector<Eigen::Vector3d>& points, const std::vector<float>& times,
                             const Pose3& delta, double period, std::vector<Eigen::Vector3d>& out);
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -12,7 +12,7 @@
 #include "cosmo/odometry/local_feature_map.hpp"
 #include "cosmo/odometry/loam_params.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 struct FeatureConstraint {
   Eigen::Vector3d point;   ///< feature in the sensor frame
@@ -79,4 +79,4 @@ void associateFeatures(const std::vector<Eigen::Vector3d>& edges, const std::vec
                        const LocalFeatureMap& map, const Pose3& T, const LoamParams& params,
                        std::vector<FeatureConstraint>& out, std::size_t stride = 1);
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

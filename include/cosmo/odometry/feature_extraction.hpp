@@ -11,7 +11,7 @@
 #include "cosmo/odometry/loam_params.hpp"
 #include "cosmo/odometry/scan_lines.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 struct LoamFeatures {
   std::vector<Eigen::Vector3d> edge_points;    ///< sensor frame
@@ -30,4 +30,4 @@ LoamFeatures extractFeatures(const ScanLines& lines, const LoamParams& params);
 /// Keeps one planar feature per voxel of `voxel_size` m (0: all), with its time (LOAM's "less flat" filter).
 void thinPlanarFeatures(LoamFeatures& features, double voxel_size);
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

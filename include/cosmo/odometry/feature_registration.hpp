@@ -12,7 +12,7 @@
 #include "cosmo/odometry/local_feature_map.hpp"
 #include "cosmo/odometry/loam_params.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 struct FeatureRegistrationResult {
   Pose3 pose = Pose3::Identity();  ///< sensor pose at the scan stamp in the map (odometry) frame
@@ -71,4 +71,4 @@ FeatureRegistrationResult refineRedeskewed(const LoamFeatures& features, Feature
 double scorePose(const LoamFeatures& features, const LocalFeatureMap& map, const Pose3& T, const LoamParams& params,
                  std::size_t stride);
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -8,7 +8,7 @@
 
 #include "cosmo/common/pose.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 struct KeyframeDecision {
   bool is_keyframe = false;
@@ -35,4 +35,4 @@ class Keyframer {
   double travelled_ = 0.0;
 };
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -14,7 +14,7 @@
 #include "cosmo/odometry/local_feature_map.hpp"
 #include "cosmo/odometry/loam_params.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 struct OdometryResult {
   Pose3 pose = Pose3::Identity();   ///< sensor pose at scan.stamp in the odometry frame (first scan = identity)
@@ -80,4 +80,4 @@ class LoamOdometry {
   bool first_needs_deskew_ = false;
 };
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -6,7 +6,7 @@
 
 #include "cosmo/common/config.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 struct LoamParams {
   // --- scan lines -------------------------------------------------------------------------------------------
@@ -213,4 +213,4 @@ struct LoamParams {
   }
 };
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "cosmo/odometry/feature_extraction.hpp"
-#include "cosmo/odometry/kd_tree.hpp"
+#include "cosmo/common/kd_tree3.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 class LocalFeatureMap {
  public:
@@ -40,4 +40,4 @@ class LocalFeatureMap {
   std::vector<std::uint32_t> order_;  ///< scratch: the build order handed to the trees
 };
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

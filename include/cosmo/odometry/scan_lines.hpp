@@ -10,7 +10,7 @@
 #include "cosmo/common/scan.hpp"
 #include "cosmo/odometry/loam_params.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 struct ScanLine {
   std::vector<Eigen::Vector3f> points;  ///< sensor frame, ordered by azimuth
@@ -36,4 +36,4 @@ ScanLines organizeScanLines(const Scan& scan, const LoamParams& params);
 /// clear beam structure is found (then the caller splits the elevation range into equal bins).
 std::vector<float> estimateBeamElevations(const std::vector<float>& elevations);
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 /// The step dx solving H dx = -g in H's eigenbasis, with the components along eigenvectors whose eigenvalue is
 /// below `min_eigenvalue` set to 0; `degenerate`: how many were.
@@ -26,4 +26,4 @@ Eigen::Matrix<double, N, 1> remappedGaussNewtonStep(const Eigen::Matrix<double, 
   return -(es.eigenvectors() * coeff);
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -5,7 +5,7 @@
 // the largest cross product of two rows of (A - lambda I), only for the eigenvalue that is needed.
 #include <Eigen/Core>
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 /// Eigenvalues of the symmetric `a` (only its upper triangle is read), ascending.
 Eigen::Vector3d symmetricEigenvalues3(const Eigen::Matrix3d& a);
@@ -17,4 +17,4 @@ Eigen::Vector3d symmetricEigenvector3(const Eigen::Matrix3d& a, double lambda);
 /// Some unit vector perpendicular to the unit vector `u`.
 Eigen::Vector3d anyPerpendicular(const Eigen::Vector3d& u);
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -5,7 +5,7 @@
 
 #include "cosmo/common/pose.hpp"
 
-namespace cosmo {
+namespace cosmo::odometry {
 
 /// Rigid transform A minimising sum |A * source_i - target_i|^2 (Umeyama 1991 without scale). Needs >= 3
 /// non-collinear points for a unique rotation; fewer points give the best translation-only / partial fit.
@@ -53,4 +53,4 @@ std::vector<ConstantMotionRun> findConstantMotionRuns(const std::vector<Pose3>& 
 double translationError(const Pose3& a, const Pose3& b);
 double rotationErrorRad(const Pose3& a, const Pose3& b);
 
-}  // namespace cosmo
+}  // namespace cosmo::odometry

@@ -20,7 +20,7 @@ namespace cosmo::pipeline {
 struct GeneratedDataset {
   std::string label;          ///< the comm model's (comm/comm_model.hpp)
   std::string jrl, transfers;  ///< the files written
-  BuildReport report;
+  dataset::BuildReport report;
   FeedFigures feed;
 };
 
@@ -39,7 +39,7 @@ struct GenerateLog {
 
 struct GenerateResult {
   trials::ResolvedSequence sequence;
-  NoiseModels noise;
+  dataset::NoiseModels noise;
   std::vector<GeneratedDataset> datasets;  ///< none with estimate_only
 };
 

@@ -22,7 +22,7 @@ struct GenerateRequest {
   std::string estimate_trial;    ///< estimate the noise models first from this trial run alone
   std::string noise_models_out;  ///< where the estimate goes (empty: beside the outputs)
   bool estimate_only = false;    ///< write the estimate and stop
-  NoiseModelEstimationParams estimation;
+  dataset::NoiseModelEstimationParams estimation;
   std::string odometry = "loam";  ///< loam or reference (FrontendParams::odometry)
   bool serial_odometry = false;   ///< every robot's work on the team's thread
   std::optional<unsigned> registration_threads;  ///< none: the machine's cores (0 with serial odometry)

@@ -33,16 +33,16 @@ namespace cosmo::pipeline {
 
 class RadioBroker {
  public:
-  using Links = std::map<std::pair<char, char>, ActiveCommunication>;
+  using Links = std::map<std::pair<char, char>, comm::ActiveCommunication>;
 
   /// A transfer that ended in a step.
   struct Delivery {
-    const Transfer& transfer;
+    const comm::Transfer& transfer;
     double step_time = 0.0;            ///< radio time of the step (s)
     StampNs step_stamp = 0;            ///< lockstep: sequence stamp of the step
     std::shared_ptr<const Scan> scan;  ///< delivered: what the receiver gets (nullptr: never offered)
     std::string error;                 ///< delivered, but its payload does not decompress
-    bool delivered() const { return transfer.outcome == Transfer::Outcome::Delivered; }
+    bool delivered() const { return transfer.outcome == comm::Transfer::Outcome::Delivered; }
   };
   /// Returns whether the delivery was handed to its receiver (counted in delivered()).
   using DeliveryFn = std::function<bool(const Delivery&)>;
@@ -66,12 +66,12 @@ class RadioBroker {
     bool time_went_back = false;  ///< time is over 1 s behind the next step: nothing ran
   };
 
-  RadioBroker(const RadioParams& params, std::vector<char> robots, std::uint64_t seed, bool lockstep, bool compress,
-              std::uint32_t xz_preset);
+  RadioBroker(const comm::RadioParams& params, std::vector<char> robots, std::uint64_t seed, bool lockstep,
+              bool compress, std::uint32_t xz_preset);
 
   // Offers.
-  PayloadStore::Payload pack(std::shared_ptr<const Scan> scan) const { return payloads_.pack(std::move(scan)); }
-  void offer(char robot, std::uint32_t index, PayloadStore::Payload payload);
+  comm::PayloadStore::Payload pack(std::shared_ptr<const Scan> scan) const { return payloads_.pack(std::move(scan)); }
+  void offer(char robot, std::uint32_t index, comm::PayloadStore::Payload payload);
   /// An offer that could not be packed: a request waiting for it goes on.
   void offerDropped(char robot) { steps_.offerArrived(robot); }
   /// A reported position: in lockstep the fallback for a robot without a reference, in real time its state (on).
@@ -96,7 +96,7 @@ class RadioBroker {
   /// Every step of the grid up to radio time `now` (s).
   StepBatch stepRealTime(double now, const DeliveryFn& on_delivery);
 
-  const RadioSimulator& radio() const { return *radio_; }
+  const comm::RadioSimulator& radio() const { return *radio_; }
   /// Scans handed to each receiver so far.
   const std::map<char, std::uint32_t>& delivered() const { return delivered_; }
   /// Per robot, 1 + the highest keyframe index it offered (a restarted front-end numbers its keyframes after it).
@@ -106,15 +106,15 @@ class RadioBroker {
   struct EarlyOffer {
     char robot;
     std::uint32_t index;
-    PayloadStore::Sizes sizes;
+    comm::PayloadStore::Sizes sizes;
   };
 
   StepDone runStep(const QueuedRadioStep& request, const DeliveryFn& on_delivery);
-  void deliver(const Transfer& transfer, double step_time, StampNs step_stamp, const DeliveryFn& on_delivery);
+  void deliver(const comm::Transfer& transfer, double step_time, StampNs step_stamp, const DeliveryFn& on_delivery);
 
   bool lockstep_;
-  std::unique_ptr<RadioSimulator> radio_;
-  PayloadStore payloads_;
+  std::unique_ptr<comm::RadioSimulator> radio_;
+  comm::PayloadStore payloads_;
   std::map<char, std::uint32_t> delivered_;
   std::map<char, std::uint32_t> next_index_;
   // lockstep

@@ -23,7 +23,7 @@ struct RadioRobotState {
 };
 
 using RadioStateFn = std::function<RadioRobotState(char robot, StampNs step_stamp)>;
-using RadioTransferFn = std::function<void(StampNs step_stamp, const Transfer& transfer)>;
+using RadioTransferFn = std::function<void(StampNs step_stamp, const comm::Transfer& transfer)>;
 
 /// Radio time 0: the sequence start rounded down to the absolute grid k * step (ns).
 StampNs radioGridOrigin(StampNs sequence_start, double step_s);
@@ -35,9 +35,9 @@ Eigen::Vector3d radioPosition(const Trajectory& reference, StampNs step_stamp,
                               const Eigen::Vector3d& odometry_position);
 /// The earliest sequence stamp at which advanceRadio runs the radio's next step: a scan stamped before it needs
 /// no radio step first (LockstepSchedule). 10 ns early, under advanceRadio's 1 ns tolerance on radio time.
-StampNs nextRadioStepStamp(const RadioSimulator& radio, StampNs origin);
+StampNs nextRadioStepStamp(const comm::RadioSimulator& radio, StampNs origin);
 /// Runs every radio step at a time <= t (nothing before `origin`); returns the number of steps run.
-std::size_t advanceRadio(RadioSimulator& radio, StampNs origin, StampNs t, const RadioStateFn& state,
+std::size_t advanceRadio(comm::RadioSimulator& radio, StampNs origin, StampNs t, const RadioStateFn& state,
                          const RadioTransferFn& on_transfer);
 
 }  // namespace cosmo::pipeline

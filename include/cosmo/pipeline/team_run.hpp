@@ -47,9 +47,9 @@ struct TeamRunParams {
   /// frontend.odometry: loam, or reference (perfect odometry: tests, and isolating loop-closure errors; the
   /// references are whole, so a robot's pose is held at their ends, and robots without one use LOAM).
   frontend::FrontendParams frontend;
-  RadioParams radio = RadioParams::wifi();
-  NoiseModels noise;
-  OutlierRule outlier_rule = OutlierRule::Fidelity;
+  comm::RadioParams radio = comm::RadioParams::wifi();
+  dataset::NoiseModels noise;
+  dataset::OutlierRule outlier_rule = dataset::OutlierRule::Fidelity;
   /// Threads that run the loop-closure registrations (0: inline on the caller's thread). Same output either way.
   unsigned registration_threads = 0;
   /// Extra lines of the dataset's metadata (DatasetRecorder::setMetadata), e.g. the sequence's reference offset.
@@ -86,8 +86,8 @@ class TeamRun {
 
   const TeamRunParams& params() const { return params_; }
   /// The recorder; with registration threads complete only after finish() (or drain()).
-  const DatasetRecorder& recorder() const { return recorder_; }
-  const RadioSimulator& radio() const { return radio_; }
+  const dataset::DatasetRecorder& recorder() const { return recorder_; }
+  const comm::RadioSimulator& radio() const { return radio_; }
   const frontend::RobotFrontend& frontend(char robot) const;
   const TeamCounts& counts() const { return counts_; }
   std::vector<char> robots() const;
@@ -119,10 +119,10 @@ class TeamRun {
 
   TeamRunParams params_;
   std::map<char, std::unique_ptr<frontend::RobotFrontend>> frontends_;
-  RadioSimulator radio_;
+  comm::RadioSimulator radio_;
   LockstepSchedule schedule_;
-  DatasetRecorder recorder_;
-  PayloadStore payloads_;
+  dataset::DatasetRecorder recorder_;
+  comm::PayloadStore payloads_;
   StampNs origin_;
   TeamCounts counts_;
   std::vector<std::string> warnings_;

@@ -16,8 +16,8 @@
 namespace cosmo::pipeline {
 
 struct TrialNoiseModels {
-  NoiseModelEstimate estimate;  ///< models (with environment, provenance and estimated_from filled) and counts
-  jrl::Dataset run;             ///< the single-trial run (its outlier labels are meaningless: no models yet)
+  dataset::NoiseModelEstimate estimate;  ///< models (with environment, provenance and estimated_from filled) and counts
+  jrl::Dataset run;                      ///< the single-trial run (its outlier labels are meaningless: no models yet)
 };
 
 /// Runs `stream` (one robot's scans, sequence time) through a TeamRun of that robot alone with `params`
@@ -26,7 +26,7 @@ struct TrialNoiseModels {
 /// into the result. Throws std::runtime_error when the run has too few measurements (names the counts).
 TrialNoiseModels estimateTrialNoiseModels(char robot, sequence::MergedScanStream& stream, const Trajectory& reference,
                                           const TeamRunParams& params, std::uint64_t radio_seed,
-                                          const NoiseModelEstimationParams& estimation, const std::string& trial_label,
-                                          const std::string& environment);
+                                          const dataset::NoiseModelEstimationParams& estimation,
+                                          const std::string& trial_label, const std::string& environment);
 
 }  // namespace cosmo::pipeline

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace cosmo {
+namespace cosmo::registration {
 
 /// Undirected simple graph with sorted adjacency lists and an adjacency bit matrix (n^2 bits: for n = 5000,
 /// 3 MB) for O(1) edge tests.
@@ -42,4 +42,4 @@ class ConsistencyGraph {
   std::vector<std::vector<int>> adj_;
 };
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

@@ -12,7 +12,7 @@
 
 #include "cosmo/registration/point_features.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 struct FastFeatureParams {
   double normal_radius = 0.9;
@@ -36,4 +36,4 @@ class StageObserver;
 FastFeatures computeFastFeatures(const std::vector<Eigen::Vector3f>& points, const FastFeatureParams& params,
                                  StageObserver* observer = nullptr);
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

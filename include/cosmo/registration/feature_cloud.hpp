@@ -9,7 +9,7 @@
 #include "cosmo/registration/point_features.hpp"
 #include "cosmo/registration/registration_params.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 struct FeatureCloud {
   std::vector<Eigen::Vector3f> points;   ///< downsampled points that have a valid normal (used by the ICP)
@@ -27,4 +27,4 @@ class StageObserver;
 /// "normals", "fpfh" for PCL's).
 FeatureCloud computeFeatureCloud(const Scan& scan, const RegistrationParams& params, StageObserver* observer = nullptr);
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

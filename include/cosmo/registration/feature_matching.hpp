@@ -6,7 +6,7 @@
 
 #include "cosmo/registration/point_features.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 struct Correspondence {
   int source = 0;        ///< index into the source feature cloud
@@ -20,4 +20,4 @@ struct Correspondence {
 std::vector<Correspondence> matchFeatures(const FpfhMatrix& source, const FpfhMatrix& target, std::size_t max_count,
                                           bool mutual = true, float eps = 0.f);
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

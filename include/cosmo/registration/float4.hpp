@@ -10,7 +10,7 @@
 #include <emmintrin.h>
 #endif
 
-namespace cosmo {
+namespace cosmo::registration {
 
 #if defined(__SSE2__)
 struct Float4 {
@@ -137,4 +137,4 @@ struct Float4 {
 };
 #endif
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

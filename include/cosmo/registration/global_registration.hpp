@@ -18,7 +18,7 @@
 #include "cosmo/registration/registration_params.hpp"
 #include "cosmo/registration/stage_observer.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 struct RegistrationResult {
   Pose3 T_target_source = Pose3::Identity();  ///< maps source points into the target frame
@@ -62,4 +62,4 @@ class GlobalRegistration {
   RegistrationParams params_;
 };
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

@@ -8,7 +8,7 @@
 
 #include "cosmo/registration/consistency_graph.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 /// Core number of every vertex.
 std::vector<int> coreNumbers(const ConsistencyGraph& graph);
@@ -26,4 +26,4 @@ struct CliqueResult {
 /// Maximum clique (ties broken deterministically). `node_budget` bounds the search; 0 = unlimited.
 CliqueResult maxClique(const ConsistencyGraph& graph, std::uint64_t node_budget = 0);
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

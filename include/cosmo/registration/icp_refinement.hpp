@@ -6,9 +6,9 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "cosmo/registration/kdtree.hpp"
+#include "cosmo/common/kd_tree.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 struct IcpResult {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -41,4 +41,4 @@ struct Overlaps {
 Overlaps overlapFractions(const std::vector<Eigen::Vector3f>& source, const std::vector<unsigned char>& flagged,
                           const KdTree<3>& target_tree, const Eigen::Isometry3d& T, double max_distance);
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

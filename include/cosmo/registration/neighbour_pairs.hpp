@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace cosmo {
+namespace cosmo::registration {
 
 struct NeighbourPair {
   std::uint32_t first;     ///< index of one point of the pair (input order)
@@ -29,4 +29,4 @@ NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, fl
 NeighbourPairs findNeighbourPairs(const std::vector<Eigen::Vector3f>& points, float radius,
                                   std::vector<std::uint32_t>& order);
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

@@ -7,7 +7,7 @@
 #include "cosmo/common/pose.hpp"
 #include "cosmo/common/scan.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 struct PoseError {
   double translation_m = 0.0;
@@ -35,4 +35,4 @@ std::vector<ScanPair> readPairList(const std::string& path);
 /// Write the same format (7 numbers).
 void writePairList(const std::string& path, const std::vector<ScanPair>& pairs);
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-namespace cosmo {
+namespace cosmo::registration {
 
 constexpr int kFpfhDim = 33;
 using FpfhMatrix = Eigen::Matrix<float, kFpfhDim, Eigen::Dynamic>;
@@ -23,4 +23,4 @@ PointNormals estimateNormals(const std::vector<Eigen::Vector3f>& points, double 
 FpfhMatrix computeFpfh(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
                        double radius);
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

@@ -4,11 +4,11 @@
 
 #include "cosmo/registration/registration_params.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 struct RegistrationResult;
 
 /// Sets result.valid and result.reason ("ok" or the first failed criterion).
 void applyGate(const RegistrationParams& params, RegistrationResult& result);
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

@@ -7,7 +7,7 @@
 
 #include "cosmo/common/config.hpp"
 
-namespace cosmo {
+namespace cosmo::registration {
 
 struct RegistrationParams {
   // --- preprocessing -------------------------------------------------------------------------------------
@@ -98,4 +98,4 @@ struct RegistrationParams {
   }
 };
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

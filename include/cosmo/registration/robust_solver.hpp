@@ -8,7 +8,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-namespace cosmo {
+namespace cosmo::registration {
 
 struct GncParams {
   double noise_bound = 0.1;  ///< residual bound c of the TLS cost (m)
@@ -50,4 +50,4 @@ struct RigidEstimate {
 RigidEstimate solveRobustRigid(const std::vector<Eigen::Vector3d>& source, const std::vector<Eigen::Vector3d>& target,
                                const GncParams& params, std::size_t max_pairs);
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

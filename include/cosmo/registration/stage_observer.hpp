@@ -3,7 +3,7 @@
 // of each stage and never reads a clock itself.
 #include <string>
 
-namespace cosmo {
+namespace cosmo::registration {
 
 class StageObserver {
  public:
@@ -17,4 +17,4 @@ inline void notifyStage(StageObserver* observer, const char* name) {
   if (observer) observer->stageDone(name);
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::registration

@@ -16,7 +16,7 @@ namespace cosmo::ros_glue {
 
 struct CommBrokerOptions {
   std::vector<char> robots;
-  RadioParams radio;
+  comm::RadioParams radio;
   int seed = 0, xz_preset = 6;
   std::string log_file, frame_id = "world";
   bool compress = true, lockstep = false;
@@ -24,7 +24,7 @@ struct CommBrokerOptions {
 
 /// The radio's parameters: ~comm (wifi | proradio) or ~config (a config/comm/*.yaml, wins), then ~size_model,
 /// ~timeout_mode and ~trace (a radio trace CSV, comm/radio_trace.hpp; wins over the config's) when set.
-RadioParams readRadioParams(const ros::NodeHandle& pnh);
+comm::RadioParams readRadioParams(const ros::NodeHandle& pnh);
 /// Every parameter; throws std::runtime_error naming the one that is out of range.
 CommBrokerOptions readCommBrokerOptions(const ros::NodeHandle& pnh);
 
@@ -35,15 +35,15 @@ void logCommBrokerStart(const CommBrokerOptions& o);
 std_msgs::String offeredMsg(const std::map<char, std::uint32_t>& next_index);
 
 /// /comm/stats: the radio's status at `time` (comm/radio_status.hpp) as JSON.
-std_msgs::String radioStatsMsg(const RadioSimulator& radio, double time);
+std_msgs::String radioStatsMsg(const comm::RadioSimulator& radio, double time);
 
 /// The transfer log at ~log_file (CSV + summary, comm/transfer_log.hpp; none when empty): written at the end and
 /// rewritten whenever 30 s of radio time passed since the last write. A failed write is logged, never thrown.
 class TransferLogFile {
  public:
   explicit TransferLogFile(std::string path) : path_(std::move(path)) {}
-  void write(const RadioSimulator& radio) const;
-  void writeEvery30s(const RadioSimulator& radio, double radio_time);
+  void write(const comm::RadioSimulator& radio) const;
+  void writeEvery30s(const comm::RadioSimulator& radio, double radio_time);
 
  private:
   std::string path_;

@@ -34,12 +34,13 @@ frontend::FrontendParams frontendParams(const FrontendOptions& o);
 frontend::FrontendSetup frontendSetup(const FrontendOptions& o, const frontend::FrontendParams& params,
                                       Trajectory reference, std::size_t first_index);
 /// ~noise_models for the loop-closure colours; none: unlabelled (lockstep: the sequence's, once it is known).
-std::optional<NoiseModels> markerNoiseModels(const FrontendOptions& o);
+std::optional<dataset::NoiseModels> markerNoiseModels(const FrontendOptions& o);
 /// `base` with the player's sequence's own registration keys over config_dir's registration.yaml, logged; `base`
 /// when no sequence was announced or its keys cannot be read (logged).
-RegistrationParams sequenceRegistration(const FrontendOptions& o, const RegistrationParams& base);
+registration::RegistrationParams sequenceRegistration(const FrontendOptions& o,
+                                                      const registration::RegistrationParams& base);
 /// The noise models the player's sequence labels with (the recorder's), for the markers' colours; none when no
 /// sequence was announced or they cannot be loaded (logged).
-std::optional<NoiseModels> sequenceNoiseModels(const FrontendOptions& o);
+std::optional<dataset::NoiseModels> sequenceNoiseModels(const FrontendOptions& o);
 
 }  // namespace cosmo::ros_glue

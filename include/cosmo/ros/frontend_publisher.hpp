@@ -24,7 +24,7 @@ class FrontendPublisher {
  public:
   /// `recorder`: the node's link to the recorder (it decides the numbering before the front-end is built).
   FrontendPublisher(ros::NodeHandle& nh, char robot, std::string world_frame, RecorderLink& recorder,
-                    std::optional<NoiseModels> noise);
+                    std::optional<dataset::NoiseModels> noise);
 
   /// An own scan's step, published at `stamp`; `scans_skipped`: the robot's count so far (in its keyframe).
   void ownScan(frontend::RobotFrontend& frontend, const frontend::Step& step, const ros::Time& stamp,

@@ -31,7 +31,7 @@ pipeline::FrontendProgress frontendProgressFromMsg(const cosmo::FrontendAck& msg
 cosmo::Keyframe offeredKeyframeMeta(const cosmo::Keyframe& offer);
 /// The keyframe `transfer` delivered: `meta` (offeredKeyframeMeta) with `scan`'s x y z, its sender and the step
 /// `received_at` it ended in.
-cosmo::Keyframe deliveredKeyframeMsg(const cosmo::Keyframe& meta, const Scan& scan, const Transfer& transfer,
+cosmo::Keyframe deliveredKeyframeMsg(const cosmo::Keyframe& meta, const Scan& scan, const comm::Transfer& transfer,
                                      const ros::Time& received_at);
 
 }  // namespace cosmo::ros_glue

@@ -30,8 +30,8 @@ visualization_msgs::MarkerArray frontendMarkers(const frontend::FrontendMap& map
 
 /// The radio's `links` (of its latest steps, the latest at radio time `t`) as one line list in `frame`, each link
 /// coloured by its mean throughput so far; DELETE when there are none.
-visualization_msgs::MarkerArray linkMarkers(const RadioSimulator& radio,
-                                            const std::map<std::pair<char, char>, ActiveCommunication>& links, double t,
-                                            const std::string& frame, const ros::Time& stamp);
+visualization_msgs::MarkerArray linkMarkers(const comm::RadioSimulator& radio,
+                                            const std::map<std::pair<char, char>, comm::ActiveCommunication>& links,
+                                            double t, const std::string& frame, const ros::Time& stamp);
 
 }  // namespace cosmo::ros_glue

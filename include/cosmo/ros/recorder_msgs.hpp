@@ -22,7 +22,8 @@ dataset::MeasurementRecord measurementFromMsg(const cosmo::RecorderKeyframe& msg
 dataset::MeasurementRecord measurementFromMsg(const cosmo::RecorderLoopClosure& msg, char topic_robot);
 
 /// The recorder's progress: per robot what `intake` holds and where `recorder`'s chain ends.
-cosmo::RecorderProgress recorderProgressMsg(const dataset::RecorderIntake& intake, const DatasetRecorder& recorder);
+cosmo::RecorderProgress recorderProgressMsg(const dataset::RecorderIntake& intake,
+                                            const dataset::DatasetRecorder& recorder);
 
 /// What `msg` says the recorder holds of `robot` (nothing when it does not list the robot).
 live::RecorderHolding recorderHolding(const cosmo::RecorderProgress& msg, char robot);

@@ -20,13 +20,13 @@ struct RecorderOptions {
   std::string name = "cosmo", output_dir = ".";
   trials::SequenceChoice sequence;  ///< ~sequence, ~data_root, ~simulate_config, ~noise_models, ~config_dir
   std::string player_node = "/player", run_id;
-  OutlierRule rule = OutlierRule::Fidelity;
+  dataset::OutlierRule rule = dataset::OutlierRule::Fidelity;
   double autosave_period = 30.0, progress_period = 5.0;
 
   /// <output_dir>/<name>.jrl
   std::string jrlPath() const;
   /// The noise models it labels with: ~noise_models, else the sequence's (sequence/sequence_noise_models.hpp).
-  NoiseModels noiseModels() const;
+  dataset::NoiseModels noiseModels() const;
 };
 
 /// Every parameter; throws std::runtime_error naming the one that is out of range.

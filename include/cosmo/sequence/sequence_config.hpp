@@ -65,13 +65,14 @@ struct SequenceConfig {
 
   /// The registration parameters of this sequence's runs: `<config_dir>/registration.yaml` (the compiled-in
   /// defaults when the file is absent) with this sequence's `registration:` keys on top.
-  RegistrationParams registrationParams(const std::string& config_dir) const;
+  registration::RegistrationParams registrationParams(const std::string& config_dir) const;
 };
 
 /// `<config_dir>/registration.yaml` (the compiled-in defaults when the file is absent) with `keys` (config/
 /// registration.yaml keys, values as written) on top; `from` names where the keys come from in error messages.
-RegistrationParams registrationParamsWith(const std::string& config_dir, const std::map<std::string, std::string>& keys,
-                                          const std::string& from);
+registration::RegistrationParams registrationParamsWith(const std::string& config_dir,
+                                                        const std::map<std::string, std::string>& keys,
+                                                        const std::string& from);
 
 /// `path` when absolute, else `base_dir/path` (an empty path stays empty).
 std::string resolvePath(const std::string& base_dir, const std::string& path);

@@ -30,15 +30,15 @@ std::string chooseNoiseModels(const SequenceConfig& config, const std::string& c
 
 /// Loads that file (NoiseModels::source = its path). Throws NoiseModelsMissing when it does not exist or says
 /// its models are unknown, std::runtime_error naming file and key when it is malformed.
-NoiseModels loadSequenceNoiseModels(const SequenceConfig& sequence, const std::string& config_dir,
-                                    const std::string& override_path = "");
+dataset::NoiseModels loadSequenceNoiseModels(const SequenceConfig& sequence, const std::string& config_dir,
+                                             const std::string& override_path = "");
 
 /// The noise models of a ROS run (player, recorder node): `explicit_path` when not empty (must exist), else
 /// those of the sequence config at `sequence_path`, else those of the synthetic sequence that the generation
 /// config `simulate_config` (config/sim/*.yaml, its `environment`) makes. Throws NoiseModelsMissing with the
 /// how-to when none of them is given or they do not exist.
-NoiseModels loadRunNoiseModels(const std::string& explicit_path, const std::string& sequence_path,
-                               const std::string& simulate_config, const std::string& config_dir);
+dataset::NoiseModels loadRunNoiseModels(const std::string& explicit_path, const std::string& sequence_path,
+                                        const std::string& simulate_config, const std::string& config_dir);
 
 /// Where `cosmo_generate --estimate-noise-models` writes its estimate unless told otherwise: beside the outputs,
 /// <out_dir>/<environment>.noise_models.yaml (the sequence's name when it names no environment).

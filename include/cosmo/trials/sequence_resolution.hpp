@@ -61,7 +61,7 @@ std::map<char, sequence::TrialBasis> readTrialBases(const sequence::SequenceConf
 struct ResolvedSequence {
   sequence::SequenceConfig config;
   std::string noise_source;           ///< noiseModelsSource()
-  std::optional<NoiseModels> noise;   ///< none while they are to be estimated (SequenceChoice::estimate_trial)
+  std::optional<dataset::NoiseModels> noise;   ///< none while they are to be estimated (SequenceChoice::estimate_trial)
   std::string check_report;           ///< the pre-flight check's lines (empty when it was not run)
   sequence::SequenceTiming timing;
   std::map<char, Trajectory> references;  ///< robot -> sensor trajectory in the world frame, sequence time

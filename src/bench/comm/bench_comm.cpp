@@ -28,10 +28,10 @@ namespace {
 
 constexpr std::size_t kHuge = 1000000000000ULL;
 
-RadioSimulator endlessPair(RadioParams p, std::uint64_t seed) {
-  p.size_model = RadioParams::SizeModel::RealCompressed;
+comm::RadioSimulator endlessPair(comm::RadioParams p, std::uint64_t seed) {
+  p.size_model = comm::RadioParams::SizeModel::RealCompressed;
   p.timeout = 1e9;
-  RadioSimulator sim(p, {'a', 'b'}, seed);
+  comm::RadioSimulator sim(p, {'a', 'b'}, seed);
   sim.setRobotState('a', {0, 0, 0}, true);
   sim.setRobotState('b', {1, 0, 0}, true);
   sim.offerKeyframe('a', 0, kHuge);
@@ -43,12 +43,12 @@ void connectivity(int n) {
   std::printf("\n## 1. Connectivity frequency of an active link vs phi(d)  (%d samples per distance)\n", n);
   std::printf("| model | d (m) | phi(d) | observed | sigma | z |\n|---|---|---|---|---|---|\n");
   for (const auto& [name, p] :
-       {std::pair{"Wi-Fi", RadioParams::wifi()}, std::pair{"Pro-Radio", RadioParams::proRadio()}}) {
+       {std::pair{"Wi-Fi", comm::RadioParams::wifi()}, std::pair{"Pro-Radio", comm::RadioParams::proRadio()}}) {
     for (double frac : {0.05, 0.2, 0.4, 0.6, 0.8, 0.95, 1.1}) {
       const double d = frac * p.r_max;
-      RadioSimulator sim = endlessPair(p, 100 + static_cast<int>(frac * 100));
+      comm::RadioSimulator sim = endlessPair(p, 100 + static_cast<int>(frac * 100));
       sim.setRobotState('b', {d, 0, 0}, true);
-      const RadioStats before = sim.stats();
+      const comm::RadioStats before = sim.stats();
       for (int i = 0; i < n; ++i) sim.step(sim.nextStepTime());
       const double m = sim.stats().link_samples - before.link_samples;
       const double f = (sim.stats().link_successes - before.link_successes) / m;
@@ -65,18 +65,18 @@ void throughput(int n) {
       "|\n|---|---|---|---|---|\n",
       n);
   for (const auto& [name, base] :
-       {std::pair{"Wi-Fi", RadioParams::wifi()}, std::pair{"Pro-Radio", RadioParams::proRadio()}}) {
-    RadioSimulator sim = endlessPair(base, 5);
+       {std::pair{"Wi-Fi", comm::RadioParams::wifi()}, std::pair{"Pro-Radio", comm::RadioParams::proRadio()}}) {
+    comm::RadioSimulator sim = endlessPair(base, 5);
     const double b0 = sim.activeCommunications().front().bytes_delivered;
     for (int i = 0; i < n; ++i) sim.step(sim.nextStepTime());
     const double rate = (sim.activeCommunications().front().bytes_delivered - b0) / (n * base.step) / 1000;
     const double want = base.bandwidth_kBps * base.p_max;
     std::printf("| %s | clean link | %.1f | %.1f (B P_max) | %.4f |\n", name, rate, want, rate / want);
     for (double sep : {3.0, 10 * base.d_intf}) {
-      RadioParams p = base;
-      p.size_model = RadioParams::SizeModel::RealCompressed;
+      comm::RadioParams p = base;
+      p.size_model = comm::RadioParams::SizeModel::RealCompressed;
       p.timeout = 1e9;
-      RadioSimulator s(p, {'a', 'b', 'c', 'd'}, 9);
+      comm::RadioSimulator s(p, {'a', 'b', 'c', 'd'}, 9);
       const Eigen::Vector3d pos[4] = {{0, 0, 0}, {2, 0, 0}, {0, sep, 0}, {2, sep, 0}};
       for (int i = 0; i < 4; ++i) {
         s.setRobotState(static_cast<char>('a' + i), pos[i], true);
@@ -99,13 +99,13 @@ void throughput(int n) {
 void timeouts(int trials) {
   std::printf("\n## 3. A pair moving apart at 2 m/s from 5 m (%d seeds, no_progress T = 2 s)\n", trials);
   for (const auto& [name, base] :
-       {std::pair{"Wi-Fi", RadioParams::wifi()}, std::pair{"Pro-Radio", RadioParams::proRadio()}}) {
-    RadioParams p = base;
-    p.size_model = RadioParams::SizeModel::RealCompressed;
+       {std::pair{"Wi-Fi", comm::RadioParams::wifi()}, std::pair{"Pro-Radio", comm::RadioParams::proRadio()}}) {
+    comm::RadioParams p = base;
+    p.size_model = comm::RadioParams::SizeModel::RealCompressed;
     double sum_d = 0, sum_gap = 0;
     int timed_out = 0;
     for (int s = 0; s < trials; ++s) {
-      RadioSimulator sim(p, {'a', 'b'}, s);
+      comm::RadioSimulator sim(p, {'a', 'b'}, s);
       sim.offerKeyframe('a', 0, kHuge);
       double d = 5.0;
       for (int i = 0; i < 100000; ++i, d += 2.0 * p.step) {
@@ -113,7 +113,7 @@ void timeouts(int trials) {
         sim.setRobotState('b', {d, 0, 0}, true);
         const auto ended = sim.step(sim.nextStepTime());
         if (!ended.empty()) {
-          timed_out += ended[0].outcome == Transfer::Outcome::TimedOut;
+          timed_out += ended[0].outcome == comm::Transfer::Outcome::TimedOut;
           sum_d += d;
           sum_gap += d - p.r_max;
           break;
@@ -200,15 +200,15 @@ void compression(int repeats) {
       for (int k = 0; k < repeats; ++k) {
         bench::Stopwatch w;
         const std::clock_t c0 = std::clock();
-        bytes = compressScan(scan);
+        bytes = comm::compressScan(scan);
         cc.push_back(1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
         tc.push_back(w.elapsedMs());
         w.restart();
-        const Scan back = decompressScan(bytes);
+        const Scan back = comm::decompressScan(bytes);
         td.push_back(w.elapsedMs());
         if (back.size() != scan.size()) std::printf("ROUND TRIP FAILED on %s\n", f.c_str());
       }
-      ratio.add(static_cast<double>(bytes.size()) / rawPayloadBytes(scan));
+      ratio.add(static_cast<double>(bytes.size()) / comm::rawPayloadBytes(scan));
     }
     std::printf("| %s | %zu | %.0f | %.3f | %.3f | %.1f | %.1f | %.1f |\n", s.name, files.size(), pts / files.size(),
                 ratio.mean(), ratio.sd(), bench::quantile(tc, 0.5), bench::quantile(cc, 0.5), bench::quantile(td, 0.5));
@@ -224,11 +224,11 @@ void compression(int repeats) {
     for (int k = 0; k < repeats; ++k) {
       bench::Stopwatch w;
       const std::clock_t c0 = std::clock();
-      size = compressScan(grid, preset).size();
+      size = comm::compressScan(grid, preset).size();
       cpu.push_back(1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
       t.push_back(w.elapsedMs());
     }
-    std::printf("| %u | %.3f | %.1f | %.1f |\n", preset, static_cast<double>(size) / rawPayloadBytes(grid),
+    std::printf("| %u | %.3f | %.1f | %.1f |\n", preset, static_cast<double>(size) / comm::rawPayloadBytes(grid),
                 bench::quantile(t, 0.5), bench::quantile(cpu, 0.5));
   }
 }
@@ -242,11 +242,11 @@ void stepCost(double seconds) {
       "| model | robots | steps | wall us per step | CPU us per step | delivered | timed out "
       "|\n|---|---|---|---|---|---|---|\n");
   for (const auto& [name, p] :
-       {std::pair{"Wi-Fi", RadioParams::wifi()}, std::pair{"Pro-Radio", RadioParams::proRadio()}}) {
+       {std::pair{"Wi-Fi", comm::RadioParams::wifi()}, std::pair{"Pro-Radio", comm::RadioParams::proRadio()}}) {
     for (int n : {3, 10, 30}) {
       std::vector<char> ids;
       for (int i = 0; i < n; ++i) ids.push_back(static_cast<char>(i < 26 ? 'a' + i : 'A' + i - 26));
-      RadioSimulator sim(p, ids, 1);
+      comm::RadioSimulator sim(p, ids, 1);
       std::mt19937_64 rng(2);
       std::uniform_real_distribution<double> u(-150, 150), turn(-0.3, 0.3);
       std::vector<Eigen::Vector3d> pos(n);

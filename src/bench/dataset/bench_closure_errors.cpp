@@ -70,7 +70,7 @@ void report(const char* kind, const std::vector<Closure>& cs, double good_t, dou
 
 int main(int argc, char** argv) {
   std::vector<std::string> files;
-  std::optional<NoiseModels> relabel;
+  std::optional<dataset::NoiseModels> relabel;
   std::string relabel_file;
   double good_t = 0.5, good_r = 0.05;
   cosmo::CommandLine app("bench_closure_errors",
@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
   cosmo::addClosureThresholds(app, "good", good_t, good_r);
   if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
   try {
-    if (!relabel_file.empty()) relabel = NoiseModels::load(relabel_file);
+    if (!relabel_file.empty()) relabel = dataset::NoiseModels::load(relabel_file);
     for (const auto& file : files) {
       const jrl::Dataset d = jrl::readJrl(file);
       if (!d.groundtruth) throw std::runtime_error(file + ": no groundtruth");
@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
             c.translation_error = err.translation().norm();
             c.rotation_error = rotationAngle(err);
             c.distance = truth.translation().norm();
-            c.outlier = relabel ? isOutlier(meas, truth, relabel->loop_closure)
+            c.outlier = relabel ? dataset::isOutlier(meas, truth, relabel->loop_closure)
                                 : (labels && labels->count(jrl::FactorId{e, m}));
             (same ? intra : inter).push_back(c);
           }

@@ -62,12 +62,12 @@ int main(int argc, char** argv) {
       std::vector<double> values;
       std::size_t injected = 0;
       for (int s = 1; s <= seeds; ++s) {
-        InjectionParams p;
+        dataset::InjectionParams p;
         p.rate = std::stod(rate);
-        p.kind = *parseOutlierKind(kind);
+        p.kind = *dataset::parseOutlierKind(kind);
         p.seed = static_cast<std::uint64_t>(s);
         p.draw.group_size = group_size;
-        InjectionReport report;
+        dataset::InjectionReport report;
         values.push_back(ate(injectOutliers(in, p, &report), backend::FactorSelection::AllRobust));
         injected = report.injected;
       }

@@ -44,11 +44,11 @@ constexpr StampNs kT0 = 1666284719545345152ULL;
 
 /// (1) A team: keyframes every second, an intra-robot closure every 3rd keyframe, an inter-robot one every 4th,
 /// 10 % of closures gross errors; the recorder's stages timed.
-void benchTeam(std::size_t robots, std::size_t keyframes, const std::string& out, const NoiseModels& noise,
+void benchTeam(std::size_t robots, std::size_t keyframes, const std::string& out, const dataset::NoiseModels& noise,
                Noise& rng) {
   std::vector<char> ids;
   for (std::size_t r = 0; r < robots; ++r) ids.push_back(static_cast<char>('a' + r));
-  DatasetRecorder rec("bench_team", ids, noise);
+  dataset::DatasetRecorder rec("bench_team", ids, noise);
   bench::Stopwatch sw;
   std::size_t closures = 0;
   for (std::size_t i = 0; i < keyframes; ++i) {
@@ -70,7 +70,7 @@ void benchTeam(std::size_t robots, std::size_t keyframes, const std::string& out
   }
   const double add_ms = sw.elapsedMs();
   sw.restart();
-  BuildReport report;
+  dataset::BuildReport report;
   const jrl::Dataset ds = rec.build(&report);
   const double build_ms = sw.elapsedMs();
   sw.restart();
@@ -87,8 +87,8 @@ void benchTeam(std::size_t robots, std::size_t keyframes, const std::string& out
 }
 
 /// (2) A single-robot run of n keyframes with known noise, written to `path`; returns the dataset.
-jrl::Dataset singleRobotRun(std::size_t n, const std::string& path, const NoiseModels& noise, Noise& rng) {
-  DatasetRecorder single("bench_single_robot", {'a'}, noise);
+jrl::Dataset singleRobotRun(std::size_t n, const std::string& path, const dataset::NoiseModels& noise, Noise& rng) {
+  dataset::DatasetRecorder single("bench_single_robot", {'a'}, noise);
   for (std::size_t i = 0; i < n; ++i) {
     const Pose3 truth = walk(i, 0);
     const Pose3 odo =
@@ -106,7 +106,7 @@ jrl::Dataset singleRobotRun(std::size_t n, const std::string& path, const NoiseM
 }
 
 /// Estimated against true sigmas, per axis, for both models.
-void printEstimate(const NoiseModelEstimate& est, const NoiseModels& noise) {
+void printEstimate(const dataset::NoiseModelEstimate& est, const dataset::NoiseModels& noise) {
   for (const auto& [what, q, truth] :
        {std::tuple<const char*, Matrix6, Matrix6>{"odometry", est.models.odometry, noise.odometry},
         {"loop closure", est.models.loop_closure, noise.loop_closure}}) {
@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
   app.add_option("--out", out, "where the datasets are written")->capture_default_str();
   if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
   robots = std::min<std::size_t>(std::max<std::size_t>(robots, 1), 26);
-  const NoiseModels noise;  // TUHH covariances
+  const dataset::NoiseModels noise;  // TUHH covariances
   Noise rng{std::mt19937_64(seed), {}};
   benchTeam(robots, keyframes, out, noise, rng);
 
@@ -144,8 +144,8 @@ int main(int argc, char** argv) {
   const std::string single_path = (std::filesystem::path(out) / "bench_single_robot.jrl").string();
   const jrl::Dataset run = singleRobotRun(n, single_path, noise, rng);
   bench::Stopwatch sw;
-  const MeasurementSets sets = collectMeasurements(run);
-  const NoiseModelEstimate est = estimateNoiseModels(sets.odometry, sets.loop_closures);
+  const dataset::MeasurementSets sets = dataset::collectMeasurements(run);
+  const dataset::NoiseModelEstimate est = estimateNoiseModels(sets.odometry, sets.loop_closures);
   const double est_ms = sw.elapsedMs();
   std::cout << "single robot: " << n << " keyframes, " << sets.loop_closures.size() << " loop closures ("
             << est.loop_closure.rejected << " over 0.5 m / 0.05 rad) -> " << single_path << "\n"

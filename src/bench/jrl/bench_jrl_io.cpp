@@ -16,18 +16,12 @@
 #include "cosmo/common/shared_data.hpp"
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/synthetic.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 namespace fs = std::filesystem;
 using cosmo::bench::Stopwatch;
 
 namespace {
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 struct Times {
   std::vector<double> read_ms, parse_ms, dump_ms, write_ms;
@@ -41,7 +35,7 @@ void measure(const std::string& label, const std::string& path, int repeats, con
     Stopwatch sw;
     const cosmo::jrl::Dataset d = cosmo::jrl::readJrl(path);
     t.read_ms.push_back(sw.elapsedMs());
-    const std::string text = slurp(path);
+    const std::string text = cosmo::readWholeFileOrEmpty(path);
     bytes = text.size();
     sw.restart();
     const cosmo::jrl::Dataset d2 = cosmo::jrl::parseJrl(text, path);

@@ -22,7 +22,7 @@
 #include "cosmo/odometry/local_feature_map.hpp"
 #include "cosmo/odometry/loam_odometry.hpp"
 #include "cosmo/odometry/scan_lines.hpp"
-#include "cosmo/odometry/synthetic_scene.hpp"
+#include "cosmo/test_support/street_scene.hpp"
 #include "cosmo/odometry/trajectory_metrics.hpp"
 
 using namespace cosmo;
@@ -50,7 +50,8 @@ struct StepError {
 };
 
 StepError stepError(const Pose3& est, const Pose3& gt) {
-  return {translationError(est, gt) * 100.0, rotationErrorRad(est, gt) * kRadToDeg, gt.translation().norm()};
+  return {odometry::translationError(est, gt) * 100.0, odometry::rotationErrorRad(est, gt) * kRadToDeg,
+          gt.translation().norm()};
 }
 
 void printStep(const std::string& what, const StepError& e, double t_target_cm, double r_target_deg,
@@ -62,14 +63,15 @@ void printStep(const std::string& what, const StepError& e, double t_target_cm, 
 }
 
 /// Odometry over `scans` (stamped 0.1 s apart); returns the poses.
-std::vector<Pose3> runOdometry(const std::vector<Scan>& scans, const LoamParams& params, std::vector<double>* times_ms,
-                               std::vector<OdometryResult>* results = nullptr) {
-  LoamOdometry odom(params);
+std::vector<Pose3> runOdometry(const std::vector<Scan>& scans, const odometry::LoamParams& params,
+                               std::vector<double>* times_ms,
+                               std::vector<odometry::OdometryResult>* results = nullptr) {
+  odometry::LoamOdometry odom(params);
   std::vector<Pose3> poses;
   for (const Scan& s : scans) {
     bench::Stopwatch sw;
     const double cpu0 = threadCpuMs();
-    const OdometryResult r = odom.update(s);
+    const odometry::OdometryResult r = odom.update(s);
     const double ms = threadCpuMs() - cpu0;
     if (times_ms && !poses.empty()) {  // the first scan only builds the map
       times_ms->push_back(ms);
@@ -81,7 +83,7 @@ std::vector<Pose3> runOdometry(const std::vector<Scan>& scans, const LoamParams&
   return poses;
 }
 
-void sectionReal(const LoamParams& params, std::vector<double>& kitti_times, int repeat) {
+void sectionReal(const odometry::LoamParams& params, std::vector<double>& kitti_times, int repeat) {
   std::cout << "\n== (a) real scans (../shared/data/scan_snippets) ==\n";
   // KITTI 00.
   if (auto dir = sharedPath("data/scan_snippets/kitti00")) {
@@ -89,7 +91,7 @@ void sectionReal(const LoamParams& params, std::vector<double>& kitti_times, int
     std::cout << "KITTI 00 (HDL-64E), targets <= 5 cm and <= 0.2 deg per step:\n";
     // Stretches where poses.txt repeats the same step to a millimetre (a GPS/INS gap filled at constant
     // velocity): a step inside one is compared with the fill, not with the car's motion.
-    const auto fills = findConstantMotionRuns(ref);
+    const auto fills = odometry::findConstantMotionRuns(ref);
     std::cout << "  poses.txt moves at a perfectly constant velocity (steps equal within 2 mm / 0.005 deg, >= 10 "
                  "steps: interpolated) over frames";
     for (const auto& f : fills)
@@ -144,7 +146,7 @@ void sectionReal(const LoamParams& params, std::vector<double>& kitti_times, int
       std::vector<Scan> scans{readScanFile(files[i]), readScanFile(files[i + 1])};
       scans[0].stamp = toStampNs(1.0);
       scans[1].stamp = toStampNs(1.1);
-      std::vector<OdometryResult> res;
+      std::vector<odometry::OdometryResult> res;
       const auto poses = runOdometry(scans, params, nullptr, &res);
       const Pose3 gt = ref_poses[i].inverse() * ref_poses[i + 1];
       const StepError e = stepError(poses[1], gt);
@@ -173,7 +175,7 @@ void sectionReal(const LoamParams& params, std::vector<double>& kitti_times, int
 void deskewScanConstantVelocity(Scan& scan, const Pose3& delta, double period) {
   std::vector<Eigen::Vector3d> pts(scan.points.size()), out;
   for (std::size_t i = 0; i < pts.size(); ++i) pts[i] = scan.points[i].cast<double>();
-  deskewConstantVelocity(pts, scan.time, delta, period, out);
+  odometry::deskewConstantVelocity(pts, scan.time, delta, period, out);
   for (std::size_t i = 0; i < out.size(); ++i) scan.points[i] = out[i].cast<float>();
 }
 
@@ -184,10 +186,11 @@ enum class TruthDewarp { kNone, kTrueMotion, kTrueConstantVelocity };
 
 /// A synthetic trial: the sensor drives / walks along the street (gentle S-curve, small pitch / roll sway),
 /// sweeps with motion distortion. Returns scans and the sensor pose at each stamp.
-void syntheticTrial(const SyntheticLidar& lidar, double speed, double yaw_rate_amp, int n_scans, std::uint64_t seed,
-                    std::vector<Scan>& scans, std::vector<Pose3>& gt, bool walking,
+void syntheticTrial(const test_support::SyntheticLidar& lidar, double speed, double yaw_rate_amp, int n_scans,
+                    std::uint64_t seed, std::vector<Scan>& scans, std::vector<Pose3>& gt, bool walking,
                     TruthDewarp truth_dewarp = TruthDewarp::kNone) {
-  const SyntheticScene scene = SyntheticScene::street(speed * n_scans * lidar.period + 60.0, 9.0);
+  const test_support::SyntheticScene scene =
+      test_support::SyntheticScene::street(speed * n_scans * lidar.period + 60.0, 9.0);
   std::mt19937_64 rng(seed);
   auto pose_at_abs = [&](double t) {
     const double x = speed * t;
@@ -204,7 +207,7 @@ void syntheticTrial(const SyntheticLidar& lidar, double speed, double yaw_rate_a
     scans.push_back(simulateSweep(
         scene, lidar, toStampNs(1.0 + t_end), [&](double dt) { return pose_at_abs(t_end + dt); }, &rng));
     if (truth_dewarp == TruthDewarp::kTrueMotion)
-      scans.back() = dewarp(scans.back(), [&](StampNs st) { return pose_at_abs(toSeconds(st) - 1.0); });
+      scans.back() = odometry::dewarp(scans.back(), [&](StampNs st) { return pose_at_abs(toSeconds(st) - 1.0); });
     if (truth_dewarp == TruthDewarp::kTrueConstantVelocity)
       deskewScanConstantVelocity(scans.back(), pose_at_abs(t_end - lidar.period).inverse() * pose_at_abs(t_end),
                                  lidar.period);
@@ -215,7 +218,7 @@ void syntheticTrial(const SyntheticLidar& lidar, double speed, double yaw_rate_a
   for (auto& p : gt) p = g0inv * p;
 }
 
-void sectionSpeed(const LoamParams& params, const std::vector<double>& kitti_times) {
+void sectionSpeed(const odometry::LoamParams& params, const std::vector<double>& kitti_times) {
   std::cout << "\n== (b) speed per scan, one thread: CPU time of the thread (wall clock in brackets) ==\n";
   std::cout << std::fixed << std::setprecision(1);
   if (!kitti_times.empty())
@@ -223,7 +226,7 @@ void sectionSpeed(const LoamParams& params, const std::vector<double>& kitti_tim
               << " ms, p95 " << bench::quantile(kitti_times, 0.95) << " ms  (" << kitti_times.size()
               << " scans; wall median " << bench::quantile(g_wall_ms, 0.5) << " ms)\n";
   for (int rings : {64, 128}) {
-    SyntheticLidar lidar;
+    test_support::SyntheticLidar lidar;
     lidar.rings = rings;
     lidar.columns = 1024;
     if (rings == 128) lidar.fov_up_deg = 22.5, lidar.fov_down_deg = -22.5;
@@ -236,7 +239,7 @@ void sectionSpeed(const LoamParams& params, const std::vector<double>& kitti_tim
     const auto est = runOdometry(scans, params, &times);
     std::size_t pts = 0;
     for (const auto& s : scans) pts += s.size();
-    const auto seg = segmentErrors(est, gt, {10.0}, 1);
+    const auto seg = odometry::segmentErrors(est, gt, {10.0}, 1);
     std::cout << "  synthetic " << rings << " x 1024 (" << pts / scans.size() << " returns/scan): median "
               << bench::quantile(times, 0.5) << " ms, p95 " << bench::quantile(times, 0.95) << " ms (wall median "
               << bench::quantile(g_wall_ms, 0.5) << " ms)  (drift over 10 m: " << std::setprecision(2)
@@ -246,11 +249,11 @@ void sectionSpeed(const LoamParams& params, const std::vector<double>& kitti_tim
     // Per-stage split (CPU ms per scan, median): scan lines + features, local-map update (3-scan union + k-d
     // trees), the rest (guess scoring, registration, deskew) = total - the two.
     std::vector<double> t_feat, t_map;
-    LocalFeatureMap map(static_cast<std::size_t>(std::max(1, params.num_local_map_scans)), params.map_edge_voxel_size,
-                        params.map_planar_voxel_size);
+    odometry::LocalFeatureMap map(static_cast<std::size_t>(std::max(1, params.num_local_map_scans)),
+                                  params.map_edge_voxel_size, params.map_planar_voxel_size);
     for (const Scan& s : scans) {
       double c0 = threadCpuMs();
-      LoamFeatures f = extractFeatures(organizeScanLines(s, params), params);
+      odometry::LoamFeatures f = extractFeatures(organizeScanLines(s, params), params);
       thinPlanarFeatures(f, params.planar_feature_voxel_size);
       t_feat.push_back(threadCpuMs() - c0);
       c0 = threadCpuMs();
@@ -264,7 +267,7 @@ void sectionSpeed(const LoamParams& params, const std::vector<double>& kitti_tim
   }
 }
 
-void sectionDrift(const LoamParams& params) {
+void sectionDrift(const odometry::LoamParams& params) {
   std::cout << "\n== (c) drift on synthetic trials with motion distortion (targets <= 1.0 %, <= 0.01 deg/m) ==\n";
   std::cout << "  built-in ray-cast street (OS1-64-like 64 x 1024, 10 Hz, 1 cm range noise, per-point times)\n";
   struct Trial {
@@ -274,12 +277,12 @@ void sectionDrift(const LoamParams& params) {
     bool walking;
   };
   for (const Trial& tr : {Trial{"walking 1.4 m/s", 1.4, 800, true}, Trial{"driving 10 m/s", 10.0, 150, false}}) {
-    SyntheticLidar lidar;
+    test_support::SyntheticLidar lidar;
     lidar.range_noise = 0.01;
     std::vector<Scan> scans;
     std::vector<Pose3> gt;
     syntheticTrial(lidar, tr.speed, 1.0, tr.scans, 11, scans, gt, tr.walking);
-    std::vector<OdometryResult> res;
+    std::vector<odometry::OdometryResult> res;
     const auto est = runOdometry(scans, params, nullptr, &res);
     std::size_t warn = 0;
     for (const auto& r : res) warn += r.ok ? 0 : 1;
@@ -287,8 +290,8 @@ void sectionDrift(const LoamParams& params) {
     for (std::size_t i = 1; i < gt.size(); ++i) len += (gt[i].translation() - gt[i - 1].translation()).norm();
     std::cout << "  " << tr.name << ", " << std::fixed << std::setprecision(0) << len << " m, " << scans.size()
               << " scans, " << warn << " warnings, ATE " << std::setprecision(3)
-              << absoluteTrajectoryError(est, gt).rmse << " m\n";
-    for (const auto& e : segmentErrors(est, gt, {25.0, 50.0, 100.0}, 1)) {
+              << odometry::absoluteTrajectoryError(est, gt).rmse << " m\n";
+    for (const auto& e : odometry::segmentErrors(est, gt, {25.0, 50.0, 100.0}, 1)) {
       std::cout << "    " << std::setw(4) << std::setprecision(0) << e.length << " m: ";
       if (e.count == 0)
         std::cout << "n/a\n";
@@ -306,7 +309,7 @@ void sectionDrift(const LoamParams& params) {
 /// robot), with its point times and dewarped with the true motion. Per variant the 25 m drift and the mean and
 /// spread of the per-scan rotation error about the sensor's roll / pitch / yaw axes (the mean, times the scans
 /// per metre, is the part of the drift that is a bias).
-void sectionDriftSources(const LoamParams& params) {
+void sectionDriftSources(const odometry::LoamParams& params) {
   std::cout << "\n== (d) sources of the walk's rotation drift (street, 1.4 m/s, 800 scans, 1 cm range noise) ==\n";
   struct Variant {
     const char* name;
@@ -319,7 +322,7 @@ void sectionDriftSources(const LoamParams& params) {
         Variant{"same, true sweep motion at constant velocity", true, TruthDewarp::kTrueConstantVelocity},
         Variant{"walking without sway", false, TruthDewarp::kNone},
         Variant{"without sway, dewarped with the true motion", false, TruthDewarp::kTrueMotion}}) {
-    SyntheticLidar lidar;
+    test_support::SyntheticLidar lidar;
     lidar.range_noise = 0.01;
     std::vector<Scan> scans;
     std::vector<Pose3> gt;
@@ -335,7 +338,7 @@ void sectionDriftSources(const LoamParams& params) {
     const double n = static_cast<double>(est.size() - 1);
     const Eigen::Vector3d mean = sum / n;
     const Eigen::Vector3d sd = (sum2 / n - mean.cwiseProduct(mean)).cwiseMax(0.0).cwiseSqrt();
-    const auto seg = segmentErrors(est, gt, {25.0}, 1);
+    const auto seg = odometry::segmentErrors(est, gt, {25.0}, 1);
     std::cout << "  " << std::left << std::setw(46) << v.name << std::right << std::fixed << std::setprecision(5)
               << "25 m: " << seg[0].rotation_deg_per_m << " deg/m;  per scan (deg) roll/pitch/yaw mean " << mean.x()
               << " " << mean.y() << " " << mean.z() << ", sd " << std::setprecision(4) << sd.x() << " " << sd.y() << " "
@@ -356,8 +359,8 @@ int main(int argc, char** argv) {
   app.add_option("--only", only, "the sections to run")->capture_default_str();
   if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
   try {
-    LoamParams params;
-    if (!config.empty()) params = LoamParams::fromConfig(cosmo::ConfigNode::load(config));
+    odometry::LoamParams params;
+    if (!config.empty()) params = odometry::LoamParams::fromConfig(cosmo::ConfigNode::load(config));
     std::vector<double> kitti_times;
     if (only.find('a') != std::string::npos) sectionReal(params, kitti_times, repeat);
     if (only.find('b') != std::string::npos) sectionSpeed(params, kitti_times);

@@ -123,8 +123,8 @@ TeamRunParams teamParams(const Options& o) {
   TeamRunParams params;
   params.frontend = frontend::FrontendParams::loadDir(config_dir);
   params.frontend.spill_keyframes = o.spill;
-  params.radio = RadioParams::fromConfig(ConfigNode::load(config_dir + "/comm/" + o.comm + ".yaml"));
-  params.noise = NoiseModels::load(config_dir + "/noise_models/synthetic.yaml");
+  params.radio = comm::RadioParams::fromConfig(ConfigNode::load(config_dir + "/comm/" + o.comm + ".yaml"));
+  params.noise = dataset::NoiseModels::load(config_dir + "/noise_models/synthetic.yaml");
   params.registration_threads = o.threads;
   return params;
 }
@@ -203,7 +203,7 @@ std::vector<Report> runTeam(const Team& team, const sim::SimulationParams& sp, c
   std::size_t next_report = report_every;
   for (const Event& e : team.events) {
     const Trial& t = *by_robot.at(e.robot);
-    OdometryResult odo;
+    odometry::OdometryResult odo;
     odo.pose = t.sensor.atClamped(e.stamp);  // perfect odometry
     odo.initial_guess = "reference";
     frontend::KeyframeTaker& taker = takers.at(e.robot);

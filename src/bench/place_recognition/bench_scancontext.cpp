@@ -24,6 +24,7 @@
 #include "cosmo/common/shared_data.hpp"
 #include "cosmo/place_recognition/place_recognizer.hpp"
 #include "cosmo/place_recognition/revisit_evaluation.hpp"
+#include "cosmo/test_support/room_scan.hpp"
 
 using namespace cosmo;
 using namespace cosmo::place_recognition;
@@ -222,37 +223,6 @@ void runReal(const PlaceRecognitionParams& params) {
   }
 }
 
-/// An organized Ouster-like scan (beams x 1024 columns, elevations +-22.5 deg) of a room of random walls.
-Scan organizedScan(int beams, int columns, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> wall(5.0, 70.0), wall_h(2.0, 20.0);
-  const int blocks = 64;
-  std::vector<double> dist(blocks), height(blocks);
-  for (int b = 0; b < blocks; ++b) {
-    dist[b] = wall(rng);
-    height[b] = wall_h(rng);
-  }
-  const double h = 1.8;
-  Scan scan;
-  scan.points.reserve(static_cast<std::size_t>(beams) * columns);
-  for (int r = 0; r < beams; ++r) {
-    const double el = (-22.5 + 45.0 * r / (beams - 1)) * M_PI / 180.0;
-    for (int c = 0; c < columns; ++c) {
-      const double az = 2.0 * M_PI * c / columns;
-      const int b = c * blocks / columns;
-      double range = 120.0;  // no return: beyond max_range
-      if (el < 0.0)
-        range = std::min(dist[b] / std::cos(el), h / std::tan(-el) / std::cos(el));
-      else if (dist[b] * std::tan(el) < height[b] - h)
-        range = dist[b] / std::cos(el);
-      scan.points.emplace_back(static_cast<float>(range * std::cos(el) * std::cos(az)),
-                               static_cast<float>(range * std::cos(el) * std::sin(az)),
-                               static_cast<float>(range * std::sin(el)));
-    }
-  }
-  return scan;
-}
-
 /// A random-ish descriptor: occupancy falling with the ring, heights 0-15 m, as a real descriptor roughly.
 ScanContext randomDescriptor(const ScanContextParams& p, std::mt19937_64& rng) {
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
@@ -272,7 +242,7 @@ ScanContext randomDescriptor(const ScanContextParams& p, std::mt19937_64& rng) {
 void runSpeed(const PlaceRecognitionParams& params, int repeat) {
   std::printf("== (b) speed, one thread (wall clock; run on an idle machine) ==\n");
   for (const int beams : {64, 128}) {
-    const Scan scan = organizedScan(beams, 1024, 3);
+    const Scan scan = test_support::organizedRoomScan(beams, 1024, 3);
     for (const int stride : {1, 2, 4}) {
       ScanContextParams p = params.sc;
       p.point_stride = stride;

@@ -26,7 +26,7 @@
 
 #include "cosmo/trials/trial_scans.hpp"
 #include "cosmo/common/command_line.hpp"
-#include "cosmo/odometry/dewarp.hpp"
+#include "cosmo/bench/real_trials.hpp"
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/place_recognition/place_recognizer.hpp"
@@ -44,44 +44,29 @@ struct Keyframes {
   std::vector<Eigen::Vector3d> positions;
 };
 
-/// Points moved to the sensor frame at the scan stamp using the reference LiDAR trajectory (times binned into
-/// 64 slots between the earliest and latest point time).
-Scan dewarpWithReference(const Scan& scan, const Trajectory& body, const Pose3& T_body_lidar) {
-  return cosmo::dewarp(scan, [&](StampNs t) { return body.atClamped(t) * T_body_lidar; });
-}
-
 std::vector<Keyframes> loadSequence(const std::string& yaml_path, const PlaceRecognitionParams& params, double kf_m,
                                     std::size_t max_keyframes) {
-  const YAML::Node root = YAML::LoadFile(yaml_path);
-  const fs::path dir = fs::path(yaml_path).parent_path();
-  auto resolve = [&](const std::string& f) { return fs::path(f).is_absolute() ? fs::path(f) : dir / f; };
   std::vector<Keyframes> out;
-  for (const auto& t : root["trials"]) {
+  for (const bench::RealTrial& trial : bench::readRealTrials(yaml_path)) {
     Keyframes kf;
-    kf.robot = t["robot"].as<std::string>();
-    const fs::path bag = resolve(t["bag"].as<std::string>());
-    const fs::path ref = resolve(t["reference"].as<std::string>());
-    if (!fs::exists(bag) || !fs::exists(ref)) {
-      std::printf("  trial %s: %s or %s missing, skipped\n", kf.robot.c_str(), bag.c_str(), ref.c_str());
+    kf.robot = trial.robot;
+    if (!trial.present) {
+      std::printf("  trial %s: %s or %s missing, skipped\n", kf.robot.c_str(), trial.bag.c_str(),
+                  trial.reference.c_str());
       continue;
     }
-    std::vector<double> e =
-        t["extrinsic"] ? t["extrinsic"].as<std::vector<double>>() : std::vector<double>{0, 0, 0, 0, 0, 0, 1};
-    const Pose3 T_body_lidar = parsePoseNumbers(e, yaml_path + ": extrinsic");
-    const Trajectory body = readMcdPoseCsv(ref.string());
-    const std::string topic = t["topic"] ? t["topic"].as<std::string>() : "/os_cloud_node/points";
-    trials::Ros1ScanSource reader(bag.string(), topic);
+    trials::Ros1ScanSource reader(trial.bag.string(), trial.topic);
     Scan scan;
     std::optional<Eigen::Vector3d> last;
     std::size_t scans = 0;
     bench::Stopwatch sw;
     while (reader.next(scan) && kf.descriptors.size() < max_keyframes) {
       ++scans;
-      if (!body.covers(scan.stamp)) continue;
-      const Pose3 lidar = body.atClamped(scan.stamp) * T_body_lidar;
+      if (!trial.body.covers(scan.stamp)) continue;
+      const Pose3 lidar = trial.lidarPoseAt(scan.stamp);
       if (last && (lidar.translation() - *last).norm() <= kf_m) continue;
       last = lidar.translation();
-      kf.descriptors.push_back(makeScanContext(dewarpWithReference(scan, body, T_body_lidar), params.sc));
+      kf.descriptors.push_back(makeScanContext(trial.dewarped(scan), params.sc));
       kf.positions.push_back(lidar.translation());
     }
     std::printf("  trial %s: %zu scans read, %zu keyframes (%.1f s)\n", kf.robot.c_str(), scans, kf.descriptors.size(),

@@ -29,15 +29,15 @@ int main(int argc, char** argv) {
   app.add_option("--repeats", repeats, "runs")->capture_default_str();
   cosmo::addModuleConfig(app, config, "registration");
   if (const std::optional<int> exit_code = app.parseOrExit(argc, argv)) return *exit_code;
-  RegistrationParams params;
-  if (!config.empty()) params = RegistrationParams::fromConfig(cosmo::ConfigNode::load(config));
+  registration::RegistrationParams params;
+  if (!config.empty()) params = registration::RegistrationParams::fromConfig(cosmo::ConfigNode::load(config));
   const Scan src = cosmo::readScanFile(source), tgt = cosmo::readScanFile(target);
-  const GlobalRegistration reg(params);
+  const registration::GlobalRegistration reg(params);
   std::map<std::string, std::vector<double>> ms;
-  FeatureCloud fs, ft;
-  RegistrationResult r;
+  registration::FeatureCloud fs, ft;
+  registration::RegistrationResult r;
   for (int k = 0; k < repeats; ++k) {
-    StageTimer timer;
+    bench::StageTimer timer;
     timer.restart();
     fs = reg.prepare(src, &timer);
     ft = reg.prepare(tgt, &timer);
@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
   }
   const auto down = voxelDownsample(src.points, params.voxel_size, params.min_range, params.max_range);
   const double radius = std::max({params.normal_radius, params.fpfh_radius, params.spfh_radius});
-  const NeighbourPairs pairs = findNeighbourPairs(down, static_cast<float>(radius));
+  const registration::NeighbourPairs pairs = registration::findNeighbourPairs(down, static_cast<float>(radius));
   std::printf(
       "source: %zu points -> %zu downsampled -> %zu with normal, %zu keypoints; %zu neighbour pairs "
       "within %.2f m\n",
@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
     return v[v.size() / 2];
   };
   auto lowest = [](const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); };
-  for (const char* s : kRegistrationStages)
+  for (const char* s : bench::kRegistrationStages)
     if (ms.count(s)) std::printf("  %-11s %7.1f %7.1f\n", s, med(ms[s]), lowest(ms[s]));
   std::printf("  %-11s %7.1f %7.1f\n", "TOTAL", med(ms["TOTAL"]), lowest(ms["TOTAL"]));
   return 0;

@@ -33,18 +33,18 @@ namespace {
 struct Run {
   std::string name;
   double dist = 0, yaw = 0;
-  RegistrationResult r;
-  PoseError e;
+  registration::RegistrationResult r;
+  registration::PoseError e;
   std::map<std::string, double> ms;
   double total = 0;
   bool success = false;
 };
 
-Run runOne(const GlobalRegistration& reg, const std::string& name, const Scan& src0, const Scan& tgt,
+Run runOne(const registration::GlobalRegistration& reg, const std::string& name, const Scan& src0, const Scan& tgt,
            const Pose3& T_expected, double yaw_deg, double max_t, double max_r) {
   const double yaw = yaw_deg * M_PI / 180.0;
-  const Scan src = yaw != 0.0 ? rotateScanYaw(src0, yaw) : src0;
-  StageTimer timer;
+  const Scan src = yaw != 0.0 ? registration::rotateScanYaw(src0, yaw) : src0;
+  bench::StageTimer timer;
   timer.restart();
   Run run;
   run.name = name;
@@ -53,8 +53,8 @@ Run runOne(const GlobalRegistration& reg, const std::string& name, const Scan& s
   run.r = reg.align(src, tgt, &timer);
   run.ms = timer.milliseconds();
   run.total = timer.total();
-  run.e =
-      poseError(run.r.T_target_source, T_expected * Pose3(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())).inverse());
+  run.e = registration::poseError(run.r.T_target_source,
+                                  T_expected * Pose3(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())).inverse());
   run.success = run.r.valid && run.e.translation_m <= max_t && run.e.rotation_deg <= max_r;
   return run;
 }
@@ -78,7 +78,7 @@ void printSpeed(const std::string& label, const std::vector<Run>& runs) {
               label.c_str(), runs.size());
   double pts = 0;
   for (const auto& r : runs) pts += static_cast<double>(r.r.source_points);
-  for (const char* s : kRegistrationStages) {
+  for (const char* s : bench::kRegistrationStages) {
     std::vector<double> v;
     for (const auto& r : runs) {
       const auto it = r.ms.find(s);
@@ -171,11 +171,12 @@ class ScanCache {
   std::map<std::string, Scan> cache_;
 };
 
-bool isKitti(const ScanPair& p) { return p.name.rfind("kitti", 0) == 0; }
+bool isKitti(const registration::ScanPair& p) { return p.name.rfind("kitti", 0) == 0; }
 
 /// (a) accuracy on the real pairs at every yaw; returns the KITTI runs (for the speed figures).
-std::vector<Run> realPairs(const GlobalRegistration& reg, const std::vector<ScanPair>& pairs,
-                           const std::vector<double>& yaws, ScanCache& scans) {
+std::vector<Run> realPairs(const registration::GlobalRegistration& reg,
+                           const std::vector<registration::ScanPair>& pairs, const std::vector<double>& yaws,
+                           ScanCache& scans) {
   std::printf("(a) real pairs, success = accepted and error <= 0.3 m and <= 1 deg\n");
   printHeader();
   std::vector<Run> kitti_runs;
@@ -194,8 +195,8 @@ std::vector<Run> realPairs(const GlobalRegistration& reg, const std::vector<Scan
 }
 
 /// (b) speed: the KITTI pairs (repeated), and with --dense each KITTI scan plus a jittered copy of itself.
-void speed(const GlobalRegistration& reg, const std::vector<ScanPair>& pairs, const Options& o,
-           std::vector<Run> kitti_runs, ScanCache& scans) {
+void speed(const registration::GlobalRegistration& reg, const std::vector<registration::ScanPair>& pairs,
+           const Options& o, std::vector<Run> kitti_runs, ScanCache& scans) {
   for (int rep = 1; rep < o.speed_repeats; ++rep)
     for (const auto& p : pairs)
       if (isKitti(p))
@@ -216,8 +217,8 @@ void speed(const GlobalRegistration& reg, const std::vector<ScanPair>& pairs, co
 }
 
 /// (c) synthetic loop pairs cut from the real scans.
-void syntheticPairs(const GlobalRegistration& reg, const std::vector<ScanPair>& pairs, int synthetic,
-                    std::uint64_t seed, ScanCache& scans) {
+void syntheticPairs(const registration::GlobalRegistration& reg, const std::vector<registration::ScanPair>& pairs,
+                    int synthetic, std::uint64_t seed, ScanCache& scans) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::vector<std::string> bases;
@@ -241,7 +242,7 @@ void syntheticPairs(const GlobalRegistration& reg, const std::vector<ScanPair>& 
 
 /// (c') the gate on non-overlapping real pairs: different places of KITTI 00 (>= 80 m apart) and different
 /// datasets.
-void nonOverlappingPairs(const GlobalRegistration& reg, const std::string& root, ScanCache& scans) {
+void nonOverlappingPairs(const registration::GlobalRegistration& reg, const std::string& root, ScanCache& scans) {
   const std::string k = root + "/kitti00/velodyne/";
   const std::string m = root + "/mulran_kaist03_keyframes/Scans/";
   const std::string h = root + "/hdl32_pair/";
@@ -278,9 +279,10 @@ int main(int argc, char** argv) {
     std::printf("../shared/data/scan_snippets not found (set COSMO_SHARED_DIR): nothing to measure\n");
     return 0;
   }
-  const RegistrationParams params =
-      o.config_path.empty() ? RegistrationParams{} : RegistrationParams::fromConfig(ConfigNode::load(o.config_path));
-  const GlobalRegistration reg(params);
+  const registration::RegistrationParams params =
+      o.config_path.empty() ? registration::RegistrationParams{}
+                            : registration::RegistrationParams::fromConfig(ConfigNode::load(o.config_path));
+  const registration::GlobalRegistration reg(params);
   const auto pairs = bench::snippetPairs(*root, true);
   if (!o.write_pairs.empty()) {
     writePairList(o.write_pairs, pairs);

@@ -26,7 +26,7 @@
 
 #include "cosmo/trials/trial_scans.hpp"
 #include "cosmo/common/command_line.hpp"
-#include "cosmo/odometry/dewarp.hpp"
+#include "cosmo/bench/real_trials.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/registration/global_registration.hpp"
 #include "cosmo/registration/pair_evaluation.hpp"
@@ -43,37 +43,24 @@ struct Keyframe {
   Scan scan;   // dewarped
 };
 
-Scan dewarpWithReference(const Scan& scan, const Trajectory& body, const Pose3& T_body_lidar) {
-  return cosmo::dewarp(scan, [&](StampNs t) { return body.atClamped(t) * T_body_lidar; });
-}
-
 std::vector<Keyframe> loadKeyframes(const std::string& yaml_path, double kf_m) {
-  const YAML::Node root = YAML::LoadFile(yaml_path);
-  const fs::path dir = fs::path(yaml_path).parent_path();
-  auto resolve = [&](const std::string& f) { return fs::path(f).is_absolute() ? fs::path(f) : dir / f; };
   std::vector<Keyframe> out;
   int robot = 0;
-  for (const auto& t : root["trials"]) {
-    const fs::path bag = resolve(t["bag"].as<std::string>());
-    const fs::path ref = resolve(t["reference"].as<std::string>());
-    const std::vector<double> e =
-        t["extrinsic"] ? t["extrinsic"].as<std::vector<double>>() : std::vector<double>{0, 0, 0, 0, 0, 0, 1};
-    const Pose3 T_body_lidar = parsePoseNumbers(e, yaml_path + ": extrinsic");
-    const Trajectory body = readMcdPoseCsv(ref.string());
-    const std::string topic = t["topic"] ? t["topic"].as<std::string>() : "/os_cloud_node/points";
-    trials::Ros1ScanSource reader(bag.string(), topic);
+  for (const bench::RealTrial& trial : bench::readRealTrials(yaml_path)) {
+    if (!trial.present) throw std::runtime_error(trial.bag.string() + " or " + trial.reference.string() + " missing");
+    trials::Ros1ScanSource reader(trial.bag.string(), trial.topic);
     Scan scan;
     std::optional<Eigen::Vector3d> last;
     std::size_t n = 0;
     while (reader.next(scan)) {
-      if (!body.covers(scan.stamp)) continue;
-      const Pose3 lidar = body.atClamped(scan.stamp) * T_body_lidar;
+      if (!trial.body.covers(scan.stamp)) continue;
+      const Pose3 lidar = trial.lidarPoseAt(scan.stamp);
       if (last && (lidar.translation() - *last).norm() <= kf_m) continue;
       last = lidar.translation();
-      out.push_back({robot, lidar, dewarpWithReference(scan, body, T_body_lidar)});
+      out.push_back({robot, lidar, trial.dewarped(scan)});
       ++n;
     }
-    std::printf("  trial %s: %zu keyframes\n", t["robot"].as<std::string>().c_str(), n);
+    std::printf("  trial %s: %zu keyframes\n", trial.robot.c_str(), n);
     ++robot;
   }
   return out;
@@ -184,8 +171,8 @@ void samplePairs(const std::vector<Keyframe>& kfs, const Options& o, std::mt1993
 }
 
 /// The loop pairs, each with the source rotated by a random yaw: a line per pair, then the success by offset.
-void loopPairs(const GlobalRegistration& reg, const std::vector<Keyframe>& kfs, const Pairs& near, double max_offset,
-               std::mt19937_64& rng, std::uniform_real_distribution<double>& u) {
+void loopPairs(const registration::GlobalRegistration& reg, const std::vector<Keyframe>& kfs, const Pairs& near,
+               double max_offset, std::mt19937_64& rng, std::uniform_real_distribution<double>& u) {
   std::printf(
       "loop pairs (different robots, <= %.0f m apart, random yaw): %zu; success = accepted and < 0.5 m, "
       "< 2 deg\n",
@@ -199,11 +186,12 @@ void loopPairs(const GlobalRegistration& reg, const std::vector<Keyframe>& kfs, 
     const double yaw = u(rng);
     const Pose3 Rz(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
     const Pose3 expected = kfs[t].pose.inverse() * kfs[s].pose * Rz.inverse();
-    StageTimer timer;
+    bench::StageTimer timer;
     timer.restart();
-    const RegistrationResult r = reg.align(rotateScanYaw(kfs[s].scan, yaw), kfs[t].scan, &timer);
+    const registration::RegistrationResult r =
+        reg.align(registration::rotateScanYaw(kfs[s].scan, yaw), kfs[t].scan, &timer);
     ms.push_back(timer.total());
-    const PoseError e = poseError(r.T_target_source, expected);
+    const registration::PoseError e = registration::poseError(r.T_target_source, expected);
     const bool success = r.valid && e.translation_m < 0.5 && e.rotation_deg < 2.0;
     const double d = (kfs[s].pose.translation() - kfs[t].pose.translation()).norm();
     const int b = d < 3.0 ? 0 : (d < 6.0 ? 1 : 2);
@@ -222,12 +210,12 @@ void loopPairs(const GlobalRegistration& reg, const std::vector<Keyframe>& kfs, 
 }
 
 /// The non-overlapping pairs: what the gate saw, and its false accepts.
-void farPairs(const GlobalRegistration& reg, const std::vector<Keyframe>& kfs, const Pairs& far, double min_sep,
-              std::mt19937_64& rng, std::uniform_real_distribution<double>& u) {
+void farPairs(const registration::GlobalRegistration& reg, const std::vector<Keyframe>& kfs, const Pairs& far,
+              double min_sep, std::mt19937_64& rng, std::uniform_real_distribution<double>& u) {
   int false_acc = 0;
   std::vector<double> neg_final, neg_overlap, neg_structure;
   for (const auto& [s, t] : far) {
-    const RegistrationResult r = reg.align(rotateScanYaw(kfs[s].scan, u(rng)), kfs[t].scan);
+    const registration::RegistrationResult r = reg.align(registration::rotateScanYaw(kfs[s].scan, u(rng)), kfs[t].scan);
     false_acc += r.valid;
     neg_final.push_back(static_cast<double>(r.final_inliers));
     neg_overlap.push_back(r.overlap);
@@ -251,9 +239,10 @@ int main(int argc, char** argv) {
   Options o;
   if (const std::optional<int> exit_code = parseArgs(argc, argv, o)) return *exit_code;
   try {
-    const RegistrationParams params =
-        o.config.empty() ? RegistrationParams{} : RegistrationParams::fromConfig(ConfigNode::load(o.config));
-    const GlobalRegistration reg(params);
+    const registration::RegistrationParams params =
+        o.config.empty() ? registration::RegistrationParams{}
+                         : registration::RegistrationParams::fromConfig(ConfigNode::load(o.config));
+    const registration::GlobalRegistration reg(params);
     std::printf("== %s ==\n", o.seq.c_str());
     const std::vector<Keyframe> kfs = keyframes(o);
     Pairs near, far;

@@ -95,17 +95,17 @@ std::optional<int> parseArgs(int argc, char** argv, Options& o) {
   return std::nullopt;
 }
 
-RadioParams radioParams(const Options& o) {
-  RadioParams params = resolveCommModel(o.comm, "").params;
-  if (!o.size_model.empty()) params.size_model = sizeModelFromString(o.size_model, "--size-model");
-  if (!o.timeout_mode.empty()) params.timeout_mode = timeoutModeFromString(o.timeout_mode, "--timeout-mode");
-  if (!o.trace.empty()) params.trace = std::make_shared<const RadioTrace>(RadioTrace::read(o.trace));
+comm::RadioParams radioParams(const Options& o) {
+  comm::RadioParams params = comm::resolveCommModel(o.comm, "").params;
+  if (!o.size_model.empty()) params.size_model = comm::sizeModelFromString(o.size_model, "--size-model");
+  if (!o.timeout_mode.empty()) params.timeout_mode = comm::timeoutModeFromString(o.timeout_mode, "--timeout-mode");
+  if (!o.trace.empty()) params.trace = std::make_shared<const comm::RadioTrace>(comm::RadioTrace::read(o.trace));
   return params;
 }
 
 /// Every step from the earliest start to the latest end (+ tail): robots on from their first pose, a keyframe
 /// offered at the first pose and every kf_distance of travel.
-void simulate(const Options& o, RadioSimulator& sim) {
+void simulate(const Options& o, comm::RadioSimulator& sim) {
   StampNs t0 = ~StampNs{0}, t1 = 0;
   for (const auto& [r, t] : o.trajectories) {
     t0 = std::min(t0, t.startStamp());
@@ -150,13 +150,13 @@ int main(int argc, char** argv) {
     if (const std::optional<int> exit_code = parseArgs(argc, argv, o)) return *exit_code;
     std::vector<char> ids;
     for (const auto& [r, t] : o.trajectories) ids.push_back(r);
-    RadioSimulator sim(radioParams(o), ids, o.seed);
+    comm::RadioSimulator sim(radioParams(o), ids, o.seed);
     sim.recordLinks(!o.write_trace.empty());
     simulate(o, sim);
     writeTransferLog(o.out, sim);
     if (!o.write_trace.empty()) {
       std::ofstream out(o.write_trace);
-      RadioTrace::fromRecords(sim.linkRecords(), sim.params().step).write(out);
+      comm::RadioTrace::fromRecords(sim.linkRecords(), sim.params().step).write(out);
       if (!out.flush()) throw std::runtime_error(o.write_trace + ": cannot write");
     }
     std::cout << transferSummary(sim).dump() << "\n";

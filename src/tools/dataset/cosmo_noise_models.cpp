@@ -16,7 +16,7 @@
 
 namespace {
 
-void printEstimate(const char* what, const cosmo::CovarianceEstimate& e) {
+void printEstimate(const char* what, const cosmo::dataset::CovarianceEstimate& e) {
   std::cout << what << ": " << e.used << " used, " << e.rejected
             << " over the thresholds\n  sigmas [rx ry rz tx ty tz]:";
   for (int i = 0; i < 6; ++i) std::cout << ' ' << std::setprecision(4) << std::sqrt(e.covariance(i, i));
@@ -30,7 +30,7 @@ void printEstimate(const char* what, const cosmo::CovarianceEstimate& e) {
 int main(int argc, char** argv) {
   std::string input, output, environment;
   std::optional<char> robot;
-  cosmo::NoiseModelEstimationParams params;
+  cosmo::dataset::NoiseModelEstimationParams params;
   std::string robot_id;
   cosmo::CommandLine app(
       "cosmo_noise_models",
@@ -63,11 +63,12 @@ int main(int argc, char** argv) {
     if (!robot && ds.robots.size() > 1)
       std::cerr << "cosmo_noise_models: warning: pooling robots " << robots
                 << " (spec section 6 uses a single-robot run; --robot R picks one)\n";
-    const cosmo::MeasurementSets sets = cosmo::collectMeasurements(ds, robot);
-    cosmo::NoiseModelEstimate est = cosmo::estimateNoiseModels(sets.odometry, sets.loop_closures, params);
+    const cosmo::dataset::MeasurementSets sets = cosmo::dataset::collectMeasurements(ds, robot);
+    cosmo::dataset::NoiseModelEstimate est =
+        cosmo::dataset::estimateNoiseModels(sets.odometry, sets.loop_closures, params);
     est.models.environment = environment.empty() ? ds.name : environment;
     est.models.provenance = "estimated by cosmo_noise_models from " + input + " (spec section 6)";
-    cosmo::NoiseModelRecord record;
+    cosmo::dataset::NoiseModelRecord record;
     record.trial = ds.name + " (" + input + ", robots " + robots + ")";
     record.odometry_factors = est.odometry.used;
     record.loop_closures = est.loop_closure.used;

@@ -39,7 +39,7 @@ struct Args {
 /// cosmo_jrl inject's words.
 struct InjectArgs {
   std::string in, out, kind = "random", rate_of = "injected", rule = "fidelity";
-  cosmo::InjectionParams p;
+  cosmo::dataset::InjectionParams p;
   CLI::Option *intra = nullptr, *inter = nullptr;
 };
 
@@ -158,20 +158,20 @@ void addInject(CLI::App& app, InjectArgs& a) {
 }
 
 int inject(InjectArgs a) {
-  a.p.kind = *cosmo::parseOutlierKind(a.kind);
-  a.p.scope = a.intra->count()   ? cosmo::ClosureScope::Intra
-              : a.inter->count() ? cosmo::ClosureScope::Inter
-                                 : cosmo::ClosureScope::Both;
-  a.p.rate_of = a.rate_of == "all" ? cosmo::RateOf::All : cosmo::RateOf::Injected;
-  a.p.draw.rule = *cosmo::parseOutlierRule(a.rule);
+  a.p.kind = *cosmo::dataset::parseOutlierKind(a.kind);
+  a.p.scope = a.intra->count()   ? cosmo::dataset::ClosureScope::Intra
+              : a.inter->count() ? cosmo::dataset::ClosureScope::Inter
+                                 : cosmo::dataset::ClosureScope::Both;
+  a.p.rate_of = a.rate_of == "all" ? cosmo::dataset::RateOf::All : cosmo::dataset::RateOf::Injected;
+  a.p.draw.rule = *cosmo::dataset::parseOutlierRule(a.rule);
   try {
-    cosmo::InjectionReport report;
-    cosmo::jrl::Dataset d = cosmo::injectOutliers(cosmo::jrl::readJrl(a.in), a.p, &report);
+    cosmo::dataset::InjectionReport report;
+    cosmo::jrl::Dataset d = cosmo::dataset::injectOutliers(cosmo::jrl::readJrl(a.in), a.p, &report);
     d.name = std::filesystem::path(a.out).stem().string();
     const auto violations = cosmo::jrl::validate(d);
     if (!violations.empty()) throw std::runtime_error(a.out + ": not written: " + violations.front().str());
     cosmo::jrl::writeJrl(a.out, d);
-    std::cout << cosmo::formatInjection(report, a.p.kind) << "\nwrote " << a.out << "\n";
+    std::cout << cosmo::dataset::formatInjection(report, a.p.kind) << "\nwrote " << a.out << "\n";
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;

@@ -83,7 +83,7 @@ std::optional<int> parseArgs(int argc, char** argv, Args& args) {
   app.add_option_function<std::string>(
          "--outlier-rule",
          [&options](const std::string& name) {
-           const auto rule = cosmo::parseOutlierRule(name);
+           const auto rule = cosmo::dataset::parseOutlierRule(name);
            if (!rule) throw CLI::ValidationError("--outlier-rule", "expected fidelity or squared");
            options.params.rule = *rule;
          },
@@ -123,7 +123,7 @@ void resolveParams(Args& args) {
   if (args.estimate) params.noise = cosmo::nebula::NoiseSource::Estimated;
   if (!args.noise_file.empty()) {
     params.noise = cosmo::nebula::NoiseSource::Given;
-    params.models = cosmo::NoiseModels::load(args.noise_file);
+    params.models = cosmo::dataset::NoiseModels::load(args.noise_file);
   }
 }
 
@@ -145,11 +145,11 @@ void writeOutputs(const Args& args, const cosmo::ros_glue::NebulaConversion& c) 
   const fs::path base = fs::path(args.out_dir) / params.name;
   cosmo::jrl::writeJrl(base.string() + ".jrl", c.dataset);
   const cosmo::jrl::DatasetStats stats = cosmo::jrl::computeStats(c.dataset);
-  cosmo::writeFileAtomically(base.string() + ".stats.txt", cosmo::jrl::formatStats(stats) + "\n");
-  cosmo::writeFileAtomically(base.string() + ".stats.json", cosmo::jrl::statsJson(stats) + "\n");
+  cosmo::dataset::writeFileAtomically(base.string() + ".stats.txt", cosmo::jrl::formatStats(stats) + "\n");
+  cosmo::dataset::writeFileAtomically(base.string() + ".stats.json", cosmo::jrl::statsJson(stats) + "\n");
   cosmo::nebula::MetadataInputs inputs{options.dataset_dir, c.inputs, options.from_g2o, options.covariance_order};
-  cosmo::writeFileAtomically(base.string() + ".nebula.yaml",
-                             cosmo::nebula::metadataYaml(c.graph, c.report, params, inputs));
+  cosmo::dataset::writeFileAtomically(base.string() + ".nebula.yaml",
+                                      cosmo::nebula::metadataYaml(c.graph, c.report, params, inputs));
   std::cout << "wrote " << base.string() << ".jrl (+ .stats.txt, .stats.json, .nebula.yaml";
   if (c.report.estimate) {
     std::ostringstream header;

@@ -136,13 +136,13 @@ Reference readReference(const Options& o) {
 /// time per scan.
 class OdometryRun {
  public:
-  OdometryRun(const LoamParams& params, Reference reference, bool quiet)
+  OdometryRun(const odometry::LoamParams& params, Reference reference, bool quiet)
       : odom_(params), reference_(std::move(reference)), quiet_(quiet) {}
 
   void process(const Scan& scan, long frame, const std::string& name) {
     bench::Stopwatch sw;
     const double cpu0 = threadCpuMs();
-    const OdometryResult r = odom_.update(scan);
+    const odometry::OdometryResult r = odom_.update(scan);
     times_ms.push_back(sw.elapsedMs());
     cpu_ms.push_back(threadCpuMs() - cpu0);
     est.push_back(r.pose);
@@ -165,7 +165,7 @@ class OdometryRun {
   std::size_t warnings = 0;
 
  private:
-  LoamOdometry odom_;
+  odometry::LoamOdometry odom_;
   Reference reference_;
   bool quiet_;
 };
@@ -213,7 +213,7 @@ void printTiming(const OdometryRun& run) {
 
 void printSegmentErrors(const std::vector<Pose3>& est, const std::vector<Pose3>& ref,
                         const std::vector<double>& segments) {
-  for (const auto& e : segmentErrors(est, ref, segments)) {
+  for (const auto& e : odometry::segmentErrors(est, ref, segments)) {
     std::cout << "segment " << std::setw(5) << e.length << " m: ";
     if (e.count == 0)
       std::cout << "n/a (trajectory too short)\n";
@@ -229,14 +229,14 @@ void printWorstStep(const std::vector<Pose3>& est, const std::vector<Pose3>& ref
   double worst_t = 0, worst_r = 0;
   for (std::size_t i = 1; i < est.size(); ++i) {
     const Pose3 de = est[i - 1].inverse() * est[i], dg = ref[i - 1].inverse() * ref[i];
-    worst_t = std::max(worst_t, translationError(de, dg));
-    worst_r = std::max(worst_r, rotationErrorRad(de, dg) * 180.0 / M_PI);
+    worst_t = std::max(worst_t, odometry::translationError(de, dg));
+    worst_r = std::max(worst_r, odometry::rotationErrorRad(de, dg) * 180.0 / M_PI);
   }
   std::cout << "worst per-step error: " << worst_t * 100.0 << " cm, " << worst_r << " deg\n";
 }
 
 void printConstantMotionRuns(const std::vector<Pose3>& ref) {
-  const auto fills = findConstantMotionRuns(ref);
+  const auto fills = odometry::findConstantMotionRuns(ref);
   if (fills.empty()) return;
   std::cout << "reference moves at a perfectly constant velocity (steps equal within 2 mm / 0.005 deg for >= 10 "
                "steps) over scans";
@@ -256,7 +256,7 @@ void printEvaluation(const std::vector<Pose3>& est, std::vector<Pose3> ref, cons
   // Express the reference relative to its first pose, like the odometry.
   const Pose3 r0inv = ref.front().inverse();
   for (auto& p : ref) p = r0inv * p;
-  const AteResult ate = absoluteTrajectoryError(est, ref);
+  const odometry::AteResult ate = odometry::absoluteTrajectoryError(est, ref);
   std::cout << "ATE (SE(3)-aligned): rmse " << ate.rmse << " m, mean " << ate.mean << " m, max " << ate.max << " m\n";
   double path = 0.0;
   for (std::size_t i = 1; i < ref.size(); ++i) path += (ref[i].translation() - ref[i - 1].translation()).norm();
@@ -273,8 +273,8 @@ int main(int argc, char** argv) {
   Options o;
   if (const std::optional<int> exit_code = parseArgs(argc, argv, o)) return *exit_code;
   try {
-    LoamParams params;
-    if (!o.config.empty()) params = LoamParams::fromConfig(cosmo::ConfigNode::load(o.config));
+    odometry::LoamParams params;
+    if (!o.config.empty()) params = odometry::LoamParams::fromConfig(cosmo::ConfigNode::load(o.config));
     const Range range{o.first, o.count};
     OdometryRun run(params, readReference(o), o.quiet);
     if (!o.scans.empty())

@@ -120,7 +120,7 @@ class Console {
     const jrl::Dataset dataset = run.recorder().build();
     const auto violations = jrl::validate(dataset);
     std::printf("wrote %s (%zu entries; transfer log %s)\n", d.jrl.c_str(), d.report.entries, d.transfers.c_str());
-    const RadioStats& radio = run.radio().stats();
+    const comm::RadioStats& radio = run.radio().stats();
     if (const auto& trace = run.radio().params().trace)
       std::printf("  radio trace %s: %llu connectivity samples from its windows, %llu from phi(d) outside them\n",
                   trace->source().c_str(), static_cast<unsigned long long>(radio.trace_samples),

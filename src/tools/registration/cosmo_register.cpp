@@ -41,19 +41,19 @@ std::string poseString(const Pose3& T) {
 }
 
 struct Outcome {
-  RegistrationResult result;
+  registration::RegistrationResult result;
   std::map<std::string, double> ms;
   double total_ms = 0.0;
-  std::optional<PoseError> error;
+  std::optional<registration::PoseError> error;
 };
 
-Outcome runPair(const GlobalRegistration& reg, const std::string& src_file, const std::string& tgt_file, double yaw_deg,
-                const std::optional<Pose3>& expected) {
+Outcome runPair(const registration::GlobalRegistration& reg, const std::string& src_file, const std::string& tgt_file,
+                double yaw_deg, const std::optional<Pose3>& expected) {
   Scan src = readScanFile(src_file);
   const Scan tgt = readScanFile(tgt_file);
   const double yaw = yaw_deg * M_PI / 180.0;
-  if (yaw != 0.0) src = rotateScanYaw(src, yaw);
-  StageTimer timer;
+  if (yaw != 0.0) src = registration::rotateScanYaw(src, yaw);
+  bench::StageTimer timer;
   timer.restart();
   Outcome o;
   o.result = reg.align(src, tgt, &timer);
@@ -61,7 +61,7 @@ Outcome runPair(const GlobalRegistration& reg, const std::string& src_file, cons
   o.total_ms = timer.total();
   if (expected) {
     const Pose3 Rz(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
-    o.error = poseError(o.result.T_target_source, *expected * Rz.inverse());
+    o.error = registration::poseError(o.result.T_target_source, *expected * Rz.inverse());
   }
   return o;
 }
@@ -94,13 +94,13 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const RegistrationParams params = config_path.empty()
-                                          ? RegistrationParams{}
-                                          : RegistrationParams::fromConfig(cosmo::ConfigNode::load(config_path));
-    const GlobalRegistration reg(params);
+    const registration::RegistrationParams params =
+        config_path.empty() ? registration::RegistrationParams{}
+                            : registration::RegistrationParams::fromConfig(cosmo::ConfigNode::load(config_path));
+    const registration::GlobalRegistration reg(params);
 
     if (!pairs_path.empty()) {
-      const auto pairs = readPairList(pairs_path);
+      const auto pairs = registration::readPairList(pairs_path);
       std::printf("%-28s %7s %6s %6s %6s %6s %5s %8s %8s %8s %s\n", "pair", "dist_m", "corr", "core", "clique", "final",
                   "valid", "err_m", "err_deg", "time_ms", "result");
       int ok = 0;
@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
                 r.structure_overlap);
     std::printf("verdict: %s (%s)\n", r.valid ? "ACCEPTED" : "REJECTED", r.reason.c_str());
     std::printf("time (ms):");
-    for (const char* s : kRegistrationStages) {
+    for (const char* s : bench::kRegistrationStages) {
       const auto it = o.ms.find(s);
       std::printf(" %s %.1f", s, it == o.ms.end() ? 0.0 : it->second);
     }

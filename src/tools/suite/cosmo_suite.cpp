@@ -26,6 +26,7 @@
 #include "cosmo/suite/simulate.hpp"
 #include "cosmo/suite/slurm.hpp"
 #include "cosmo/suite/status.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 namespace fs = std::filesystem;
 using namespace cosmo::suite;
@@ -48,14 +49,6 @@ std::string runId() {
   return std::string(buf) + "-" + std::to_string(::getpid());
 }
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot read");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 std::unique_ptr<PaperTable> paperTable() {
   const fs::path p = fs::path(cosmo::defaultConfigDir()) / "paper" / "fig1.yaml";
   if (!fs::exists(p)) return nullptr;
@@ -75,8 +68,8 @@ Plan makePlan(const Options& o, const SuiteFile& suite) {
 /// Writes the plan for the job processes: .suite/plans/<run>.json, and .suite/plan.json (the latest).
 std::string savePlan(const Plan& plan, const std::string& run) {
   const std::string path = suiteDir(plan.out_dir, "plans") + "/" + run + ".json";
-  cosmo::writeFileAtomically(path, plan.toJson());
-  cosmo::writeFileAtomically(suiteDir(plan.out_dir) + "/plan.json", plan.toJson());
+  cosmo::dataset::writeFileAtomically(path, plan.toJson());
+  cosmo::dataset::writeFileAtomically(suiteDir(plan.out_dir) + "/plan.json", plan.toJson());
   return path;
 }
 
@@ -146,7 +139,7 @@ int runSuite(const Options& o) {
 
 int status(const Options& o) {
   const std::string out = fs::absolute(o.out).lexically_normal().string();
-  const Plan plan = o.suite.empty() ? Plan::fromJson(readText(out + "/.suite/plan.json"), out + "/.suite/plan.json")
+  const Plan plan = o.suite.empty() ? Plan::fromJson(cosmo::readWholeFile(out + "/.suite/plan.json"), out + "/.suite/plan.json")
                                     : makePlan(o, SuiteFile::load(o.suite));
   const JobStatuses statuses = folderStatuses(plan, "");
   for (const auto& job : plan.jobs) std::cout << job.id << ": " << statuses.at(job.id) << "\n";
@@ -155,10 +148,10 @@ int status(const Options& o) {
 }
 
 int job(const Options& o) {
-  const Plan plan = Plan::fromJson(readText(o.plan), o.plan);
+  const Plan plan = Plan::fromJson(cosmo::readWholeFile(o.plan), o.plan);
   std::string id = o.job;
   if (id.empty()) {
-    std::istringstream list(readText(o.list));
+    std::istringstream list(cosmo::readWholeFile(o.list));
     for (int i = 0; i <= o.index && std::getline(list, id); ++i) {
     }
   }
@@ -173,7 +166,7 @@ int job(const Options& o) {
 }
 
 int report(const Options& o) {
-  const Plan plan = Plan::fromJson(readText(o.plan), o.plan);
+  const Plan plan = Plan::fromJson(cosmo::readWholeFile(o.plan), o.plan);
   const JobStatuses statuses = folderStatuses(plan, o.run);
   finishReport(plan, statuses, statusCounts(plan, statuses) + " (Slurm run " + o.run + ").", true);
   return anyFailed(statuses) ? 1 : 0;

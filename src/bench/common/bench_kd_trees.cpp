@@ -1,14 +1,14 @@
 // bench_kd_trees: why the project keeps more than one k-d tree. Each tree is timed on the workload it serves
 // and on the other's, on the same data:
 //   LOAM's local map: a tree over ~3 scans of points, rebuilt every scan, asked for the k = 5 nearest points
-//     within a distance bound (odometry/kd_tree.hpp KdTree3, against registration/kdtree.hpp KdTree<3> via a
+//     within a distance bound (common/kd_tree3.hpp KdTree3, against common/kd_tree.hpp KdTree<3> via a
 //     radius search + partial sort, and nanoflann 1.4's knnSearch);
 //   registration's feature matching: 33-D rows, the (1+eps)-approximate nearest neighbour
-//     (registration/kdtree.hpp KdTree<33>, against nanoflann 1.4).
+//     (common/kd_tree.hpp KdTree<33>, against nanoflann 1.4).
 //
 //   bench_kd_trees [--repeats N]
 //
-// Input: sweeps of the built-in synthetic street (odometry/synthetic_scene.hpp), deterministic. Prints the
+// Input: sweeps of the built-in synthetic street (testing/street_scene.hpp), deterministic. Prints the
 // median wall time per build and per query batch, and checks that the trees agree on the answers.
 #include <nanoflann.hpp>
 
@@ -21,9 +21,9 @@
 
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/common/command_line.hpp"
-#include "cosmo/odometry/kd_tree.hpp"
-#include "cosmo/odometry/synthetic_scene.hpp"
-#include "cosmo/registration/kdtree.hpp"
+#include "cosmo/common/kd_tree3.hpp"
+#include "cosmo/test_support/street_scene.hpp"
+#include "cosmo/common/kd_tree.hpp"
 
 using namespace cosmo;
 
@@ -47,8 +47,8 @@ using NanoTree =
 
 /// Points of sweeps of the synthetic street taken 1 m apart (the sensor driving along +x).
 std::vector<Eigen::Vector3f> streetPoints(int first_sweep, int sweeps, int keep_every) {
-  const SyntheticScene scene = SyntheticScene::street();
-  const SyntheticLidar lidar;
+  const test_support::SyntheticScene scene = test_support::SyntheticScene::street();
+  const test_support::SyntheticLidar lidar;
   std::vector<Eigen::Vector3f> out;
   for (int s = first_sweep; s < first_sweep + sweeps; ++s) {
     const double x = 10.0 + s;

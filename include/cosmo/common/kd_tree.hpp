@@ -9,6 +9,10 @@
 // for a single nearest neighbour. The data is copied: it need not outlive the tree. Measured against nanoflann
 // itself on 33-D FPFH-like rows (bench_kd_trees: 5k rows, 5k (1+10)-approximate queries): build 0.9 ms against
 // 9.9 ms, queries 2.4 us against 6.3 us, identical answers.
+// The k-d trees of cosmo: this one (nearest row, rows within a radius: registration's feature matching, ICP,
+// graph pruning) and KdTree3 (kd_tree3.hpp: the k nearest 3-D points within a bound, LOAM's local map, where this
+// tree, having no k-nearest query, takes 401 ms against 8.0 ms in bench_kd_trees). ScanContext's ring-key index uses
+// nanoflann itself: its dimension is a run-time parameter (the ring count) and a query costs 0.23 ms in all.
 #include <Eigen/Core>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// The own kd-tree (kdtree.hpp) against nanoflann 1.4, whose tree and search it reimplements: the same answers,
+// The own kd-tree (kd_tree.hpp) against nanoflann 1.4, whose tree and search it reimplements: the same answers,
 // bit for bit (index and squared distance), for 33-D feature-like rows with many ties and zeros (exact and
 // (1+eps)-approximate) and for 3-D points (nearest, nearest within a bound, any within, radius lists in order).
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "cosmo/registration/kdtree.hpp"
+#include "cosmo/common/kd_tree.hpp"
 
 using namespace cosmo;
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "cosmo/odometry/kd_tree.hpp"
+#include "cosmo/common/kd_tree3.hpp"
 
 using namespace cosmo;
 

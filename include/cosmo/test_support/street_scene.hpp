@@ -9,7 +9,7 @@
 #include "cosmo/common/pose.hpp"
 #include "cosmo/common/scan.hpp"
 
-namespace cosmo {
+namespace cosmo::test_support {
 
 struct SyntheticLidar {
   int rings = 64;               ///< beams
@@ -49,4 +49,4 @@ struct SyntheticScene {
 Scan simulateSweep(const SyntheticScene& scene, const SyntheticLidar& lidar, StampNs stamp,
                    const std::function<Pose3(double)>& pose_at, std::mt19937_64* rng = nullptr);
 
-}  // namespace cosmo
+}  // namespace cosmo::test_support

@@ -1,4 +1,4 @@
-#include "cosmo/odometry/kd_tree.hpp"
+#include "cosmo/common/kd_tree3.hpp"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>

@@ -7,7 +7,7 @@
 #include <limits>
 #include <random>
 
-#include "cosmo/odometry/kd_tree.hpp"
+#include "cosmo/common/kd_tree3.hpp"
 #include "cosmo/odometry/local_feature_map.hpp"
 
 using namespace cosmo;
@@ -112,7 +112,7 @@ TEST(KdTree3, UnboundedSearchFindsEveryPointOnce) {
 }
 
 TEST(LocalFeatureMap, NeighboursComeFromTheLastKScans) {
-  LocalFeatureMap map(2);
+  odometry::LocalFeatureMap map(2);
   for (int s = 0; s < 3; ++s) map.add({Eigen::Vector3d(s, 0, 0)}, {Eigen::Vector3d(0, s, 0)});
   EXPECT_EQ(map.numScans(), 2u);
   EXPECT_EQ(map.numEdgePoints(), 2u);

@@ -1,9 +1,9 @@
-#include "cosmo/odometry/synthetic_scene.hpp"
+#include "cosmo/test_support/street_scene.hpp"
 
 #include <cmath>
 #include <limits>
 
-namespace cosmo {
+namespace cosmo::test_support {
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPi = 3.14159265358979323846;
@@ -131,4 +131,4 @@ Scan simulateSweep(const SyntheticScene& full_scene, const SyntheticLidar& lidar
   return scan;
 }
 
-}  // namespace cosmo
+}  // namespace cosmo::test_support

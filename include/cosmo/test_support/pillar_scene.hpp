@@ -8,11 +8,11 @@
 
 #include "cosmo/common/scan.hpp"
 
-namespace cosmo::test {
+namespace cosmo::test_support {
 
-class SyntheticScene {
+class PillarScene {
  public:
-  explicit SyntheticScene(unsigned seed, double half_size = 200.0, int pillars = 400) {
+  explicit PillarScene(unsigned seed, double half_size = 200.0, int pillars = 400) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> pos(-half_size, half_size), height(1.0, 15.0), radius(0.5, 3.0),
         angle(0.0, 2.0 * M_PI), len(5.0, 30.0);
@@ -66,4 +66,4 @@ inline Scan turnSensor(const Scan& scan, double yaw) {
   return out;
 }
 
-}  // namespace cosmo::test
+}  // namespace cosmo::test_support

@@ -10,7 +10,7 @@
 // Both are exact (the same neighbours, in the same order, bit for bit). Why a tree of its own: LOAM asks for
 // the k nearest points within a bound, from a tree rebuilt every scan. On that workload (bench_kd_trees: 30k
 // map points, 7.5k queries) this tree answers in 1.1 us per query against nanoflann's 3.1 us and 54 us for
-// registration/kdtree.hpp's radius search (which has no k-nearest query), with the same build time.
+// kd_tree.hpp's radius search (which has no k-nearest query), with the same build time.
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
