@@ -3,6 +3,16 @@
 # of its own, no catkin) and by the catkin package's CMakeLists.txt, in the including directory's scope (the same
 # build folder, so both builds compile the same commands). COSMO_ROOT: the repository; COSMO_BUILD_TESTING: the
 # core's gtests.
+# The compile settings of both builds: the same here for both, so that a core object's compile command is the same
+# in each and ccache compiles it once.
+set(CMAKE_CXX_STANDARD 17)
+set(CMAKE_CXX_STANDARD_REQUIRED ON)
+if(NOT CMAKE_BUILD_TYPE)
+  set(CMAKE_BUILD_TYPE RelWithDebInfo)
+endif()
+set(CMAKE_POSITION_INDEPENDENT_CODE ON)
+add_compile_options(-Wall -Wextra -Wno-unused-parameter)
+
 find_package(Eigen3 REQUIRED)
 find_package(PCL REQUIRED COMPONENTS common io kdtree search features)  # PCD files (common), FPFH (registration)
 find_package(nlohmann_json 3 REQUIRED)

@@ -13,13 +13,7 @@ std::string cuMultiTopic(int robot_number) { return "robot" + std::to_string(rob
 Pose3 cuMultiImuTLidar() { return makePose({-0.058038, 0.015573, 0.049603}, Eigen::Quaterniond(0.0, 0.0, 0.0, 1.0)); }
 
 OusterSweep cuMultiSweep(int beams, int columns, double rate_hz) {
-  OusterSweep s;
-  s.beams = beams;
-  s.columns = columns;
-  s.rate_hz = rate_hz;
-  s.stamp_at_end = false;
-  s.ring_uint16 = true;
-  return s;
+  return OusterSweep{beams, columns, rate_hz, /*stamp_at_end=*/false, /*ring_uint16=*/true};
 }
 
 void writeCuMultiGroundTruth(const std::string& path, const std::vector<StampedPose>& body) {

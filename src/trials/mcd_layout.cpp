@@ -34,13 +34,7 @@ Pose3 mcdAtvExtrinsic() {
 }
 
 OusterSweep mcdSweep(int beams, int columns, double rate_hz) {
-  OusterSweep s;
-  s.beams = beams;
-  s.columns = columns;
-  s.rate_hz = rate_hz;
-  s.stamp_at_end = true;
-  s.ring_uint16 = false;
-  return s;
+  return OusterSweep{beams, columns, rate_hz, /*stamp_at_end=*/true, /*ring_uint16=*/false};
 }
 
 void writeMcdPoseCsv(const std::string& path, const std::vector<StampedPose>& body, int first_num) {

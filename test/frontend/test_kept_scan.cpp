@@ -27,10 +27,7 @@ using namespace cosmo::sequence;
 
 namespace {
 
-const std::vector<test::SyntheticTrial>& team() {
-  static const auto t = test::makeSyntheticTeam(2, 60);
-  return t;
-}
+const std::vector<test::SyntheticTrial>& team() { return test::sharedSyntheticTeam(2, 60); }
 
 Trajectory sensorReference(const test::SyntheticTrial& t) {
   TrialTiming identity;

@@ -20,10 +20,7 @@ using namespace cosmo::sequence;
 
 namespace {
 
-const std::vector<test::SyntheticTrial>& team() {
-  static const auto t = test::makeSyntheticTeam(2, 12);
-  return t;
-}
+const std::vector<test::SyntheticTrial>& team() { return test::sharedSyntheticTeam(2, 12); }
 
 std::shared_ptr<const KeptScan> scanOf(char robot, std::size_t i) {
   return std::make_shared<const KeptScan>(std::make_shared<const Scan>(team()[robot == 'a' ? 0 : 1].scans[i]), nullptr);

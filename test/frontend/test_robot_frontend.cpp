@@ -32,10 +32,7 @@ Trajectory sensorReference(const test::SyntheticTrial& t) {
   return toSensorReference(t.body, t.extrinsic, identity);
 }
 
-const std::vector<test::SyntheticTrial>& team() {
-  static const auto t = test::makeSyntheticTeam(2, 60);
-  return t;
-}
+const std::vector<test::SyntheticTrial>& team() { return test::sharedSyntheticTeam(2, 60); }
 
 }  // namespace
 

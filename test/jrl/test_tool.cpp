@@ -9,30 +9,21 @@
 #include <fstream>
 
 #include "cosmo/common/shared_data.hpp"
+#include "../support/run_command.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
 std::string toolPath() {
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (ec) return "";
-  const fs::path tool = self.parent_path() / "cosmo_jrl";
+  const fs::path tool = cosmo::test::binDir() / "cosmo_jrl";
   return fs::exists(tool) ? tool.string() : "";
 }
 
 /// Runs the tool with `args`; returns {exit code, stdout}.
 std::pair<int, std::string> run(const std::string& args) {
-  const std::string cmd = "'" + toolPath() + "' " + args + " 2>/dev/null";
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return {-1, ""};
-  std::string out;
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
-  const int status = ::pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  const cosmo::test::CommandRun r = cosmo::test::runCommand("'" + toolPath() + "' " + args + " 2>/dev/null");
+  return {r.status, r.output};
 }
 
 const std::string kTiny = std::string(COSMO_SOURCE_DIR) + "/test/jrl/data/tiny_example.jrl";

@@ -23,6 +23,7 @@
 #include "cosmo/ros/nebula_dataset.hpp"
 #include "cosmo/ros/nebula_synthetic_folder.hpp"
 #include "cosmo/common/whole_file.hpp"
+#include "../support/run_command.hpp"
 
 using namespace cosmo;
 using namespace cosmo::nebula;
@@ -293,13 +294,8 @@ std::string nebulaTool() {
 
 /// Runs cosmo_nebula with `args`; returns {exit code, stdout + stderr}.
 std::pair<int, std::string> runTool(const std::string& args) {
-  FILE* p = ::popen(("'" + nebulaTool() + "' " + args + " 2>&1").c_str(), "r");
-  if (!p) return {-1, ""};
-  std::string out;
-  std::array<char, 4096> buf;
-  for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), p)) > 0;) out.append(buf.data(), n);
-  const int status = ::pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  const cosmo::test::CommandRun r = cosmo::test::runCommand("'" + nebulaTool() + "' " + args + " 2>&1");
+  return {r.status, r.output};
 }
 
 }  // namespace

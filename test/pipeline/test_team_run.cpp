@@ -23,10 +23,7 @@ using namespace cosmo::sequence;
 
 namespace {
 
-const std::vector<test::SyntheticTrial>& team() {
-  static const auto t = test::makeSyntheticTeam(2, 50);
-  return t;
-}
+const std::vector<test::SyntheticTrial>& team() { return test::sharedSyntheticTeam(2, 50); }
 
 SequenceTiming timingOf(const std::vector<test::SyntheticTrial>& trials, std::uint64_t seed, double sigma) {
   std::vector<TrialSpan> spans;
@@ -165,7 +162,8 @@ TEST(TeamRun, PreparedKeyframesMustMatchTheFrontendsKeyframer) {
   TeamRun run("t", refs, params, 1, 0);
   odometry::OdometryResult r;
   const auto kf = std::make_shared<const Scan>();
-  EXPECT_THROW(run.add('a', frontend::OwnScan::prepared(1000, r, nullptr)), std::logic_error);  // keyframe 0 not prepared
+  EXPECT_THROW(run.add('a', frontend::OwnScan::prepared(1000, r, nullptr)),
+               std::logic_error);  // keyframe 0 not prepared
   TeamRun run2("t", refs, params, 1, 0);
   run2.add('a', frontend::OwnScan::prepared(1000, r, kf));
   EXPECT_THROW(run2.add('a', frontend::OwnScan::prepared(2000, r, kf)), std::logic_error);  // no motion: not a keyframe

@@ -21,18 +21,11 @@
 #include "cosmo/jrl/stats.hpp"
 #include "cosmo/jrl/validate.hpp"
 #include "cosmo/common/whole_file.hpp"
+#include "launch_support.hpp"
 
 namespace {
 
-std::string siblingProgram(const std::string& name) {
-  char exe[4096] = {0};
-  const ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-  if (n > 0) {
-    const auto p = std::filesystem::path(std::string(exe, n)).parent_path() / name;
-    if (std::filesystem::exists(p)) return p.string();
-  }
-  return name;
-}
+using cosmo::test::siblingProgram;
 
 std::string shellQuote(const std::string& s) { return "'" + s + "'"; }
 

@@ -3,6 +3,7 @@
 // config/sim/ci.yaml with a lighter LiDAR and short routes. Deterministic in its parameters.
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cosmo/common/scan.hpp"
@@ -71,6 +72,15 @@ inline std::vector<SyntheticTrial> makeSyntheticTeam(int robots, std::size_t max
     out.push_back(std::move(s));
   }
   return out;
+}
+
+/// makeSyntheticTeam(robots, max_scans), made once per process and argument pair (the tests of a binary share it).
+inline const std::vector<SyntheticTrial>& sharedSyntheticTeam(int robots, std::size_t max_scans) {
+  static std::map<std::pair<int, std::size_t>, std::vector<SyntheticTrial>> teams;
+  auto it = teams.find({robots, max_scans});
+  if (it == teams.end())
+    it = teams.emplace(std::make_pair(robots, max_scans), makeSyntheticTeam(robots, max_scans)).first;
+  return it->second;
 }
 
 }  // namespace cosmo::test

@@ -12,26 +12,17 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "../support/run_command.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-fs::path binDir() {
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? fs::path() : self.parent_path();
-}
+using cosmo::test::binDir;
 
 std::pair<int, std::string> runTool(const std::string& tool, const std::string& args) {
-  const std::string cmd = "'" + (binDir() / tool).string() + "' " + args + " 2>&1";
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return {-1, ""};
-  std::string out;
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
-  const int status = ::pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  const cosmo::test::CommandRun r = cosmo::test::runCommand("'" + (binDir() / tool).string() + "' " + args + " 2>&1");
+  return {r.status, r.output};
 }
 
 /// The CSV without its last column (link: distance in the model run, trace in the replay).
@@ -73,11 +64,15 @@ TEST_F(CommSimulateTrace, AWrittenTraceReplaysTheModelRunsDeliveriesExactly) {
   for (const std::string comm : {"wifi", "proradio"}) {
     const fs::path model = dir_ / (comm + "_model.csv"), replay = dir_ / (comm + "_replay.csv"),
                    trace = dir_ / (comm + "_trace.csv");
-    auto [rc, out] = runTool("comm_simulate", "--comm " + comm + " --seed 4 --kf-distance 3 --scan-points 30000 "
-                                              "--write-trace " + trace.string() + " --out " + model.string() + " " + robots_);
+    auto [rc, out] = runTool("comm_simulate", "--comm " + comm +
+                                                  " --seed 4 --kf-distance 3 --scan-points 30000 "
+                                                  "--write-trace " +
+                                                  trace.string() + " --out " + model.string() + " " + robots_);
     ASSERT_EQ(rc, 0) << out;
-    std::tie(rc, out) = runTool("comm_simulate", "--comm " + comm + " --seed 4 --kf-distance 3 --scan-points 30000 "
-                                                 "--trace " + trace.string() + " --out " + replay.string() + " " + robots_);
+    std::tie(rc, out) = runTool("comm_simulate", "--comm " + comm +
+                                                     " --seed 4 --kf-distance 3 --scan-points 30000 "
+                                                     "--trace " +
+                                                     trace.string() + " --out " + replay.string() + " " + robots_);
     ASSERT_EQ(rc, 0) << out;
     const std::string expected = withoutLinkColumn(model);
     EXPECT_GT(std::count(expected.begin(), expected.end(), '\n'), 20) << "too few transfers to compare";
@@ -94,8 +89,8 @@ TEST_F(CommSimulateTrace, ABadTraceStopsWithFileAndLine) {
   const fs::path bad = dir_ / "bad.csv";
   std::ofstream(bad) << "robot_a,robot_b,start,duration,throughput_Bps,latency,connected\na,b,0,1,100,0,1\n"
                         "a,d,0,1,100,0,1\n";
-  const auto [rc, out] = runTool("comm_simulate", "--trace " + bad.string() + " --out " +
-                                                      (dir_ / "x.csv").string() + " " + robots_);
+  const auto [rc, out] =
+      runTool("comm_simulate", "--trace " + bad.string() + " --out " + (dir_ / "x.csv").string() + " " + robots_);
   EXPECT_EQ(rc, 1);
   EXPECT_NE(out.find(bad.string() + ":3: robot 'd' is not in the team (a, b, c)"), std::string::npos) << out;
 }

@@ -22,35 +22,20 @@
 #include "cosmo/sim/sequence_planner.hpp"
 #include "cosmo/trials/trial_reference.hpp"
 #include "cosmo/common/whole_file.hpp"
+#include "../support/run_command.hpp"
 
 namespace fs = std::filesystem;
 using namespace cosmo;
 
 namespace {
 
-fs::path binDir() {
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? fs::path() : self.parent_path();
-}
+using cosmo::test::binDir;
 
-struct ToolRun {
-  int status = -1;
-  std::string output;  ///< stdout and stderr
-};
+using ToolRun = cosmo::test::CommandRun;  ///< output: stdout and stderr
 
 /// Runs `tool args` with `env` (e.g. "COSMO_SCAN_CACHE=off") in front.
 ToolRun runTool(const std::string& tool, const std::string& args, const std::string& env) {
-  const std::string cmd = "env " + env + " '" + (binDir() / tool).string() + "' " + args + " 2>&1";
-  ToolRun r;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-  const int status = ::pclose(p);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return cosmo::test::runCommand("env " + env + " '" + (binDir() / tool).string() + "' " + args + " 2>&1");
 }
 
 /// Two robots on a one-block campus: a walker along one side (27 s), an ATV along two (26 s).

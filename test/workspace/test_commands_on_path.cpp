@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "../support/run_command.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -30,24 +32,14 @@ std::vector<std::string> split(const std::string& s, char sep) {
   return out;
 }
 
-struct Result {
-  int status = -1;
-  std::string output;
-};
+using Result = cosmo::test::CommandRun;
 
 /// Runs `script` in a fresh bash (no inherited environment but HOME) that has sourced the devel space.
 Result inSourcedShell(const std::string& script) {
   const std::string home = std::getenv("HOME") ? std::getenv("HOME") : "/tmp";
   const std::string cmd = "env -i HOME='" + home + "' PATH=/usr/bin:/bin bash -c 'source \"" + kDevel +
                           "/setup.bash\" && " + script + "' 2>&1";
-  Result r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, pipe)) > 0;) r.output.append(buf, n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return cosmo::test::runCommand(cmd);
 }
 
 /// The first word of every command in the README's ```bash blocks (after `;`, `&&`, `|`, and `VAR=value`).

@@ -10,6 +10,13 @@ namespace cosmo::bench {
 /// CPU time of the whole process so far, ms.
 inline double processCpuMs() { return 1e3 * static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
+/// An Ouster OS1 with `beams` beams (the OS1-128's optics for 128, the OS1-64's otherwise).
+inline sim::LidarModel benchOuster(int beams) {
+  sim::LidarModel lidar = beams == 128 ? sim::LidarModel::os1_128() : sim::LidarModel::os1_64();
+  lidar.beams = beams;
+  return lidar;
+}
+
 /// The planned sequence of that one trial ("bench").
 inline sim::PlannedSequence benchTrialPlan(const sim::LidarModel& lidar) {
   sim::SimulationParams p;

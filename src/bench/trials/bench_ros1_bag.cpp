@@ -142,8 +142,7 @@ int main(int argc, char** argv) {
   std::printf("%-12s %-6s %6s %-22s %9s %9s %8s  %s\n", "sweep", "chunks", "MB", "reader", "wall/scan", "CPU/scan",
               "peak MB", "scans = librosbag's");
   for (int beams : beam_counts) {
-    sim::LidarModel lidar = beams == 128 ? sim::LidarModel::os1_128() : sim::LidarModel::os1_64();
-    lidar.beams = beams;
+    const sim::LidarModel lidar = bench::benchOuster(beams);
     const auto seq = bench::benchTrialPlan(lidar);
     const auto& t = seq.trials.at(0);
     sim::ScanSimulator simulator(*seq.world, lidar);

@@ -78,8 +78,7 @@ int main(int argc, char** argv) {
   std::printf("%-9s %6s %8s %8s %8s %8s | %12s %12s %12s %12s | %8s  (ms: CPU per scan)\n", "sweep", "scans", "bz2 MB",
               "raw MB", "ros2 MB", "cache MB", "bz2 1st", "bz2 cached", "raw", "ros2", "pts/scan");
   for (int beams : beam_counts) {
-    sim::LidarModel lidar = beams == 128 ? sim::LidarModel::os1_128() : sim::LidarModel::os1_64();
-    lidar.beams = beams;
+    const sim::LidarModel lidar = bench::benchOuster(beams);
     const auto seq = bench::benchTrialPlan(lidar);
     const auto& t = seq.trials.at(0);
     sim::ScanSimulator simulator(*seq.world, lidar);
