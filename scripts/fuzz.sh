@@ -5,6 +5,7 @@
 #                                            1800), then merge what it found into the kept corpus fuzz/corpus/<target>
 #   scripts/fuzz.sh --ci [SECONDS]           CI (scripts/test.sh): build, replay every committed input of every target,
 #                                            fuzz each for SECONDS in all (default 8); stops at the first finding
+#   scripts/fuzz.sh --keep [TARGET|all]      only the merge of a campaign (e.g. after changing the budget)
 #   scripts/fuzz.sh --list                   the targets
 #
 # Inputs of a target, all read at the start of every run (libFuzzer runs each once: a replay):
@@ -19,7 +20,7 @@
 # Kept corpus: after a campaign's run, the working and kept corpus (inputs up to COSMO_FUZZ_MAX_INPUT bytes, default
 # 65536) are merged (-merge=1) over the seeds and regression inputs: what remains is the smallest set libFuzzer
 # finds that adds their coverage, written to fuzz/corpus/<target> (named by content hash, so a rerun is stable).
-# Over COSMO_FUZZ_BUDGET bytes per target (default 1048576) the largest inputs are left out, and the script says how
+# Over COSMO_FUZZ_BUDGET bytes per target (default 2097152) the largest inputs are left out, and the script says how
 # many. Each campaign run appends "<date> <commit> <target> <seconds> <inputs> <exec/s> <findings> <kept files>
 # <kept bytes>" to fuzz/campaigns.tsv (committed with the corpus: the cumulative count behind the kept corpus).
 #
@@ -37,7 +38,7 @@ ROOT=$PWD
 B=${COSMO_FUZZ_BUILD_DIR:-_build_fuzz}
 J=${JOBS:-$(nproc)}
 MAX_INPUT=${COSMO_FUZZ_MAX_INPUT:-65536}
-BUDGET=${COSMO_FUZZ_BUDGET:-1048576}
+BUDGET=${COSMO_FUZZ_BUDGET:-2097152}
 export PATH=/usr/bin:$PATH
 stage_start=$(date +%s)
 
@@ -46,6 +47,7 @@ MODE=campaign
 case "$1" in
   --list) targets; exit 0 ;;
   --ci) MODE=ci; TARGET=all; SECONDS_EACH=${2:-8} ;;
+  --keep) MODE=keep; TARGET=${2:-all} ;;
   -*) echo "fuzz.sh: unknown option '$1' (see the head of scripts/fuzz.sh)"; exit 2 ;;
   *) TARGET=${1:-all}; SECONDS_EACH=${2:-1800} ;;
 esac
@@ -99,7 +101,9 @@ keep_corpus() {
   for d in $(seed_dirs "$t"); do find "$d" -maxdepth 1 -type f -exec cp -t "$out" {} +; done
   local had; had=$(files_in "$out")
   find "$out" -maxdepth 1 -type f -printf '%f\n' | sort > "$B/merge/$t.had"
-  find "$B/corpus/$t" "$kept" -maxdepth 1 -type f -size -$((MAX_INPUT + 1))c -exec cp -t "$in" {} +
+  for d in "$B/corpus/$t" "$kept"; do  # one cp per folder: an input in both has one name (its hash)
+    find "$d" -maxdepth 1 -type f -size -$((MAX_INPUT + 1))c -exec cp -t "$in" {} +
+  done
   local candidates; candidates=$(files_in "$in")
   # shellcheck disable=SC2086
   nice -n "${COSMO_FUZZ_NICE:-0}" "$B/fuzz_$t" -merge=1 "${FLAGS[@]}" $COSMO_FUZZ_ARGS "$out" "$in" > "$log" 2>&1 ||
@@ -174,6 +178,7 @@ run_target() {
 }
 
 for t in $( [ "$TARGET" = all ] && targets || echo "$TARGET"); do
+  if [ "$MODE" = keep ]; then mkdir -p "$B/corpus/$t" "$B/logs"; keep_corpus "$t" || status=1; continue; fi
   if ! run_target "$t" && [ "$MODE" = ci ]; then echo "[fuzz] stopped at the first finding"; break; fi
 done
 if [ -n "$COSMO_FUZZ_JUNIT" ]; then
