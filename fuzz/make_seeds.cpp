@@ -1,7 +1,7 @@
 // cosmo_fuzz_seeds OUT_DIR: the seed inputs of the fuzz targets, cut from the real-layout fixtures the simulator
 // writes (a tiny trial of test/trials/tiny_trial.hpp, 2 beams x 16 columns, in the MCD layout: bz2 ROS 1 bag; the
 // cosmo layout: ROS 1 bag, plain and lz4; the CU-Multi layout: ROS 2 sqlite3 bag) and from a synthetic Nebula
-// team (pose-graph bag, messages, g2o). Writes OUT_DIR/<target>/<seed>; the small seeds in fuzz/corpus are its
+// team (pose-graph bag, messages, g2o). Writes OUT_DIR/<target>/<seed>; the small seeds in fuzz/seeds are its
 // output. Deterministic (the simulator's and the team's seeds are fixed), except for sqlite's page contents.
 #include <cstdio>
 #include <filesystem>

@@ -1,7 +1,8 @@
 // Every fuzz target (fuzz/targets/*.cpp, built here without libFuzzer) on the inputs kept in the repository:
-// its seeds (fuzz/corpus/<target> and the folders of fuzz/seed_dirs.txt) must be read without error — a target
-// whose valid inputs fail would fuzz nothing — and its regression inputs (fuzz/regressions/<target>: inputs that
-// once crashed a reader) must end with a message or be read, never with a crash or another exception.
+// its seeds (fuzz/seeds/<target> and the folders of fuzz/seed_dirs.txt) must be read without error — a target
+// whose valid inputs fail would fuzz nothing — and its kept corpus (fuzz/corpus/<target>: what the campaigns found,
+// mostly damaged inputs) and regression inputs (fuzz/regressions/<target>: inputs that once crashed a reader) must
+// end with a message or be read, never with a crash or another exception.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -34,9 +35,9 @@ std::vector<fs::path> filesIn(const fs::path& dir, const std::string& extension 
   return files;
 }
 
-/// The seeds of `target`: fuzz/corpus/<target> and its lines of fuzz/seed_dirs.txt.
+/// The seeds of `target`: fuzz/seeds/<target> and its lines of fuzz/seed_dirs.txt.
 std::vector<fs::path> seedsOf(const std::string& target) {
-  std::vector<fs::path> seeds = filesIn(kRoot / "fuzz" / "corpus" / target);
+  std::vector<fs::path> seeds = filesIn(kRoot / "fuzz" / "seeds" / target);
   std::ifstream list(kRoot / "fuzz" / "seed_dirs.txt");
   std::string line;
   while (std::getline(list, line)) {
@@ -51,8 +52,32 @@ std::vector<fs::path> seedsOf(const std::string& target) {
 
 bool run(const std::string& target, const fs::path& input, std::string& message) {
   const std::string bytes = slurp(input);
-  return cosmo::fuzz::runInput(targets().at(target), reinterpret_cast<const std::uint8_t*>(bytes.data()),
-                               bytes.size(), &message);
+  return cosmo::fuzz::runInput(targets().at(target), reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(),
+                               &message);
+}
+
+/// Every input of fuzz/<folder>/<target>/ ends with a message or is read; returns how many there are.
+std::size_t replayEndsWithAMessage(const std::string& folder) {
+  std::size_t inputs = 0;
+  const fs::path root = kRoot / "fuzz" / folder;
+  if (!fs::is_directory(root)) return 0;
+  for (const auto& file : filesIn(root)) ADD_FAILURE() << "not a folder: " << file;
+  for (const auto& e : fs::directory_iterator(root)) {
+    if (!e.is_directory()) continue;
+    const std::string target = e.path().filename().string();
+    EXPECT_TRUE(targets().count(target)) << "fuzz/" << folder << "/" << target << ": no such target";
+    if (!targets().count(target)) continue;
+    for (const auto& input : filesIn(e.path())) {
+      std::string message;
+      ++inputs;
+      try {
+        if (!run(target, input, message)) EXPECT_FALSE(message.empty()) << target << " " << input;
+      } catch (const std::exception& ex) {
+        ADD_FAILURE() << target << " " << input << ": " << typeid(ex).name() << ": " << ex.what();
+      }
+    }
+  }
+  return inputs;
 }
 
 }  // namespace
@@ -70,20 +95,24 @@ TEST(FuzzInputs, EveryTargetHasSeedsThatItReads) {
 }
 
 TEST(FuzzInputs, RegressionInputsEndWithAMessage) {
-  std::size_t inputs = 0;
-  for (const auto& dir : filesIn(kRoot / "fuzz" / "regressions")) ADD_FAILURE() << "not a folder: " << dir;
-  for (const auto& e : fs::directory_iterator(kRoot / "fuzz" / "regressions")) {
-    const std::string target = e.path().filename().string();
-    ASSERT_TRUE(targets().count(target)) << "fuzz/regressions/" << target << ": no such target";
+  std::cout << replayEndsWithAMessage("regressions") << " regression inputs replayed\n";
+}
+
+TEST(FuzzInputs, KeptCorpusEndsWithAMessage) {
+  std::cout << replayEndsWithAMessage("corpus") << " inputs of the kept corpus replayed\n";
+}
+
+// scripts/fuzz.sh keeps inputs up to 64 KiB, at most 2 MiB per target (COSMO_FUZZ_MAX_INPUT, COSMO_FUZZ_BUDGET):
+// a campaign run with other limits must not commit more.
+TEST(FuzzInputs, KeptCorpusIsWithinItsBudget) {
+  const fs::path root = kRoot / "fuzz" / "corpus";
+  if (!fs::is_directory(root)) return;
+  for (const auto& e : fs::directory_iterator(root)) {
+    std::uintmax_t bytes = 0;
     for (const auto& input : filesIn(e.path())) {
-      std::string message;
-      ++inputs;
-      try {
-        if (!run(target, input, message)) EXPECT_FALSE(message.empty()) << target << " " << input;
-      } catch (const std::exception& ex) {
-        ADD_FAILURE() << target << " " << input << ": " << typeid(ex).name() << ": " << ex.what();
-      }
+      EXPECT_LE(fs::file_size(input), 65536u) << input;
+      bytes += fs::file_size(input);
     }
+    EXPECT_LE(bytes, 2097152u) << e.path();
   }
-  std::cout << inputs << " regression inputs replayed\n";
 }
