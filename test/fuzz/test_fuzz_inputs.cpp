@@ -71,7 +71,7 @@ std::size_t replayEndsWithAMessage(const std::string& folder) {
       std::string message;
       ++inputs;
       try {
-        if (!run(target, input, message)) EXPECT_FALSE(message.empty()) << target << " " << input;
+        if (!run(target, input, message)) { EXPECT_FALSE(message.empty()) << target << " " << input; }
       } catch (const std::exception& ex) {
         ADD_FAILURE() << target << " " << input << ": " << typeid(ex).name() << ": " << ex.what();
       }
