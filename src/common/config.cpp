@@ -43,13 +43,17 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
 }  // namespace
 
 std::string nearestName(const std::string& key, const std::vector<std::string>& known) {
+  const std::size_t limit = std::max<std::size_t>(2, key.size() / 3);
   std::string best;
-  std::size_t best_distance = key.size();
+  std::size_t best_distance = std::min(key.size(), limit + 1);  // a farther name is never the answer
   for (const std::string& k : known) {
+    // The edit distance is at least the difference in length: such a name cannot be nearer than the best so far.
+    const std::size_t length_gap = k.size() > key.size() ? k.size() - key.size() : key.size() - k.size();
+    if (length_gap >= best_distance) continue;
     const std::size_t d = editDistance(key, k);
     if (d < best_distance) best = k, best_distance = d;
   }
-  return best_distance <= std::max<std::size_t>(2, key.size() / 3) ? best : std::string();
+  return best_distance <= limit ? best : std::string();
 }
 
 void ConfigNode::rejectUnknownKeys(const std::vector<std::string>& known) const {
