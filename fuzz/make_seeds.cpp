@@ -24,6 +24,7 @@
 #include "cosmo/trials/ros2_bag.hpp"
 #include "cosmo/trials/scan_cache.hpp"
 #include "cosmo/trials/trial_scans.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 using namespace cosmo;
 namespace fs = std::filesystem;
@@ -32,13 +33,6 @@ namespace {
 
 constexpr int kBeams = 2, kColumns = 16, kSweeps = 3;
 constexpr int kMcdSweeps = 20;  ///< MCD's reference starts 1 s after the first scan and ends 0.5 s before the last
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 void put(const fs::path& out, const std::string& target, const std::string& name, const std::string& bytes) {
   fs::create_directories(out / target);
@@ -109,9 +103,9 @@ void trialSeeds(const fs::path& work, const fs::path& out) {
   }
 
   const fs::path mcd_bag = work / "mcd" / written["mcd"].bag;
-  put(out, "ros1_bag", "mcd_bz2.bag", slurp(mcd_bag));
-  put(out, "ros1_bag", "cosmo_none.bag", slurp(work / "cosmo_none.bag"));
-  put(out, "ros1_bag", "cosmo_lz4.bag", slurp(work / "cosmo_lz4.bag"));
+  put(out, "ros1_bag", "mcd_bz2.bag", cosmo::readWholeFileOrEmpty(mcd_bag));
+  put(out, "ros1_bag", "cosmo_none.bag", cosmo::readWholeFileOrEmpty(work / "cosmo_none.bag"));
+  put(out, "ros1_bag", "cosmo_lz4.bag", cosmo::readWholeFileOrEmpty(work / "cosmo_lz4.bag"));
   for (const char* target : {"ros1_point_cloud", "ros_point_cloud"}) {
     put(out, target, "mcd_ouster.msg", firstMessage(mcd_bag));
     put(out, target, "cosmo_scan.msg", firstMessage(work / "cosmo_none.bag"));
@@ -123,7 +117,8 @@ void trialSeeds(const fs::path& work, const fs::path& out) {
   reader.next(m);
   put(out, "cdr_point_cloud", "cu_multi_ouster.cdr", std::string(reinterpret_cast<const char*>(m.data), m.size));
   const auto db3 = trials::ros2BagFiles(cu_bag.string()).at(0);
-  put(out, "ros2_bag", "cu_multi.bin", slurp(cu_bag / "metadata.yaml") + slurp(db3));
+  put(out, "ros2_bag", "cu_multi.bin",
+      cosmo::readWholeFileOrEmpty(cu_bag / "metadata.yaml") + cosmo::readWholeFileOrEmpty(db3));
 
   put(out, "reference", "mcd_pose_inW.csv", firstLines(work / "mcd" / written["mcd"].reference, 8));
   put(out, "reference", "cu_multi_gt.csv", firstLines(work / "cu-multi" / written["cu-multi"].reference, 8));
@@ -153,9 +148,9 @@ void trialSeeds(const fs::path& work, const fs::path& out) {
     Scan s;
     while (caching.next(s)) {}
   }
-  put(out, "scan_cache", "tiny.scans", slurp(cache));
+  put(out, "scan_cache", "tiny.scans", cosmo::readWholeFileOrEmpty(cache));
   trials::writeCachedSpan((work / "tiny.span").string(), scans.front().stamp, scans[kSweeps - 1].stamp);
-  put(out, "scan_cache", "tiny.span", slurp(work / "tiny.span"));
+  put(out, "scan_cache", "tiny.span", cosmo::readWholeFileOrEmpty(work / "tiny.span"));
 }
 
 /// A synthetic Nebula team of one robot: its pose-graph bag, its first messages, its g2o graphs.
@@ -167,7 +162,7 @@ void nebulaSeeds(const fs::path& work, const fs::path& out) {
   std::mt19937_64 rng(7);
   const nebula::SyntheticTeam team = nebula::makeSyntheticTeam(p, rng);
   ros_glue::writeNebulaFolder((work / "nebula").string(), team);
-  put(out, "ros1_bag", "nebula_husky1.bag", slurp(work / "nebula" / "rosbag" / "husky1.bag"));
+  put(out, "ros1_bag", "nebula_husky1.bag", cosmo::readWholeFileOrEmpty(work / "nebula" / "rosbag" / "husky1.bag"));
   const auto& messages = team.messages.at("husky1");
   std::string framed;  // the messages, each preceded by its uint32 length
   for (std::size_t i = 0; i < messages.size() && i < 3; ++i) {
@@ -176,7 +171,7 @@ void nebulaSeeds(const fs::path& work, const fs::path& out) {
     framed += std::string(reinterpret_cast<const char*>(&n), 4) + std::string(bytes.begin(), bytes.end());
     put(out, "nebula_pose_graph", "husky1_first_" + std::to_string(i + 1) + ".msgs", framed);
   }
-  put(out, "g2o", "husky1.g2o", slurp(work / "nebula" / "g2o_pcd" / "husky1.g2o"));
+  put(out, "g2o", "husky1.g2o", cosmo::readWholeFileOrEmpty(work / "nebula" / "g2o_pcd" / "husky1.g2o"));
   put(out, "g2o", "result.g2o", firstLines(work / "nebula" / "ground_truth" / "result.g2o", 6));
 }
 

@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "cosmo/jrl/dataset.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 namespace cosmo::dataset {
 
@@ -233,12 +234,11 @@ JournalContents parseJournal(std::string_view bytes, const std::string& source) 
     const std::string robots = h.str(n);
     c.header.robots.assign(robots.begin(), robots.end());
     c.header.with_player = h.u8() != 0;
-    if (h.at != body.size()) throw std::runtime_error("header has " + std::to_string(body.size() - h.at) + " bytes left over");
+    if (h.at != body.size())
+      throw std::runtime_error("header has " + std::to_string(body.size() - h.at) + " bytes left over");
   } catch (const std::out_of_range&) {
     throw std::runtime_error(source + ": journal header cut short (" + std::to_string(bytes.size()) + " bytes)");
-  } catch (const std::runtime_error& e) {
-    throw std::runtime_error(source + ": " + e.what());
-  }
+  } catch (const std::runtime_error& e) { throw std::runtime_error(source + ": " + e.what()); }
   c.valid_bytes = r.at;
   while (r.at < bytes.size()) {
     const std::size_t start = r.at;
@@ -269,11 +269,9 @@ JournalContents parseJournal(std::string_view bytes, const std::string& source) 
 }
 
 JournalContents readJournal(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read journal " + path);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parseJournal(ss.str(), path);
+  const std::optional<std::string> bytes = readWholeFileIfAny(path);
+  if (!bytes) throw std::runtime_error("cannot read journal " + path);
+  return parseJournal(*bytes, path);
 }
 
 MeasurementJournal::MeasurementJournal(const std::string& path, const JournalHeader& header, Opened* opened)
@@ -296,8 +294,8 @@ MeasurementJournal::MeasurementJournal(const std::string& path, const JournalHea
     if (!o.resumed) {
       o.moved_to = path + "." + fileNameSafe(other) + ".old";
       std::filesystem::rename(path, o.moved_to);
-      o.note = (o.note.empty() ? "" : o.note + "; ") + "a journal of run '" + other + "' (this run: '" +
-               header.run_id + "') moved aside to " + o.moved_to;
+      o.note = (o.note.empty() ? "" : o.note + "; ") + "a journal of run '" + other + "' (this run: '" + header.run_id +
+               "') moved aside to " + o.moved_to;
     }
   }
   fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);

@@ -16,6 +16,7 @@
 #include "cosmo/dataset/atomic_file.hpp"
 #include "cosmo/suite/out_dir.hpp"
 #include "cosmo/suite/scheduler.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 namespace fs = std::filesystem;
 
@@ -37,8 +38,7 @@ unsigned largestNode() {
   std::string w;
   while (in >> w) try {
       best = std::max(best, static_cast<unsigned>(std::stoul(w)));
-    } catch (const std::exception&) {
-    }
+    } catch (const std::exception&) {}
   return status == 0 ? best : 0;
 }
 
@@ -138,8 +138,8 @@ SlurmSubmission submitToSlurm(const Plan& plan, const std::vector<std::string>& 
   for (const auto& a : sub.arrays) all += (all.empty() ? "" : ":") + a.slurm_id;
   const std::string report = dir + "/report.sh";
   dataset::writeFileAtomically(report, "#!/bin/bash\n#SBATCH --cpus-per-task=1\n#SBATCH --output=" + dir +
-                                  "/report-%j.out\nexec " + quoted(o.self_exe) + " report --plan " +
-                                  quoted(o.plan_path) + " --run " + quoted(o.run_id) + "\n");
+                                           "/report-%j.out\nexec " + quoted(o.self_exe) + " report --plan " +
+                                           quoted(o.plan_path) + " --run " + quoted(o.run_id) + "\n");
   sub.report_job = sbatch({"--job-name=cosmo-report", "--dependency=afterany:" + all}, o, report);
   dataset::writeFileAtomically(dir + "/submitted.json", sub.toJson() + "\n");
   dataset::writeFileAtomically(suiteDir(plan.out_dir, "slurm") + "/last", o.run_id + "\n");
@@ -187,11 +187,9 @@ bool readLastSubmission(const std::string& out_dir, SlurmSubmission& submission)
   std::string run;
   if (!(last >> run)) return false;
   const fs::path path = fs::path(out_dir) / ".suite" / "slurm" / run / "submitted.json";
-  std::ifstream in(path);
-  if (!in) return false;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  submission = SlurmSubmission::fromJson(ss.str(), path.string());
+  const std::optional<std::string> text = readWholeFileIfAny(path.string());
+  if (!text) return false;
+  submission = SlurmSubmission::fromJson(*text, path.string());
   return true;
 }
 
@@ -244,8 +242,7 @@ std::string captureCommand(const std::vector<std::string>& argv, int& status) {
     if (n > 0) out.append(buf, static_cast<std::size_t>(n));
   ::close(fds[0]);
   int st = 0;
-  while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {
-  }
+  while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {}
   status = pid < 0 ? 127 : WIFEXITED(st) ? WEXITSTATUS(st) : 128;
   return out;
 }

@@ -15,6 +15,7 @@
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/validate.hpp"
 #include "synthetic_team.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 using namespace cosmo;
 using cosmo::jrl::symbol;
@@ -218,21 +219,17 @@ TEST_F(RecorderTest, WritesAtomicallyAndParsesBack) {
   EXPECT_TRUE(written.labelled);
   const jrl::Dataset back = jrl::readJrl(path);
   EXPECT_EQ(jrl::dumpJrl(back), jrl::dumpJrl(ds));
-  std::ifstream in(dataset::DatasetRecorder::metadataPath(path));
-  std::stringstream meta;
-  meta << in.rdbuf();
-  EXPECT_NE(meta.str().find("outlier_labels: true"), std::string::npos);
-  EXPECT_NE(meta.str().find("outlier_rule: fidelity"), std::string::npos);
+  const std::string meta = readWholeFileOrEmpty(dataset::DatasetRecorder::metadataPath(path));
+  EXPECT_NE(meta.find("outlier_labels: true"), std::string::npos);
+  EXPECT_NE(meta.find("outlier_rule: fidelity"), std::string::npos);
   const YAML::Node yaml = YAML::LoadFile(dataset::DatasetRecorder::metadataPath(path));
   EXPECT_TRUE(yaml["outlier_labels"].as<bool>());
   EXPECT_EQ(yaml["outliers"].as<std::size_t>(), written.outliers);
   EXPECT_EQ(yaml["name"].as<std::string>(), "synthetic_team");
-  std::ifstream stats_in(dataset::DatasetRecorder::statsPath(path));
-  std::stringstream stats;
-  stats << stats_in.rdbuf();
+  const std::string stats = readWholeFileOrEmpty(dataset::DatasetRecorder::statsPath(path));
   EXPECT_EQ(dataset::DatasetRecorder::statsPath(path), (dir / "synthetic_team.stats.txt").string());
   // The stats table, then the noise models the labels were made with (file and provenance).
-  EXPECT_EQ(stats.str(), jrl::formatStats(jrl::computeStats(ds)) + "\nnoise models: (built in code) (test)\n");
+  EXPECT_EQ(stats, jrl::formatStats(jrl::computeStats(ds)) + "\nnoise models: (built in code) (test)\n");
   EXPECT_EQ(yaml["noise_models"]["environment"].as<std::string>(), "test");
   EXPECT_EQ(yaml["noise_models"]["file"].as<std::string>(), "(built in code)");
   for (const auto& f : std::filesystem::directory_iterator(dir))  // no temporary files left behind

@@ -10,6 +10,7 @@
 
 #include "cosmo/dataset/measurement_journal.hpp"
 #include "cosmo/jrl/dataset.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 using namespace cosmo;
 using namespace cosmo::dataset;
@@ -19,9 +20,8 @@ namespace {
 class JournalTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = std::filesystem::temp_directory_path() /
-          ("cosmo_journal_" + std::to_string(::getpid()) + "_" +
-           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir = std::filesystem::temp_directory_path() / ("cosmo_journal_" + std::to_string(::getpid()) + "_" +
+                                                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     path = (dir / "run.journal").string();
@@ -56,13 +56,6 @@ MeasurementRecord closure(char owner, std::uint64_t seq) {
 
 bool samePose(const Pose3& a, const Pose3& b) { return a.matrix() == b.matrix(); }
 
-std::string readBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 }  // namespace
 
 TEST_F(JournalTest, RecordsComeBackBitExact) {
@@ -93,9 +86,7 @@ TEST_F(JournalTest, RecordsComeBackBitExact) {
       EXPECT_EQ(back->stamp, k->stamp);
       EXPECT_TRUE(samePose(back->odometry, k->odometry));
       ASSERT_EQ(back->reference.has_value(), k->reference.has_value());
-      if (k->reference) {
-        EXPECT_TRUE(samePose(*back->reference, *k->reference));
-      }
+      if (k->reference) { EXPECT_TRUE(samePose(*back->reference, *k->reference)); }
       EXPECT_EQ(back->bridge_from, k->bridge_from);
       EXPECT_EQ(back->scans_skipped, k->scans_skipped);
     } else {
@@ -138,7 +129,7 @@ TEST_F(JournalTest, ATornTailIsCutOffAtItsOffsetAndTheJournalGoesOnAfterTheValid
     j.append(keyframe('a', 2, 1));
     j.sync();
   }
-  const std::string whole = readBytes(path);
+  const std::string whole = cosmo::readWholeFileOrEmpty(path);
   const std::string last = encodeJournalRecord(keyframe('a', 2, 1));
   const std::size_t last_at = whole.size() - last.size();
   // a SIGKILL in the middle of the last record's write
@@ -168,7 +159,7 @@ TEST_F(JournalTest, ACorruptRecordEndsTheValidPrefix) {
     for (std::uint64_t s = 1; s <= 3; ++s) j.append(keyframe('a', s, static_cast<std::uint32_t>(s - 1)));
     j.sync();
   }
-  std::string bytes = readBytes(path);
+  std::string bytes = cosmo::readWholeFileOrEmpty(path);
   const std::string one = encodeJournalRecord(keyframe('a', 3, 2));
   bytes[bytes.size() - one.size() / 2] ^= 0x40;  // a bit flipped inside the last record
   const JournalContents c = parseJournal(bytes, "flipped");

@@ -10,6 +10,7 @@
 
 #include "cosmo/dataset/recorder_session.hpp"
 #include "cosmo/jrl/dataset.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 using namespace cosmo;
 using namespace cosmo::dataset;
@@ -50,13 +51,6 @@ MeasurementRecord closure(char owner, std::uint64_t seq, std::uint32_t i, std::u
 
 JournalHeader run(const std::string& id, bool with_player = true) { return {id, "team_wifi", {'a', 'b'}, with_player}; }
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 }  // namespace
 
 TEST(RecorderSession, NothingAcknowledgedIsLostWhenTheProcessDies) {
@@ -85,7 +79,7 @@ TEST(RecorderSession, NothingAcknowledgedIsLostWhenTheProcessDies) {
   const BuildReport report = again.write((t.dir / "team_wifi.jrl").string(), {{"name", "team"}}, &ds);
   EXPECT_EQ(report.keyframes_pending, 0u);
   EXPECT_GT(report.entries, 0u);
-  const std::string meta = read(t.dir / "team_wifi.recorder.yaml");
+  const std::string meta = cosmo::readWholeFileOrEmpty(t.dir / "team_wifi.recorder.yaml");
   EXPECT_NE(meta.find("complete: true"), std::string::npos) << meta;
   EXPECT_NE(meta.find("recorder_sessions: 2"), std::string::npos) << meta;
   EXPECT_NE(meta.find("name: team"), std::string::npos) << meta;

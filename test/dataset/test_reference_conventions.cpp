@@ -12,6 +12,7 @@
 #include "cosmo/dataset/outlier_rule.hpp"
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/validate.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 using namespace cosmo;
 using jrl::symbol;
@@ -178,10 +179,7 @@ TEST(ReferenceFile, RecorderReproducesItsConventions) {
 TEST(TinyExample, RecorderGivesTheSameDataset) {
   const auto doc = sharedPath("docs/jrl.md");
   if (!doc) GTEST_SKIP() << "../shared/docs/jrl.md not found";
-  std::ifstream in(*doc);
-  std::stringstream buf;
-  buf << in.rdbuf();
-  const std::string text = buf.str();
+  const std::string text = readWholeFileOrEmpty(*doc);
   const auto section = text.find("## 12.");
   ASSERT_NE(section, std::string::npos);
   const auto begin = text.find("```json", section);

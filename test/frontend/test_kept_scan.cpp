@@ -20,6 +20,7 @@
 #include "cosmo/pipeline/team_run.hpp"
 #include "cosmo/registration/global_registration.hpp"
 #include "../support/synthetic_team.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 using namespace cosmo;
 using namespace cosmo::frontend;
@@ -201,10 +202,7 @@ std::string teamJrl(bool spill, unsigned registration_threads) {
                      ("cosmo_kept_scan_" + std::to_string(spill) + std::to_string(registration_threads) + ".jrl"))
                         .string();
   run.recorder().write(path);
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return readWholeFileOrEmpty(path);
 }
 
 }  // namespace

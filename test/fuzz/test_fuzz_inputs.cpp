@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "../../fuzz/fuzz_target.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 namespace fs = std::filesystem;
 using cosmo::fuzz::targets;
@@ -18,13 +19,6 @@ using cosmo::fuzz::targets;
 namespace {
 
 const fs::path kRoot = COSMO_SOURCE_DIR;
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 std::vector<fs::path> filesIn(const fs::path& dir, const std::string& extension = "") {
   std::vector<fs::path> files;
@@ -51,7 +45,7 @@ std::vector<fs::path> seedsOf(const std::string& target) {
 }
 
 bool run(const std::string& target, const fs::path& input, std::string& message) {
-  const std::string bytes = slurp(input);
+  const std::string bytes = cosmo::readWholeFileOrEmpty(input);
   return cosmo::fuzz::runInput(targets().at(target), reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(),
                                &message);
 }

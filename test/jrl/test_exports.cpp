@@ -17,6 +17,7 @@
 #include "cosmo/jrl/pose_graph.hpp"
 #include "cosmo/jrl/synthetic.hpp"
 #include "export_fixture.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 using namespace cosmo;
 using namespace cosmo::jrl;
@@ -220,8 +221,7 @@ TEST(JrlExports, TinyExampleReadsBack) {
   expectTumRoundTrip(d, dir);
   expectLabelsRoundTrip(d, dir);
   // jrl.md §12: a2 -> a0 is the outlier, b1 -> a1 an inlier.
-  std::ifstream in(dir / "labels.csv");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string text = readWholeFileOrEmpty(dir / "labels.csv");
   EXPECT_NE(text.find("a,2,1,lc,6989586621679009794,6989586621679009792,a2,a0,1700000001000000000,"), std::string::npos)
       << text;
   EXPECT_NE(text.find(",outlier\n"), std::string::npos);

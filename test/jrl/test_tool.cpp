@@ -10,6 +10,7 @@
 
 #include "cosmo/common/shared_data.hpp"
 #include "../support/run_command.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 namespace fs = std::filesystem;
 
@@ -51,8 +52,7 @@ TEST(CosmoJrlTool, StatsValidateAndExitCodes) {
   // An invalid dataset: validate prints the violation with its place and exits 1.
   const fs::path bad = fs::temp_directory_path() / ("cosmo_tool_bad_" + std::to_string(::getpid()) + ".jrl");
   {
-    std::ifstream in(kTiny);
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string text = cosmo::readWholeFileOrEmpty(kTiny);
     text.replace(text.find("\"stamp\":1700000000750000000"), 27, "\"stamp\":1");
     std::ofstream(bad) << text;
   }

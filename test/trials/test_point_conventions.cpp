@@ -23,12 +23,15 @@ StampNs pointStamp(int i) { return kStamp - static_cast<StampNs>(kPoints - 1 - i
 struct Writer {
   CloudLayout layout;
   std::vector<std::uint8_t> data;
+  /// Points with x y z (float32 at 0/4/8) already written; the test adds its time and ring fields.
   explicit Writer(std::uint32_t point_step) {
     layout.stamp = kStamp;
     layout.width = kPoints;
     layout.point_step = point_step;
     layout.row_step = point_step * kPoints;
     data.assign(static_cast<std::size_t>(point_step) * kPoints, 0);
+    field("x", 0, PointType::Float32), field("y", 4, PointType::Float32), field("z", 8, PointType::Float32);
+    for (int i = 0; i < kPoints; ++i) put(i, 0, 1.0f + i), put(i, 4, 2.0f), put(i, 8, 0.5f);
   }
   void field(const std::string& name, std::uint32_t offset, PointType type) {
     layout.fields.push_back({name, offset, static_cast<std::uint8_t>(type), 1});
@@ -36,11 +39,6 @@ struct Writer {
   template <typename T>
   void put(int i, std::uint32_t offset, T v) {
     std::memcpy(&data[static_cast<std::size_t>(i) * layout.point_step + offset], &v, sizeof v);
-  }
-  void xyz(int i) {
-    put(i, 0, 1.0f + i);
-    put(i, 4, 2.0f);
-    put(i, 8, 0.5f);
   }
   Scan decode() const {
     Scan scan;
@@ -63,10 +61,8 @@ void expectKnownTimesAndRings(const Scan& scan, bool rings = true) {
 
 TEST(PointConventions, OusterNanosecondsFromTheSweepStart) {
   Writer w(24);
-  w.field("x", 0, PointType::Float32), w.field("y", 4, PointType::Float32), w.field("z", 8, PointType::Float32);
   w.field("t", 12, PointType::UInt32), w.field("ring", 16, PointType::UInt16);
   for (int i = 0; i < kPoints; ++i) {
-    w.xyz(i);
     w.put(i, 12, static_cast<std::uint32_t>(pointStamp(i) - pointStamp(0)));
     w.put(i, 16, static_cast<std::uint16_t>(i % 4));
   }
@@ -76,11 +72,9 @@ TEST(PointConventions, OusterNanosecondsFromTheSweepStart) {
 
 TEST(PointConventions, SplitSecondsAndNanosecondsOfAnAutomotiveLidar) {
   Writer w(32);
-  w.field("x", 0, PointType::Float32), w.field("y", 4, PointType::Float32), w.field("z", 8, PointType::Float32);
   w.field("intensity", 16, PointType::Float32), w.field("time_sec", 20, PointType::UInt32);
   w.field("time_nsec", 24, PointType::UInt32), w.field("laser_id", 28, PointType::UInt16);
   for (int i = 0; i < kPoints; ++i) {
-    w.xyz(i);
     w.put(i, 20, static_cast<std::uint32_t>(pointStamp(i) / 1000000000ULL));
     w.put(i, 24, static_cast<std::uint32_t>(pointStamp(i) % 1000000000ULL));
   }
@@ -92,11 +86,9 @@ TEST(PointConventions, SplitSecondsAndNanosecondsOfAnAutomotiveLidar) {
 
 TEST(PointConventions, LivoxAbsoluteNanosecondsInAFloat64AndItsLine) {
   Writer w(26);
-  w.field("x", 0, PointType::Float32), w.field("y", 4, PointType::Float32), w.field("z", 8, PointType::Float32);
   w.field("intensity", 12, PointType::Float32), w.field("tag", 16, PointType::UInt8);
   w.field("line", 17, PointType::UInt8), w.field("timestamp", 18, PointType::Float64);
   for (int i = 0; i < kPoints; ++i) {
-    w.xyz(i);
     w.put(i, 17, static_cast<std::uint8_t>(i % 4));
     w.put(i, 18, static_cast<double>(pointStamp(i)));
   }
@@ -106,10 +98,8 @@ TEST(PointConventions, LivoxAbsoluteNanosecondsInAFloat64AndItsLine) {
 
 TEST(PointConventions, HesaiAbsoluteSecondsInAFloat64) {
   Writer w(24);
-  w.field("x", 0, PointType::Float32), w.field("y", 4, PointType::Float32), w.field("z", 8, PointType::Float32);
   w.field("timestamp", 12, PointType::Float64), w.field("ring", 20, PointType::UInt16);
   for (int i = 0; i < kPoints; ++i) {
-    w.xyz(i);
     w.put(i, 12, static_cast<double>(pointStamp(i) / 1000000000ULL) + (pointStamp(i) % 1000000000ULL) * 1e-9);
     w.put(i, 20, static_cast<std::uint16_t>(i % 4));
   }
@@ -118,8 +108,6 @@ TEST(PointConventions, HesaiAbsoluteSecondsInAFloat64) {
 
 TEST(PointConventions, ACloudWithoutTimesIsNamedAsNotDewarped) {
   Writer w(12);
-  w.field("x", 0, PointType::Float32), w.field("y", 4, PointType::Float32), w.field("z", 8, PointType::Float32);
-  for (int i = 0; i < kPoints; ++i) w.xyz(i);
   EXPECT_EQ(pointConventions(w.layout).describe(), "no per-point time (not dewarped), no ring");
   EXPECT_TRUE(w.decode().time.empty());
   // Half of a split time is no time.

@@ -24,6 +24,7 @@
 #include "cosmo/trials/scan_cache.hpp"
 
 #include "tiny_trial.hpp"
+#include "cosmo/common/whole_file.hpp"
 
 using namespace cosmo;
 namespace fs = std::filesystem;
@@ -133,11 +134,6 @@ void expectScansAsWritten(const Fixture& f, const sequence::TrialConfig& trial, 
   EXPECT_EQ(span.last, trials::ousterHeaderStamp(f.truth.back().stamp, sweep));
 }
 
-std::string fileText(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 }  // namespace
 
 TEST(TrialLayouts, McdLayoutReadsBackAsSimulated) {
@@ -148,7 +144,7 @@ TEST(TrialLayouts, McdLayoutReadsBackAsSimulated) {
   EXPECT_TRUE(f.written.stamp_at_end);
   const fs::path bag = d.path / f.written.bag;
   EXPECT_EQ(trials::detectBagFormat(bag.string()), trials::BagFormat::Ros1);
-  EXPECT_NE(fileText(bag).find("compression=bz2"), std::string::npos);  // chunk headers
+  EXPECT_NE(cosmo::readWholeFileOrEmpty(bag).find("compression=bz2"), std::string::npos);  // chunk headers
   const auto sweep = trials::mcdSweep(kBeams, kColumns, 10.0);
   // The first read decodes the bz2 bag and fills the scan cache; the second (other topic spelling) reads it.
   expectScansAsWritten(f, trialOf(f.written, d.path, "/os_cloud_node/points"), sweep, "uint8");
@@ -160,7 +156,7 @@ TEST(TrialLayouts, McdLayoutReadsBackAsSimulated) {
   EXPECT_EQ(trials::detectReferenceFormat(ref.string()), trials::ReferenceFormat::McdPoseCsv);
   const Trajectory body = trials::readReference(ref.string());
   ASSERT_EQ(body.size(), static_cast<std::size_t>(kScans - 10 - 5));
-  EXPECT_EQ(fileText(ref).substr(0, 27), "num,t,x,y,z,qx,qy,qz,qw\n11,");
+  EXPECT_EQ(cosmo::readWholeFileOrEmpty(ref).substr(0, 27), "num,t,x,y,z,qx,qy,qz,qw\n11,");
   for (std::size_t i = 0; i < body.size(); ++i) {
     const StampNs s = trials::ousterHeaderStamp(f.truth[10 + i].stamp, sweep);
     EXPECT_NEAR(static_cast<double>(body.poses()[i].stamp), static_cast<double>(s), 500.0);

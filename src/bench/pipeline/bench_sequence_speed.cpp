@@ -12,6 +12,7 @@
 //   bench_sequence_speed [--beams 64,128] [--runs off,first,warm] [--dir DIR] [--sim-cache DIR] [--comm wifi]
 //                        [--short]
 #include "cosmo/common/command_line.hpp"
+#include "cosmo/common/whole_file.hpp"
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -27,7 +28,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
 
 namespace fs = std::filesystem;
 
@@ -115,10 +115,7 @@ Run runProgram(const std::vector<std::string>& argv, const std::vector<std::stri
   r.cpu_s = static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
             1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
   r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(log);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.output = ss.str();
+  r.output = cosmo::readWholeFileOrEmpty(log);
   return r;
 }
 
