@@ -13,8 +13,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "cosmo/jrl/dataset.hpp"
+#include "cosmo/common/byte_cursor.hpp"
 #include "cosmo/common/whole_file.hpp"
+#include "cosmo/jrl/dataset.hpp"
 
 namespace cosmo::dataset {
 
@@ -57,44 +58,29 @@ struct Writer {
   }
 };
 
-// ---- decoding: every read is bounds-checked; a short read throws
+// ---- decoding: every read is bounds-checked (common/byte_cursor.hpp); a short read throws std::out_of_range
+struct JournalFail {
+  [[noreturn]] void operator()(const char* /*what*/, const std::string& why, std::size_t /*at*/) const {
+    throw std::out_of_range(why);
+  }
+};
+
 struct Reader {
-  std::string_view in;
-  std::size_t at = 0;
-  void need(std::size_t n) const {
-    if (in.size() - at < n) throw std::out_of_range("cut short");
-  }
-  std::uint8_t u8() {
-    need(1);
-    return static_cast<std::uint8_t>(in[at++]);
-  }
-  std::uint32_t u32() {
-    need(4);
-    std::uint32_t v = 0;
-    for (int i = 0; i < 4; ++i) v |= static_cast<std::uint32_t>(static_cast<std::uint8_t>(in[at + i])) << (8 * i);
-    at += 4;
-    return v;
-  }
-  std::uint64_t u64() {
-    need(8);
-    std::uint64_t v = 0;
-    for (int i = 0; i < 8; ++i) v |= static_cast<std::uint64_t>(static_cast<std::uint8_t>(in[at + i])) << (8 * i);
-    at += 8;
-    return v;
-  }
-  double f64() {
-    const std::uint64_t bits = u64();
-    double v;
-    std::memcpy(&v, &bits, sizeof v);
-    return v;
-  }
+  explicit Reader(std::string_view bytes)
+      : in(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), JournalFail{}, 0, "cut short") {}
+  ByteCursor<JournalFail> in;
+
+  std::size_t at() const { return in.offset(); }
+  std::size_t left() const { return in.left(); }
+  std::string_view take(std::size_t n) { return {reinterpret_cast<const char*>(in.bytes(n, "bytes")), n}; }
+  std::uint8_t u8() { return in.value<std::uint8_t>("u8"); }
+  std::uint32_t u32() { return in.value<std::uint32_t>("u32"); }
+  std::uint64_t u64() { return in.value<std::uint64_t>("u64"); }
+  double f64() { return in.value<double>("f64"); }
   std::string str(std::size_t max) {
     const std::uint32_t n = u32();
     if (n > max) throw std::out_of_range("string of " + std::to_string(n) + " bytes");
-    need(n);
-    std::string s(in.substr(at, n));
-    at += n;
-    return s;
+    return std::string(take(n));
   }
   Pose3 pose() {
     Pose3 T = Pose3::Identity();
@@ -120,10 +106,10 @@ std::string markRecord(Kind kind) {
 
 /// One record's payload: its kind, and the measurement when it is one.
 std::uint8_t decodeRecord(std::string_view payload, MeasurementRecord& out) {
-  Reader r{payload};
+  Reader r(payload);
   const std::uint8_t kind = r.u8();
   if (kind == kSession || kind == kDone) {
-    if (r.at != payload.size()) throw std::out_of_range(std::to_string(payload.size() - r.at) + " bytes left over");
+    if (r.left() != 0) throw std::out_of_range(std::to_string(r.left()) + " bytes left over");
     return kind;
   }
   if (kind != kKeyframe && kind != kLoopClosure) throw std::out_of_range("unknown kind " + std::to_string(kind));
@@ -150,7 +136,7 @@ std::uint8_t decodeRecord(std::string_view payload, MeasurementRecord& out) {
     lc.measurement = r.pose();
     out.what = lc;
   }
-  if (r.at != payload.size()) throw std::out_of_range(std::to_string(payload.size() - r.at) + " bytes left over");
+  if (r.left() != 0) throw std::out_of_range(std::to_string(r.left()) + " bytes left over");
   return kind;
 }
 
@@ -212,42 +198,36 @@ std::string encodeJournalRecord(const MeasurementRecord& record) {
 JournalContents parseJournal(std::string_view bytes, const std::string& source) {
   JournalContents c;
   c.file_bytes = bytes.size();
-  Reader r{bytes};
+  Reader r(bytes);
   try {
-    r.need(sizeof kMagic);
-    if (bytes.substr(0, sizeof kMagic) != std::string_view(kMagic, sizeof kMagic))
+    if (r.take(sizeof kMagic) != std::string_view(kMagic, sizeof kMagic))
       throw std::runtime_error("not a cosmo journal (no COSMOJNL magic)");
-    r.at = sizeof kMagic;
     const std::uint32_t version = r.u32();
     if (version != kVersion)
       throw std::runtime_error("journal format version " + std::to_string(version) + ", this build reads " +
                                std::to_string(kVersion));
     const std::uint32_t n = r.u32();
     if (n > kMaxHeader) throw std::runtime_error("header of " + std::to_string(n) + " bytes");
-    r.need(n);
-    const std::string_view body = bytes.substr(r.at, n);
-    r.at += n;
+    const std::string_view body = r.take(n);
     if (r.u32() != crc32Of(body)) throw std::runtime_error("header CRC mismatch");
-    Reader h{body};
+    Reader h(body);
     c.header.run_id = h.str(n);
     c.header.name = h.str(n);
     const std::string robots = h.str(n);
     c.header.robots.assign(robots.begin(), robots.end());
     c.header.with_player = h.u8() != 0;
-    if (h.at != body.size())
-      throw std::runtime_error("header has " + std::to_string(body.size() - h.at) + " bytes left over");
+    if (h.left() != 0) throw std::runtime_error("header has " + std::to_string(h.left()) + " bytes left over");
   } catch (const std::out_of_range&) {
     throw std::runtime_error(source + ": journal header cut short (" + std::to_string(bytes.size()) + " bytes)");
   } catch (const std::runtime_error& e) { throw std::runtime_error(source + ": " + e.what()); }
-  c.valid_bytes = r.at;
-  while (r.at < bytes.size()) {
-    const std::size_t start = r.at;
+  c.valid_bytes = r.at();
+  while (r.left() != 0) {
+    const std::size_t start = r.at();
     try {
       const std::uint32_t n = r.u32();
       const std::uint32_t crc = r.u32();
       if (n == 0 || n > kMaxRecord) throw std::out_of_range("record length " + std::to_string(n));
-      r.need(n);
-      const std::string_view payload = bytes.substr(r.at, n);
+      const std::string_view payload = r.take(n);
       if (crc32Of(payload) != crc) throw std::out_of_range("CRC mismatch");
       MeasurementRecord rec;
       const std::uint8_t kind = decodeRecord(payload, rec);
@@ -257,8 +237,7 @@ JournalContents parseJournal(std::string_view bytes, const std::string& source) 
         c.player_done = true;
       else
         c.records.push_back(std::move(rec));
-      r.at += n;
-      c.valid_bytes = r.at;
+      c.valid_bytes = r.at();
     } catch (const std::out_of_range& e) {
       c.tail_error = std::string("record at byte ") + std::to_string(start) + ": " + e.what() + " (" +
                      std::to_string(bytes.size() - start) + " bytes not read)";
