@@ -62,7 +62,7 @@ frontend::FrontendSetup frontendSetup(const FrontendOptions& o, const frontend::
 
 std::optional<dataset::NoiseModels> markerNoiseModels(const FrontendOptions& o) {
   if (o.noise_models.empty()) return std::nullopt;
-  return dataset::NoiseModels::load(o.noise_models);
+  return cosmo::sequence::loadRunNoiseModels(o.noise_models, "", "", o.config_dir);
 }
 
 registration::RegistrationParams sequenceRegistration(const FrontendOptions& o,
