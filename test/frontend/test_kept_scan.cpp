@@ -202,7 +202,9 @@ std::string teamJrl(bool spill, unsigned registration_threads) {
                      ("cosmo_kept_scan_" + std::to_string(spill) + std::to_string(registration_threads) + ".jrl"))
                         .string();
   run.recorder().write(path);
-  return readWholeFileOrEmpty(path);
+  std::string bytes = readWholeFileOrEmpty(path);
+  std::filesystem::remove(path);
+  return bytes;
 }
 
 }  // namespace

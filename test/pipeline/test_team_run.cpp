@@ -65,7 +65,9 @@ std::string runOnce(std::uint64_t seed, TeamCounts* counts = nullptr, unsigned r
                         .string();
   run.recorder().write(path);
   if (counts) *counts = run.counts();
-  return cosmo::readWholeFileOrEmpty(path);
+  std::string bytes = cosmo::readWholeFileOrEmpty(path);
+  std::filesystem::remove(path);
+  return bytes;
 }
 
 std::map<char, std::unique_ptr<ScanSource>> sourcesOf(const std::vector<test::SyntheticTrial>& trials) {
@@ -110,7 +112,9 @@ std::string runLoam(bool run_ahead, std::size_t max_scans, unsigned cores = 0, u
   run.recorder().write(path);
   EXPECT_GT(run.counts().keyframes, 2u);
   if (counts) *counts = run.counts();
-  return cosmo::readWholeFileOrEmpty(path);
+  std::string bytes = cosmo::readWholeFileOrEmpty(path);
+  std::filesystem::remove(path);
+  return bytes;
 }
 
 }  // namespace
