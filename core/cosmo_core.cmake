@@ -69,12 +69,11 @@ foreach(m ${COSMO_MODULES})
   target_link_libraries(cosmo_core PUBLIC cosmo_${m})
 endforeach()
 
-# Synthetic inputs of the tests and benchmarks, not part of cosmo_core (include/cosmo/test_support): the analytic
-# street and corridor a spinning LiDAR sweeps with motion (odometry), the pillar field (place recognition), an
-# organized room scan.
+# Synthetic inputs of the tests and benchmarks, not part of cosmo_core (include/cosmo/test_support): scenes built
+# of the simulator's primitives and swept by its ScanSimulator (a street, a corridor, a pillar field, the campus).
 file(GLOB _test_support_src CONFIGURE_DEPENDS ${COSMO_ROOT}/src/test_support/*.cpp)
 add_library(cosmo_test_support ${_test_support_src})
-target_link_libraries(cosmo_test_support PUBLIC cosmo_common)
+target_link_libraries(cosmo_test_support PUBLIC cosmo_sim)
 
 # A program: src/<KIND>/<module>/<name>.cpp, executable <name>, linked with LIBS (its module's library and what
 # it includes beyond that). Tools are also commands on the PATH of the catkin workspace (cosmo_command, defined by
@@ -117,7 +116,7 @@ cosmo_program(bench dataset/bench_closure_errors LIBS cosmo_dataset)
 cosmo_program(bench dataset/bench_outlier_sweep LIBS cosmo_dataset cosmo_backend)
 cosmo_program(bench dataset/bench_recorder LIBS cosmo_dataset)
 cosmo_program(bench jrl/bench_jrl_io LIBS cosmo_jrl)
-cosmo_program(bench common/bench_kd_trees LIBS cosmo_common cosmo_test_support)
+cosmo_program(bench common/bench_kd_trees LIBS cosmo_test_support)
 cosmo_program(bench odometry/bench_odometry LIBS cosmo_odometry cosmo_test_support)
 cosmo_program(bench pipeline/bench_keyframe_memory LIBS cosmo_pipeline cosmo_dataset)
 cosmo_program(bench pipeline/bench_sequence_speed LIBS cosmo_pipeline)

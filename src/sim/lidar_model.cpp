@@ -10,8 +10,9 @@ namespace cosmo::sim {
 #define COSMO_SIM_LIDAR_FIELDS(X)                                                                                     \
   X(beams)                                                                                                            \
   X(columns)                                                                                                          \
-  X(rate_hz) X(fov_up_deg) X(fov_down_deg) X(min_range) X(max_range) X(range_sigma) X(grazing_cos) X(detection_range) \
-      X(dropout) X(intensity_scale) X(foliage_spread) X(clockwise)
+  X(rate_hz)                                                                                                          \
+  X(fov_up_deg) X(fov_down_deg) X(min_range) X(max_range) X(range_sigma) X(grazing_cos) X(detection_range) X(dropout) \
+      X(intensity_scale) X(foliage_spread) X(clockwise)
 
 LidarModel LidarModel::os1_64() { return LidarModel{}; }
 
@@ -55,6 +56,7 @@ LidarModel LidarModel::fromConfig(const ConfigNode& node) {
   node.read("beam_divergence_mrad", m.beam_divergence_mrad);
   node.read("range_walk", m.range_walk);
   node.read("foliage_mean_free_path", m.foliage_mean_free_path);
+  node.read("material_losses", m.material_losses);
   if (m.range_sigma_per_m < 0.0 || m.beam_angle_sigma_deg < 0.0 || m.beam_divergence_mrad < 0.0 || m.range_walk < 0.0 ||
       m.foliage_mean_free_path < 0.0)
     throw std::runtime_error(node.where +
@@ -62,8 +64,8 @@ LidarModel LidarModel::fromConfig(const ConfigNode& node) {
                              "and foliage_mean_free_path must be >= 0");
   if (m.beams < 1 || m.columns < 1 || !(m.rate_hz > 0) || !(m.max_range > m.min_range))
     throw std::runtime_error(node.where + ": LiDAR needs beams, columns >= 1, rate_hz > 0, max_range > min_range");
-  std::vector<std::string> known{"model", "range_sigma_per_m", "beam_angle_sigma_deg", "beam_divergence_mrad",
-                                 "range_walk", "foliage_mean_free_path"};
+  std::vector<std::string> known{"model",      "range_sigma_per_m",      "beam_angle_sigma_deg", "beam_divergence_mrad",
+                                 "range_walk", "foliage_mean_free_path", "material_losses"};
 #define X(f) known.emplace_back(#f);
   COSMO_SIM_LIDAR_FIELDS(X)
 #undef X
@@ -83,6 +85,7 @@ std::string LidarModel::describe() const {
   if (beam_divergence_mrad > 0.0) os << "beam_divergence_mrad=" << beam_divergence_mrad << ';';
   if (range_walk > 0.0) os << "range_walk=" << range_walk << ';';
   if (foliage_mean_free_path > 0.0) os << "foliage_mean_free_path=" << foliage_mean_free_path << ';';
+  if (!material_losses) os << "material_losses=0;";
   return os.str();
 }
 

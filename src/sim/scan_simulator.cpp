@@ -133,7 +133,8 @@ Scan ScanSimulator::simulate(const std::vector<Pose3>& column_poses, StampNs sta
           continue;
         if (cos_inc < L.grazing_cos) continue;
         const MaterialProps& m = materials[hit.material < kCount ? hit.material : 0];
-        if (uniform01(rs) > m.return_prob * (1.0 - L.dropout)) continue;
+        const double returns = L.material_losses ? m.return_prob : 1.0;
+        if (uniform01(rs) > returns * (1.0 - L.dropout)) continue;
         // Detection probability falls off steeply around a range that grows with the returned signal.
         const double signal = std::max(1e-4, m.reflectivity * cos_inc);
         const double r50 = L.detection_range * std::sqrt(signal / 0.1);

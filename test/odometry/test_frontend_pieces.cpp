@@ -13,7 +13,7 @@
 #include "cosmo/common/voxel_grid.hpp"
 #include "cosmo/odometry/loam_params.hpp"
 #include "cosmo/odometry/scan_lines.hpp"
-#include "cosmo/test_support/street_scene.hpp"
+#include "cosmo/test_support/sim_scenes.hpp"
 #include "cosmo/odometry/trajectory_metrics.hpp"
 
 using namespace cosmo;
@@ -53,15 +53,15 @@ TEST(Keyframer, StandingStillGivesNoKeyframes) {
 }
 
 TEST(Dewarp, KnownConstantMotionRestoresTheStampFrame) {
-  const test_support::SyntheticScene scene = test_support::SyntheticScene::street(60.0, 8.0);
-  test_support::SyntheticLidar lidar;
-  lidar.rings = 16;
+  const sim::World scene = test_support::streetWorld(60.0, 8.0);
+  sim::LidarModel lidar = test_support::idealLidar();
+  lidar.beams = 16;
   lidar.columns = 256;
   // 10 m/s and 30 deg/s: a strongly distorted sweep.
   auto pose_at = [](double t) { return makePose(10.0 * t, 1.0 * t, 0.0, 0.0, 0.0, 0.5236 * t); };
   const double t_end = 0.3;
   const StampNs stamp = toStampNs(5.0);
-  const Scan s = simulateSweep(scene, lidar, stamp, [&](double dt) { return pose_at(t_end + dt); });
+  const Scan s = test_support::simulateSweep(scene, lidar, stamp, [&](double dt) { return pose_at(t_end + dt); });
   ASSERT_TRUE(s.hasTime());
   const Scan d = odometry::dewarp(s, [&](StampNs st) { return pose_at(t_end + (toSeconds(st) - 5.0)); });
   ASSERT_EQ(d.size(), s.size());
@@ -81,9 +81,9 @@ TEST(Dewarp, KnownConstantMotionRestoresTheStampFrame) {
 }
 
 TEST(ScanLines, RingFieldElevationAndOrder) {
-  const test_support::SyntheticScene scene = test_support::SyntheticScene::street(60.0, 8.0);
-  test_support::SyntheticLidar lidar;  // 64 x 1024
-  Scan s = simulateSweep(scene, lidar, 1, [](double) { return Pose3::Identity(); });
+  const sim::World scene = test_support::streetWorld(60.0, 8.0);
+  sim::LidarModel lidar = test_support::idealLidar();  // 64 x 1024
+  Scan s = test_support::simulateSweep(scene, lidar, 1, [](double) { return Pose3::Identity(); });
   const odometry::LoamParams p;
   const odometry::ScanLines with_ring = organizeScanLines(s, p);
   EXPECT_EQ(with_ring.method, "ring");

@@ -9,10 +9,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 
 #include "cosmo/odometry/loam_odometry.hpp"
-#include "cosmo/test_support/street_scene.hpp"
+#include "cosmo/test_support/sim_scenes.hpp"
 #include "cosmo/odometry/trajectory_metrics.hpp"
 
 using namespace cosmo;
@@ -31,15 +32,16 @@ struct StepErrors {
 /// A fresh LOAM over n sweeps of `period` s each (sweep k ends at k * period) of a sensor moving along pose_at(t);
 /// returns the worst per-step errors of the estimated scan-to-scan motion.
 StepErrors runSweeps(int n, double period, const std::function<Pose3(double)>& pose_at) {
-  const test_support::SyntheticScene scene = test_support::SyntheticScene::street(160.0, 8.0);
-  test_support::SyntheticLidar lidar;
-  lidar.period = period;
+  const sim::World scene = test_support::streetWorld(160.0, 8.0);
+  sim::LidarModel lidar = test_support::idealLidar();
+  lidar.rate_hz = 1.0 / period;
   odometry::LoamOdometry odom;
   Pose3 prev_est = Pose3::Identity();
   StepErrors e;
   for (int k = 0; k < n; ++k) {
     const double t_end = period * k;
-    const Scan s = simulateSweep(scene, lidar, toStampNs(1.0 + t_end), [&](double dt) { return pose_at(t_end + dt); });
+    const Scan s = test_support::simulateSweep(scene, lidar, toStampNs(1.0 + t_end),
+                                               [&](double dt) { return pose_at(t_end + dt); });
     const odometry::OdometryResult r = odom.update(s);
     if (!r.ok) ++e.not_ok;
     if (k > 0) {
@@ -52,6 +54,8 @@ StepErrors runSweeps(int n, double period, const std::function<Pose3(double)>& p
   const Pose3 gt_end = pose_at(0.0).inverse() * pose_at(period * (n - 1));
   e.end_translation_m = odometry::translationError(prev_est, gt_end);
   e.end_rotation_deg = odometry::rotationErrorRad(prev_est, gt_end) / kDeg;
+  std::printf("period %.1f s: end %.3f m %.2f deg; worst step %.3f m %.2f deg; %d scans not registered\n", period,
+              e.end_translation_m, e.end_rotation_deg, e.max_translation_m, e.max_rotation_deg, e.not_ok);
   return e;
 }
 

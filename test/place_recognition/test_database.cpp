@@ -7,13 +7,13 @@
 
 #include "cosmo/place_recognition/place_recognizer.hpp"
 #include "cosmo/place_recognition/scan_context_database.hpp"
-#include "cosmo/test_support/pillar_scene.hpp"
+#include "cosmo/test_support/sim_scenes.hpp"
 
 namespace cosmo::place_recognition {
 namespace {
 
-const test_support::PillarScene& scene() {
-  static const test_support::PillarScene s(11);
+const sim::World& scene() {
+  static const sim::World s = test_support::pillarWorld(11);
   return s;
 }
 
@@ -43,12 +43,13 @@ TEST(ScanContextDatabase, FindsTheInsertedNearDuplicateAndRespectsTheSearchLimit
   ScanContextDatabase db(dp);
   const auto poses = path(100);
   for (std::size_t i = 0; i < poses.size(); ++i)
-    db.insert(1000 + i, makeScanContext(scene().scanAt(poses[i].x(), poses[i].y(), poses[i].z()), sc), i);
+    db.insert(1000 + i, makeScanContext(test_support::scanAt(scene(), poses[i].x(), poses[i].y(), poses[i].z()), sc),
+              i);
   EXPECT_EQ(db.size(), 100u);
   EXPECT_EQ(db.indexedSize(), 96u);
   for (std::size_t i : {3u, 40u, 77u, 98u}) {
     // The same place seen 0.5 m away, turned by 40 degrees, with noise.
-    const Scan q = noisy(scene().scanAt(poses[i].x() + 0.4, poses[i].y() - 0.3, poses[i].z() + 0.7), i);
+    const Scan q = noisy(test_support::scanAt(scene(), poses[i].x() + 0.4, poses[i].y() - 0.3, poses[i].z() + 0.7), i);
     const auto matches = db.query(makeScanContext(q, sc));
     ASSERT_FALSE(matches.empty());
     EXPECT_EQ(matches.front().id, 1000 + i);
@@ -60,7 +61,7 @@ TEST(ScanContextDatabase, FindsTheInsertedNearDuplicateAndRespectsTheSearchLimit
     // Limited to the entries before it, the near-duplicate is never returned.
     for (const auto& m : db.query(makeScanContext(q, sc), i)) EXPECT_LT(m.position, i);
   }
-  EXPECT_TRUE(db.query(makeScanContext(scene().scanAt(0, 0, 0), sc), 0).empty());
+  EXPECT_TRUE(db.query(makeScanContext(test_support::scanAt(scene(), 0, 0, 0), sc), 0).empty());
 }
 
 TEST(ScanContextDatabase, QueriesSeeEntriesInsertedAfterTheLastRebuild) {
@@ -71,7 +72,7 @@ TEST(ScanContextDatabase, QueriesSeeEntriesInsertedAfterTheLastRebuild) {
   const auto poses = path(60);
   std::vector<ScanContext> descriptors;
   for (std::size_t i = 0; i < poses.size(); ++i) {
-    descriptors.push_back(makeScanContext(scene().scanAt(poses[i].x(), poses[i].y(), poses[i].z()), sc));
+    descriptors.push_back(makeScanContext(test_support::scanAt(scene(), poses[i].x(), poses[i].y(), poses[i].z()), sc));
     db.insert(i, descriptors.back());
     // Right after insertion the entry is found, whether or not the tree holds it.
     const auto m = db.query(descriptors.back());
@@ -86,7 +87,7 @@ TEST(ScanContextDatabase, QueriesSeeEntriesInsertedAfterTheLastRebuild) {
   // Different descriptor sizes are refused.
   ScanContextParams small;
   small.rings = 10;
-  EXPECT_THROW(db.insert(99, makeScanContext(scene().scanAt(0, 0, 0), small)), std::invalid_argument);
+  EXPECT_THROW(db.insert(99, makeScanContext(test_support::scanAt(scene(), 0, 0, 0), small)), std::invalid_argument);
 }
 
 TEST(PlaceRecognizer, IntraRobotRevisitAndRecentExclusion) {
@@ -96,11 +97,12 @@ TEST(PlaceRecognizer, IntraRobotRevisitAndRecentExclusion) {
   const auto poses = path(40);
   for (std::size_t i = 0; i < poses.size(); ++i) {
     // Consecutive keyframes 6 m apart still look alike: with exclusion they must not be reported.
-    const auto c = rec.addOwnKeyframe(i, scene().scanAt(poses[i].x(), poses[i].y(), poses[i].z()));
+    const auto c = rec.addOwnKeyframe(i, test_support::scanAt(scene(), poses[i].x(), poses[i].y(), poses[i].z()));
     for (const auto& lc : c) EXPECT_LE(lc.match_index + 5, i) << "recent keyframe " << lc.match_index;
   }
   // Revisit keyframe 12 (a 0.5 m offset, turned around).
-  const auto c = rec.addOwnKeyframe(40, noisy(scene().scanAt(poses[12].x() + 0.5, poses[12].y(), 2.5), 3));
+  const auto c =
+      rec.addOwnKeyframe(40, noisy(test_support::scanAt(scene(), poses[12].x() + 0.5, poses[12].y(), 2.5), 3));
   ASSERT_EQ(c.size(), 1u);
   EXPECT_EQ(c[0].query_robot, 'a');
   EXPECT_EQ(c[0].match_robot, 'a');
@@ -109,7 +111,8 @@ TEST(PlaceRecognizer, IntraRobotRevisitAndRecentExclusion) {
   EXPECT_LT(c[0].distance, p.threshold);
   EXPECT_LE(std::abs(std::remainder(c[0].yaw - (2.5 - poses[12].z()), 2.0 * M_PI)), 2.0 * M_PI / 60.0);
   // A scan of keyframe 39 again: excluded as recent (39 is within the last 5 of 41 entries).
-  for (const auto& lc : rec.addOwnKeyframe(41, scene().scanAt(poses[39].x(), poses[39].y(), poses[39].z())))
+  for (const auto& lc :
+       rec.addOwnKeyframe(41, test_support::scanAt(scene(), poses[39].x(), poses[39].y(), poses[39].z())))
     EXPECT_NE(lc.match_index, 39u);
 }
 
@@ -118,7 +121,7 @@ TEST(PlaceRecognizer, TimeBasedExclusion) {
   p.exclude_recent = 0;
   p.exclude_recent_seconds = 10.0;
   PlaceRecognizer rec('a', p);
-  Scan s = scene().scanAt(0, 0, 0);
+  Scan s = test_support::scanAt(scene(), 0, 0, 0);
   s.stamp = 100'000'000'000ULL;
   EXPECT_TRUE(rec.addOwnKeyframe(0, s).empty());
   s.stamp += 5'000'000'000ULL;  // 5 s later, same place: excluded
@@ -135,21 +138,21 @@ TEST(PlaceRecognizer, InterRobotSearchBothWays) {
   PlaceRecognizer rec('b', p);
   const auto poses = path(30);
   for (std::size_t i = 0; i < 20; ++i)
-    EXPECT_TRUE(rec.addOwnKeyframe(i, scene().scanAt(poses[i].x(), poses[i].y(), poses[i].z())).empty());
+    EXPECT_TRUE(rec.addOwnKeyframe(i, test_support::scanAt(scene(), poses[i].x(), poses[i].y(), poses[i].z())).empty());
   // A scan from robot a at b's keyframe 7: matched against b's own database (no exclusion).
-  auto c = rec.addTeammateScan('a', 3, noisy(scene().scanAt(poses[7].x(), poses[7].y() + 0.5, -1.0), 1));
+  auto c = rec.addTeammateScan('a', 3, noisy(test_support::scanAt(scene(), poses[7].x(), poses[7].y() + 0.5, -1.0), 1));
   ASSERT_EQ(c.size(), 1u);
   EXPECT_EQ(c[0].query_robot, 'a');
   EXPECT_EQ(c[0].query_index, 3u);
   EXPECT_EQ(c[0].match_robot, 'b');
   EXPECT_EQ(c[0].match_index, 7u);
   // A scan from robot c at a new place: nothing; stored in c's database.
-  EXPECT_TRUE(rec.addTeammateScan('c', 9, scene().scanAt(poses[25].x(), poses[25].y(), 0.0)).empty());
+  EXPECT_TRUE(rec.addTeammateScan('c', 9, test_support::scanAt(scene(), poses[25].x(), poses[25].y(), 0.0)).empty());
   ASSERT_NE(rec.teammateDatabase('c'), nullptr);
   EXPECT_EQ(rec.teammateDatabase('c')->size(), 1u);
   EXPECT_EQ(rec.teammateDatabase('z'), nullptr);
   // b reaches that place: matched in c's database (and not in its own).
-  c = rec.addOwnKeyframe(20, noisy(scene().scanAt(poses[25].x() - 0.5, poses[25].y(), 1.5), 2));
+  c = rec.addOwnKeyframe(20, noisy(test_support::scanAt(scene(), poses[25].x() - 0.5, poses[25].y(), 1.5), 2));
   ASSERT_EQ(c.size(), 1u);
   EXPECT_EQ(c[0].query_robot, 'b');
   EXPECT_EQ(c[0].query_index, 20u);
@@ -157,7 +160,7 @@ TEST(PlaceRecognizer, InterRobotSearchBothWays) {
   EXPECT_EQ(c[0].match_index, 9u);
   EXPECT_LE(std::abs(std::remainder(c[0].yaw - 1.5, 2.0 * M_PI)), 2.0 * M_PI / 60.0);
   // The same teammate scan twice is stored once; the own id is refused.
-  rec.addTeammateScan('c', 9, scene().scanAt(poses[25].x(), poses[25].y(), 0.0));
+  rec.addTeammateScan('c', 9, test_support::scanAt(scene(), poses[25].x(), poses[25].y(), 0.0));
   EXPECT_EQ(rec.teammateDatabase('c')->size(), 1u);
   EXPECT_THROW(rec.addTeammateScan('b', 0, Scan{}), std::invalid_argument);
   // Empty scans do not crash and match nothing.

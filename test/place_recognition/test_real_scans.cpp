@@ -8,16 +8,12 @@
 #include "cosmo/common/scan_io.hpp"
 #include "cosmo/common/shared_data.hpp"
 #include "cosmo/place_recognition/scan_context.hpp"
+#include "cosmo/test_support/sim_scenes.hpp"
 
 namespace cosmo::place_recognition {
 namespace {
 
-Scan turnSensor(const Scan& scan, double yaw) {
-  Scan out = scan;
-  const Eigen::Matrix3f R = Eigen::AngleAxisf(static_cast<float>(-yaw), Eigen::Vector3f::UnitZ()).toRotationMatrix();
-  for (auto& p : out.points) p = R * p;
-  return out;
-}
+using test_support::turnSensor;
 
 TEST(RealScans, MulranNearPairsScoreLowerThanFarPairs) {
   const auto dir = sharedPath("data/scan_snippets/mulran_kaist03_keyframes");

@@ -5,13 +5,13 @@
 #include <limits>
 
 #include "cosmo/place_recognition/scan_context.hpp"
-#include "cosmo/test_support/pillar_scene.hpp"
+#include "cosmo/test_support/sim_scenes.hpp"
 
 namespace cosmo::place_recognition {
 namespace {
 
-const test_support::PillarScene& scene() {
-  static const test_support::PillarScene s(7);
+const sim::World& scene() {
+  static const sim::World s = test_support::pillarWorld(7);
   return s;
 }
 
@@ -37,7 +37,7 @@ TEST(ScanContext, ShapeAndBinValues) {
 
 TEST(ScanContext, RingKeyIsRotationInvariant) {
   const ScanContextParams p;
-  const Scan scan = scene().scanAt(12.0, -30.0, 0.3);
+  const Scan scan = test_support::scanAt(scene(), 12.0, -30.0, 0.3);
   const ScanContext sc = makeScanContext(scan, p);
   ASSERT_GT(sc.ring_key.sum(), 1.0f);
   // Whole-sector turns move whole columns: the ring key is the same up to points on sector borders.
@@ -49,7 +49,8 @@ TEST(ScanContext, RingKeyIsRotationInvariant) {
   // place: among 20 places, the turned scan's nearest ring key is still its own.
   std::vector<Eigen::VectorXf> others;
   for (int i = 0; i < 20; ++i)
-    others.push_back(makeScanContext(scene().scanAt(-120.0 + 13.0 * i, 40.0 - 7.0 * i, 0.0), p).ring_key);
+    others.push_back(
+        makeScanContext(test_support::scanAt(scene(), -120.0 + 13.0 * i, 40.0 - 7.0 * i, 0.0), p).ring_key);
   for (double yaw : {0.05, 1.0, -2.2, 3.1}) {
     const ScanContext turned = makeScanContext(test_support::turnSensor(scan, yaw), p);
     const float own = (turned.ring_key - sc.ring_key).norm();
@@ -59,7 +60,7 @@ TEST(ScanContext, RingKeyIsRotationInvariant) {
 
 TEST(ScanContext, RotatedScanGivesItsYaw) {
   const ScanContextParams p;
-  const Scan scan = scene().scanAt(-40.0, 25.0, 1.0);
+  const Scan scan = test_support::scanAt(scene(), -40.0, 25.0, 1.0);
   const ScanContext candidate = makeScanContext(scan, p);
   for (int k : {1, 5, 15, 29, 30, 31, 45, 59}) {  // exact sector multiples: exact shift
     const ScanContext query = makeScanContext(test_support::turnSensor(scan, k * sectorWidth(p)), p);
@@ -79,13 +80,13 @@ TEST(ScanContext, RotatedScanGivesItsYaw) {
   // Self-distance is zero at shift 0, and another place is far.
   EXPECT_NEAR(scanContextDistance(candidate, candidate).distance, 0.0, 1e-6);
   EXPECT_EQ(scanContextDistance(candidate, candidate).shift, 0);
-  const ScanContext elsewhere = makeScanContext(scene().scanAt(90.0, -100.0, 1.0), p);
+  const ScanContext elsewhere = makeScanContext(test_support::scanAt(scene(), 90.0, -100.0, 1.0), p);
   EXPECT_GT(scanContextDistance(elsewhere, candidate).distance, 0.4);
 }
 
 TEST(ScanContext, CoarseSearchFindsTheSameShiftOnAClearRotation) {
   const ScanContextParams p;
-  const Scan scan = scene().scanAt(5.0, 5.0, 0.0);
+  const Scan scan = test_support::scanAt(scene(), 5.0, 5.0, 0.0);
   const ScanContext candidate = makeScanContext(scan, p);
   const ScanContext query = makeScanContext(test_support::turnSensor(scan, 20 * sectorWidth(p)), p);
   EXPECT_EQ(sectorKeyShift(query, candidate), 20);
@@ -137,7 +138,7 @@ TEST(ScanContext, DegenerateScans) {
 
 TEST(ScanContext, PointStrideKeepsTheDescriptorClose) {
   ScanContextParams p;
-  const Scan scan = scene().scanAt(0.0, 0.0, 0.0);
+  const Scan scan = test_support::scanAt(scene(), 0.0, 0.0, 0.0);
   const ScanContext full = makeScanContext(scan, p);
   p.point_stride = 2;
   const ScanContext thin = makeScanContext(scan, p);

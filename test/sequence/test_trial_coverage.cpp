@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "cosmo/odometry/dewarp.hpp"
-#include "cosmo/test_support/street_scene.hpp"
+#include "cosmo/test_support/sim_scenes.hpp"
 #include "cosmo/sequence/scan_stream.hpp"
 #include "cosmo/sequence/trial_coverage.hpp"
 
@@ -30,21 +30,21 @@ Pose3 truePose(double t) {
   return p;
 }
 
-test_support::SyntheticLidar smallLidar() {
-  test_support::SyntheticLidar l;
-  l.rings = 16;
+sim::LidarModel smallLidar() {
+  sim::LidarModel l = test_support::idealLidar();
+  l.beams = 16;
   l.columns = 512;
   return l;
 }
 
 /// n sweeps of 0.1 s stamped at their end (the latest point at time 0), sweep k ending at kT0 + 0.1 k.
 std::vector<Scan> endStamped(int n) {
-  static const test_support::SyntheticScene scene = test_support::SyntheticScene::street(300.0);
+  static const sim::World scene = test_support::streetWorld(300.0);
   std::vector<Scan> scans;
   for (int k = 0; k < n; ++k) {
     const double t_end = 0.1 * k;
-    scans.push_back(
-        simulateSweep(scene, smallLidar(), toStampNs(kT0 + t_end), [&](double dt) { return truePose(t_end + dt); }));
+    scans.push_back(test_support::simulateSweep(scene, smallLidar(), toStampNs(kT0 + t_end),
+                                                [&](double dt) { return truePose(t_end + dt); }));
   }
   return scans;
 }

@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "cosmo/odometry/loam_odometry.hpp"
-#include "cosmo/test_support/street_scene.hpp"
+#include "cosmo/test_support/sim_scenes.hpp"
 #include "cosmo/sequence/trial_coverage.hpp"
 #include "cosmo/trials/ouster_cloud.hpp"
 #include "cosmo/trials/point_cloud_decode.hpp"
@@ -38,15 +38,15 @@ trials::OusterSweep sweepOf(bool stamp_at_end) {
 
 /// n simulated sweeps written as organised Ouster clouds with the given convention and decoded with it.
 std::vector<Scan> decodedSweeps(int n, bool stamp_at_end) {
-  static const test_support::SyntheticScene scene = test_support::SyntheticScene::street(300.0);
-  test_support::SyntheticLidar lidar;
-  lidar.rings = 16;
+  static const sim::World scene = test_support::streetWorld(300.0);
+  sim::LidarModel lidar = test_support::idealLidar();
+  lidar.beams = 16;
   lidar.columns = 500;
   std::vector<Scan> out;
   for (int k = 0; k < n; ++k) {
     const double t_end = 0.1 * k;
-    const Scan sim =
-        simulateSweep(scene, lidar, toStampNs(kT0 + t_end), [&](double dt) { return truePose(t_end + dt); });
+    const Scan sim = test_support::simulateSweep(scene, lidar, toStampNs(kT0 + t_end),
+                                                 [&](double dt) { return truePose(t_end + dt); });
     const trials::RawCloud cloud = trials::organisedOusterCloud(sim, sweepOf(stamp_at_end));
     Scan s;
     trials::decodeCloud(cloud.layout, cloud.data.data(), cloud.data.size(), stamp_at_end, "test", s);

@@ -40,6 +40,8 @@ struct LidarModel {
   double foliage_mean_free_path = 0.0;  ///< m: canopies are a volume of leaves, not a surface: a ray entering one
                                         ///< scatters after an exponential depth of this mean, or leaves it through a
                                         ///< gap and goes on (replaces foliage_spread)
+  bool material_losses = true;          ///< the materials' own lost returns (their return_prob); false: every
+                                        ///< surface returns each ray that reaches it (an ideal sensor for tests)
   bool clockwise = true;                ///< Ouster heads spin clockwise seen from above (azimuth decreases)
 
   static LidarModel os1_64();

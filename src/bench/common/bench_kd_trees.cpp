@@ -22,7 +22,7 @@
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/common/command_line.hpp"
 #include "cosmo/common/kd_tree3.hpp"
-#include "cosmo/test_support/street_scene.hpp"
+#include "cosmo/test_support/sim_scenes.hpp"
 #include "cosmo/common/kd_tree.hpp"
 
 using namespace cosmo;
@@ -47,13 +47,13 @@ using NanoTree =
 
 /// Points of sweeps of the synthetic street taken 1 m apart (the sensor driving along +x).
 std::vector<Eigen::Vector3f> streetPoints(int first_sweep, int sweeps, int keep_every) {
-  const test_support::SyntheticScene scene = test_support::SyntheticScene::street();
-  const test_support::SyntheticLidar lidar;
+  const sim::World scene = test_support::streetWorld();
+  const sim::LidarModel lidar = test_support::idealLidar();
   std::vector<Eigen::Vector3f> out;
   for (int s = first_sweep; s < first_sweep + sweeps; ++s) {
     const double x = 10.0 + s;
-    const Scan scan = simulateSweep(scene, lidar, 1'000'000'000LL * (s + 1),
-                                    [x](double) { return Pose3(Eigen::Translation3d(x, 0.0, 0.0)); });
+    const Scan scan = test_support::simulateSweep(scene, lidar, 1'000'000'000LL * (s + 1),
+                                                  [x](double) { return Pose3(Eigen::Translation3d(x, 0.0, 0.0)); });
     for (std::size_t i = 0; i < scan.size(); i += keep_every)
       out.push_back(scan.points[i] + Eigen::Vector3f(static_cast<float>(x), 0.f, 0.f));
   }

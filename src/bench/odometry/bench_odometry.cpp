@@ -22,7 +22,7 @@
 #include "cosmo/odometry/local_feature_map.hpp"
 #include "cosmo/odometry/loam_odometry.hpp"
 #include "cosmo/odometry/scan_lines.hpp"
-#include "cosmo/test_support/street_scene.hpp"
+#include "cosmo/test_support/sim_scenes.hpp"
 #include "cosmo/odometry/trajectory_metrics.hpp"
 
 using namespace cosmo;
@@ -186,12 +186,10 @@ enum class TruthDewarp { kNone, kTrueMotion, kTrueConstantVelocity };
 
 /// A synthetic trial: the sensor drives / walks along the street (gentle S-curve, small pitch / roll sway),
 /// sweeps with motion distortion. Returns scans and the sensor pose at each stamp.
-void syntheticTrial(const test_support::SyntheticLidar& lidar, double speed, double yaw_rate_amp, int n_scans,
-                    std::uint64_t seed, std::vector<Scan>& scans, std::vector<Pose3>& gt, bool walking,
+void syntheticTrial(const sim::LidarModel& lidar, double speed, double yaw_rate_amp, int n_scans, std::uint64_t seed,
+                    std::vector<Scan>& scans, std::vector<Pose3>& gt, bool walking,
                     TruthDewarp truth_dewarp = TruthDewarp::kNone) {
-  const test_support::SyntheticScene scene =
-      test_support::SyntheticScene::street(speed * n_scans * lidar.period + 60.0, 9.0);
-  std::mt19937_64 rng(seed);
+  const sim::World scene = test_support::streetWorld(speed * n_scans * lidar.period() + 60.0, 9.0);
   auto pose_at_abs = [&](double t) {
     const double x = speed * t;
     const double y = 2.0 * std::sin(2.0 * M_PI * t / 20.0) * (yaw_rate_amp > 0 ? 1.0 : 0.0);
@@ -203,14 +201,14 @@ void syntheticTrial(const test_support::SyntheticLidar& lidar, double speed, dou
     return makePose(x, y, bob, roll, pitch, yaw);
   };
   for (int k = 0; k < n_scans; ++k) {
-    const double t_end = 0.1 + lidar.period * k;
-    scans.push_back(simulateSweep(
-        scene, lidar, toStampNs(1.0 + t_end), [&](double dt) { return pose_at_abs(t_end + dt); }, &rng));
+    const double t_end = 0.1 + lidar.period() * k;
+    scans.push_back(test_support::simulateSweep(
+        scene, lidar, toStampNs(1.0 + t_end), [&](double dt) { return pose_at_abs(t_end + dt); }, seed));
     if (truth_dewarp == TruthDewarp::kTrueMotion)
       scans.back() = odometry::dewarp(scans.back(), [&](StampNs st) { return pose_at_abs(toSeconds(st) - 1.0); });
     if (truth_dewarp == TruthDewarp::kTrueConstantVelocity)
-      deskewScanConstantVelocity(scans.back(), pose_at_abs(t_end - lidar.period).inverse() * pose_at_abs(t_end),
-                                 lidar.period);
+      deskewScanConstantVelocity(scans.back(), pose_at_abs(t_end - lidar.period()).inverse() * pose_at_abs(t_end),
+                                 lidar.period());
     if (truth_dewarp != TruthDewarp::kNone) scans.back().time.clear();
     gt.push_back(pose_at_abs(t_end));
   }
@@ -226,11 +224,11 @@ void sectionSpeed(const odometry::LoamParams& params, const std::vector<double>&
               << " ms, p95 " << bench::quantile(kitti_times, 0.95) << " ms  (" << kitti_times.size()
               << " scans; wall median " << bench::quantile(g_wall_ms, 0.5) << " ms)\n";
   for (int rings : {64, 128}) {
-    test_support::SyntheticLidar lidar;
-    lidar.rings = rings;
+    sim::LidarModel lidar = test_support::idealLidar();
+    lidar.beams = rings;
     lidar.columns = 1024;
     if (rings == 128) lidar.fov_up_deg = 22.5, lidar.fov_down_deg = -22.5;
-    lidar.range_noise = 0.01;
+    lidar.range_sigma = 0.01;
     std::vector<Scan> scans;
     std::vector<Pose3> gt;
     syntheticTrial(lidar, 10.0, 1.0, 30, 7, scans, gt, false);
@@ -277,8 +275,8 @@ void sectionDrift(const odometry::LoamParams& params) {
     bool walking;
   };
   for (const Trial& tr : {Trial{"walking 1.4 m/s", 1.4, 800, true}, Trial{"driving 10 m/s", 10.0, 150, false}}) {
-    test_support::SyntheticLidar lidar;
-    lidar.range_noise = 0.01;
+    sim::LidarModel lidar = test_support::idealLidar();
+    lidar.range_sigma = 0.01;
     std::vector<Scan> scans;
     std::vector<Pose3> gt;
     syntheticTrial(lidar, tr.speed, 1.0, tr.scans, 11, scans, gt, tr.walking);
@@ -322,8 +320,8 @@ void sectionDriftSources(const odometry::LoamParams& params) {
         Variant{"same, true sweep motion at constant velocity", true, TruthDewarp::kTrueConstantVelocity},
         Variant{"walking without sway", false, TruthDewarp::kNone},
         Variant{"without sway, dewarped with the true motion", false, TruthDewarp::kTrueMotion}}) {
-    test_support::SyntheticLidar lidar;
-    lidar.range_noise = 0.01;
+    sim::LidarModel lidar = test_support::idealLidar();
+    lidar.range_sigma = 0.01;
     std::vector<Scan> scans;
     std::vector<Pose3> gt;
     syntheticTrial(lidar, 1.4, 1.0, 800, 11, scans, gt, v.sway, v.truth_dewarp);

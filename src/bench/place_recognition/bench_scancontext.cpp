@@ -24,7 +24,7 @@
 #include "cosmo/common/shared_data.hpp"
 #include "cosmo/place_recognition/place_recognizer.hpp"
 #include "cosmo/place_recognition/revisit_evaluation.hpp"
-#include "cosmo/test_support/room_scan.hpp"
+#include "cosmo/test_support/sim_scenes.hpp"
 
 using namespace cosmo;
 using namespace cosmo::place_recognition;
@@ -242,7 +242,7 @@ ScanContext randomDescriptor(const ScanContextParams& p, std::mt19937_64& rng) {
 void runSpeed(const PlaceRecognitionParams& params, int repeat) {
   std::printf("== (b) speed, one thread (wall clock; run on an idle machine) ==\n");
   for (const int beams : {64, 128}) {
-    const Scan scan = test_support::organizedRoomScan(beams, 1024, 3);
+    const Scan scan = test_support::campusScan(beams);
     for (const int stride : {1, 2, 4}) {
       ScanContextParams p = params.sc;
       p.point_stride = stride;
