@@ -1,7 +1,8 @@
 // ROS 1 bags (records, chunks none/bz2/lz4, indexes, connections) through cosmo's own reader, as the trials and
-// the Nebula import read them: every connection's messages, PointCloud2 decoded, pose graphs decoded, the trial
-// span of a cloud topic, and the scan source with a decompression worker.
+// the Nebula import read them: every connection's messages, clouds (PointCloud2, Livox CustomMsg) and pose graphs
+// decoded, the trial span of a cloud topic, and the scan source with a decompression worker.
 #include <memory>
+#include <optional>
 
 #include "../fuzz_target.hpp"
 #include "../input_file.hpp"
@@ -15,16 +16,24 @@ using namespace cosmo;
 
 namespace {
 
+/// The connection's cloud type, none for other types.
+std::optional<trials::Ros1CloudType> cloudType(const trials::Ros1Connection& c) {
+  try {
+    return trials::ros1CloudType(c, "input");
+  } catch (const std::runtime_error&) { return std::nullopt; }
+}
+
 void readConnection(const std::shared_ptr<const trials::Ros1Bag>& bag, const trials::Ros1Connection& c) {
   trials::Ros1MessageStream stream(bag, bag->messages({c.id}), 0);
   trials::Ros1MessageRef m;
   trials::Ros1Bag::Bytes bytes;
   Scan scan;
   trials::CloudLayout layout;
+  const std::optional<trials::Ros1CloudType> type = cloudType(c);
   while (stream.next(m, bytes)) {
     try {
-      if (c.type == "sensor_msgs/PointCloud2")
-        trials::decodeRos1PointCloud2(bytes.data, bytes.size, true, bag->path(), scan, layout);
+      if (type)
+        trials::decodeRos1Cloud(*type, bytes.data, bytes.size, true, bag->path(), scan, layout);
       else if (c.type == "pose_graph_msgs/PoseGraph")
         nebula::decodePoseGraph(bytes.data, bytes.size);
     } catch (const std::runtime_error&) {  // a bad message; the container's next ones still read
@@ -40,12 +49,11 @@ COSMO_FUZZ_TARGET(ros1_bag) {
   bag->describeTopics();
   for (const auto& c : bag->connections()) readConnection(bag, c);
   for (const auto& c : bag->connections())
-    if (c.type == "sensor_msgs/PointCloud2") {
+    if (cloudType(c)) {
       trials::readRos1TrialSpan(path, c.topic, 'a');
       trials::Ros1ScanSource source(path, c.topic, false, 1);
       Scan scan;
-      while (source.next(scan)) {
-      }
+      while (source.next(scan)) {}
       break;
     }
 }

@@ -44,16 +44,17 @@ void say(const GenerateLog& log, const std::string& text) {
 }
 
 std::string sigmas(const char* what, const dataset::CovarianceEstimate& e) {
-  return format("  %s: %zu used, %zu over the thresholds; sigmas rx ry rz %.3g %.3g %.3g rad, tx ty tz %.3g %.3g %.3g "
-                "m\n",
-                what, e.used, e.rejected, std::sqrt(e.covariance(0, 0)), std::sqrt(e.covariance(1, 1)),
-                std::sqrt(e.covariance(2, 2)), std::sqrt(e.covariance(3, 3)), std::sqrt(e.covariance(4, 4)),
-                std::sqrt(e.covariance(5, 5)));
+  return format(
+      "  %s: %zu used, %zu over the thresholds; sigmas rx ry rz %.3g %.3g %.3g rad, tx ty tz %.3g %.3g %.3g "
+      "m\n",
+      what, e.used, e.rejected, std::sqrt(e.covariance(0, 0)), std::sqrt(e.covariance(1, 1)),
+      std::sqrt(e.covariance(2, 2)), std::sqrt(e.covariance(3, 3)), std::sqrt(e.covariance(4, 4)),
+      std::sqrt(e.covariance(5, 5)));
 }
 
 /// The paper's step on one trial of the sequence, written to `out_path`, then read back.
-dataset::NoiseModels estimateFirst(const sequence::SequenceConfig& config, const GenerateRequest& r, const TeamRunParams& params,
-                          const std::string& out_path, const GenerateLog& log) {
+dataset::NoiseModels estimateFirst(const sequence::SequenceConfig& config, const GenerateRequest& r,
+                                   const TeamRunParams& params, const std::string& out_path, const GenerateLog& log) {
   const sequence::TrialConfig& trial = sequence::findTrial(config, r.estimate_trial);
   sequence::SequenceConfig alone = config;
   alone.trials = {trial};
@@ -77,8 +78,8 @@ dataset::NoiseModels estimateFirst(const sequence::SequenceConfig& config, const
          << "from trial " << trial.name << " (robot " << trial.robot
          << ") run alone through the front-end: " << result.estimate.odometry.used << " odometry factors, "
          << result.estimate.loop_closure.used << " good loop closures (" << result.estimate.loop_closure.rejected
-         << " left out: error >= " << r.estimation.max_translation_error << " m or >= "
-         << r.estimation.max_rotation_error << " rad).\n"
+         << " left out: error >= " << r.estimation.max_translation_error
+         << " m or >= " << r.estimation.max_rotation_error << " rad).\n"
          << "Q = (1/N) sum r r^T, r = Log(m^-1 * m*), rotation first.";
   fs::create_directories(fs::absolute(out_path).parent_path());
   result.estimate.models.save(out_path, header.str());
@@ -104,7 +105,8 @@ trials::SequenceChoice sequenceChoice(const GenerateRequest& r) {
 
 trials::ResolvedSequence resolve(const GenerateRequest& r, const GenerateLog& log) {
   try {
-    trials::ResolvedSequence seq = trials::resolveSequence(sequenceChoice(r));
+    trials::ResolvedSequence seq = trials::resolveSequence(sequenceChoice(r), trials::readTrialBases,
+                                                           [&](const std::string& text) { say(log, text + "\n"); });
     if (log.preflight && !seq.check_report.empty()) log.preflight(seq.check_report);
     return seq;
   } catch (const trials::PreflightFailed& failed) {
@@ -181,18 +183,18 @@ GenerateResult generate(const GenerateRequest& r, const GenerateLog& log) {
   TeamRunParams params = teamRunParams(r, seq.config);
   // the single-trial run of the estimate uses the first comm model (no transfers alone)
   params.radio = comm::resolveCommModel(r.comms.front(), configDir(r)).params;
-  params.noise = seq.noise ? *seq.noise
-                           : estimateFirst(seq.config, r, params,
-                                           r.noise_models_out.empty()
-                                               ? sequence::estimatedNoiseModelsPath(seq.config, r.out_dir)
-                                               : r.noise_models_out,
-                                           log);
+  params.noise =
+      seq.noise ? *seq.noise
+                : estimateFirst(seq.config, r, params,
+                                r.noise_models_out.empty() ? sequence::estimatedNoiseModelsPath(seq.config, r.out_dir)
+                                                           : r.noise_models_out,
+                                log);
   result.noise = params.noise;
   if (r.estimate_only) return result;
   fs::create_directories(r.out_dir);
   say(log, sequenceLines(seq, params.noise));
-  ComputedScans computed(params.frontend.spill_keyframes ? std::make_shared<frontend::SpillFile>(params.frontend.spill_dir)
-                                                         : nullptr);
+  ComputedScans computed(
+      params.frontend.spill_keyframes ? std::make_shared<frontend::SpillFile>(params.frontend.spill_dir) : nullptr);
   for (const std::string& comm : r.comms) result.datasets.push_back(runComm(comm, r, seq, params, computed, log));
   return result;
 }

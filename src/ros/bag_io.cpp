@@ -4,11 +4,13 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <ros/serialization.h>
+#include <topic_tools/shape_shifter.h>
 
 #include <stdexcept>
 #include <vector>
 
 #include "cosmo/ros/point_cloud.hpp"
+#include "cosmo/trials/ros1_point_cloud.hpp"
 
 namespace cosmo::ros_glue {
 
@@ -132,6 +134,27 @@ void ScanBagWriter::write(const std::string& topic, const Scan& scan, const std:
 void ScanBagWriter::write(const std::string& topic, const trials::RawCloud& cloud) {
   const auto msg = toPointCloud2(cloud);
   bag_->write(topic, msg.header.stamp, msg);
+}
+
+void ScanBagWriter::write(const std::string& topic, const Scan& scan, const std::string& frame_id,
+                          trials::PointLayout layout) {
+  if (layout == trials::PointLayout::Ouster) return write(topic, scan, frame_id);
+  if (layout == trials::PointLayout::LivoxCustom)
+    return writeSerialized(topic, scan.stamp, "livox_ros_driver/CustomMsg", trials::kLivoxCustomMsgMd5,
+                           trials::kLivoxCustomMsgDefinition, trials::serializeLivoxCustomMsg(scan, frame_id));
+  write(topic, trials::pointLayoutCloud(scan, layout, frame_id));
+}
+
+void ScanBagWriter::writeSerialized(const std::string& topic, StampNs received, const std::string& type,
+                                    const std::string& md5sum, const std::string& definition,
+                                    const std::vector<std::uint8_t>& bytes) {
+  topic_tools::ShapeShifter message;
+  message.morph(md5sum, type, definition, "");
+  ros::serialization::IStream in(const_cast<std::uint8_t*>(bytes.data()), static_cast<uint32_t>(bytes.size()));
+  message.read(in);
+  ros::Time t;
+  t.fromNSec(received);
+  bag_->write(topic, t, message);
 }
 
 void ScanBagWriter::close() {

@@ -79,6 +79,15 @@ sequence::TrialBasis readTrialBasis(const sequence::TrialConfig& trial) {
   return basis;
 }
 
+std::string trialDewarpOff(const sequence::TrialConfig& trial) {
+  const std::unique_ptr<TrialScanSource> source = openTrialScanSource(trial);
+  Scan first;
+  if (!source->next(first) || first.hasTime()) return "";
+  const std::string fields = describeFields(source->lastLayout());  // a cached scan's layout is not kept
+  return "its clouds carry no per-point time" + (fields.empty() ? std::string() : " (fields " + fields + ")") +
+         ": its sweeps are not dewarped";
+}
+
 sequence::SequenceTiming synchronizeSequence(const sequence::SequenceConfig& config) {
   std::map<char, sequence::TrialBasis> basis;
   for (const auto& t : config.trials) basis[t.robot] = readTrialBasis(t);

@@ -54,24 +54,32 @@ PointConventions pointConventions(const CloudLayout& L) {
   using Time = PointConventions::Time;
   if ((c.time = L.field("t"))) {
     c.time_kind = Time::Nanoseconds;
+    c.layout = "Ouster";
   } else if ((c.time = L.field("time")) || (c.time = L.field("timestamp"))) {
     c.time_kind = Time::Seconds;
+    c.layout = c.time->name == "time" ? "Velodyne" : L.field("line") ? "Livox PointCloud2" : "Hesai / Robosense";
   } else if ((c.time = L.field("time_sec")) && (c.time_nsec = L.field("time_nsec"))) {
     c.time_kind = Time::SplitAbsolute;
+    c.layout = "split-time";
+  } else if ((c.time = L.field("offset_time"))) {  // after the time base, else after the sweep start (as `t`)
+    c.time_kind = L.time_base != 0 ? Time::BaseOffset : Time::Nanoseconds;
+    c.layout = L.time_base != 0 ? "Livox CustomMsg" : "offset-time";
   } else {
     c.time = c.time_nsec = nullptr;
   }
-  c.ring = L.field("ring") ? L.field("ring") : L.field("line");
+  for (const char* name : {"ring", "line", "laser_id"})
+    if (!c.ring) c.ring = L.field(name);
   return c;
 }
 
 std::string PointConventions::describe() const {
-  std::string s;
+  std::string s = layout.empty() ? "" : layout + " layout: ";
   switch (time_kind) {
-    case Time::None: s = "no per-point time (not dewarped)"; break;
-    case Time::Nanoseconds: s = "time " + time->name + " (ns from the sweep start)"; break;
-    case Time::Seconds: s = "time " + time->name + " (s; absolute ns above 1e15)"; break;
-    case Time::SplitAbsolute: s = "time " + time->name + " + " + time_nsec->name + " (absolute)"; break;
+    case Time::None: s += "no per-point time (not dewarped)"; break;
+    case Time::Nanoseconds: s += "time " + time->name + " (ns from the sweep start)"; break;
+    case Time::Seconds: s += "time " + time->name + " (s; absolute ns above 1e15)"; break;
+    case Time::SplitAbsolute: s += "time " + time->name + " + " + time_nsec->name + " (absolute)"; break;
+    case Time::BaseOffset: s += "time timebase + " + time->name + " (ns, absolute)"; break;
   }
   return s + (ring ? ", ring " + ring->name : ", no ring");
 }
@@ -149,6 +157,12 @@ void readTimes(const CloudLayout& L, const PointConventions& c, const std::uint8
     readColumn(data, n, L.point_step, *c.time, [&](std::size_t i, double v) { t[i] = v - stamp_sec; });
     readColumn(data, n, L.point_step, *c.time_nsec, [&](std::size_t i, double v) { t[i] += (v - stamp_nsec) * 1e-9; });
     for (std::size_t i = 0; i < n; ++i) scan.time[i] = static_cast<float>(t[i]);
+    return;
+  }
+  if (c.time_kind == Time::BaseOffset) {  // the time base's offset to the stamp in integers: no precision lost
+    const double base = static_cast<double>(static_cast<std::int64_t>(L.time_base - scan.stamp)) * 1e-9;
+    readColumn(data, n, L.point_step, *c.time,
+               [&](std::size_t i, double v) { scan.time[i] = static_cast<float>(base + v * 1e-9); });
     return;
   }
   const double scale = c.time_kind == Time::Nanoseconds ? 1e-9 : 1.0;

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <string>
 
+#include "cosmo/trials/bag_scan_source.hpp"
 #include "cosmo/trials/trial_reference.hpp"
 
 namespace cosmo::trials {
@@ -21,6 +22,13 @@ std::vector<std::pair<std::string, std::string>> sequenceMetadata(const sequence
   }
   for (const auto& t : config.trials)
     lines.push_back({std::string("trial_") + t.robot, t.name + "  # stamp " + (t.stamp_at_end ? "end" : "start")});
+  for (const auto& t : config.trials) {
+    std::string off;
+    try {
+      off = trialDewarpOff(t);
+    } catch (const std::exception&) {}  // its bag cannot be read where the metadata is written: no line
+    if (!off.empty()) lines.push_back({std::string("dewarp_") + t.robot, "off  # " + off});
+  }
   return lines;
 }
 

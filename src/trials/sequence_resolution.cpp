@@ -64,6 +64,10 @@ ResolvedSequence resolveSequence(const SequenceChoice& choice, const TrialBases&
   const std::map<char, sequence::TrialBasis> basis = bases(s.config);
   s.timing = sequence::synchronizeTrials(s.config, basis);
   s.references = sequence::sensorReferences(s.config, basis, s.timing);
+  if (say)
+    for (const auto& t : s.config.trials)
+      if (const std::string off = trialDewarpOff(t); !off.empty())
+        say(std::string("robot ") + t.robot + " (trial " + t.name + "): " + off);
   s.end = choice.max_seconds > 0 ? std::min(s.timing.end(), s.timing.start() + toStampNs(choice.max_seconds))
                                  : s.timing.end();
   return s;

@@ -10,19 +10,22 @@ namespace cosmo::trials {
 
 namespace {
 constexpr const char* kPointCloud2 = "sensor_msgs/msg/PointCloud2";
-constexpr const char* kRos1PointCloud2 = "sensor_msgs/PointCloud2";
 constexpr StampNs kSpanTail = 5000000000ULL;  ///< a trial's last stamp: from the messages of its last 5 s
 
-/// The messages of `topic` (with or without its leading slash) of a ROS 1 bag; throws naming the bag and topic.
-std::unique_ptr<Ros1MessageStream> openRos1Topic(const std::string& bag_path, const std::string& topic, int threads) {
+/// The messages of `topic` (with or without its leading slash) of a ROS 1 bag, and their type (one for all its
+/// connections); throws naming the bag and topic.
+std::unique_ptr<Ros1MessageStream> openRos1Topic(const std::string& bag_path, const std::string& topic, int threads,
+                                                 Ros1CloudType& type) {
   auto bag = std::make_shared<const Ros1Bag>(bag_path);
   const std::vector<std::uint32_t> ids = bag->topicConnections(topic);
   if (ids.empty())
     throw std::runtime_error(bag_path + ": no topic " + topic + " in this ROS 1 bag; it has: " + bag->describeTopics());
+  const std::string where = bag_path + " " + topic;
+  type = ros1CloudType(bag->connection(ids.front()), where);
   for (std::uint32_t id : ids)
-    if (bag->connection(id).type != kRos1PointCloud2)
-      throw std::runtime_error(bag_path + " " + topic + ": message type " + bag->connection(id).type + " is not " +
-                               kRos1PointCloud2);
+    if (ros1CloudType(bag->connection(id), where) != type)
+      throw std::runtime_error(where + ": connections of different message types (" +
+                               bag->connection(ids.front()).type + ", " + bag->connection(id).type + ") on one topic");
   std::vector<Ros1MessageRef> messages = bag->messages(ids);
   if (messages.empty()) throw std::runtime_error(bag_path + " " + topic + ": no messages on this topic");
   const unsigned workers = threads < 0 ? defaultChunkThreads(*bag) : static_cast<unsigned>(threads);
@@ -50,23 +53,26 @@ bool Ros2ScanSource::next(Scan& scan) {
 }
 
 Ros1ScanSource::Ros1ScanSource(const std::string& bag_path, const std::string& topic, bool stamp_at_end, int threads)
-    : stream_(openRos1Topic(bag_path, topic, threads)), where_(bag_path + " " + topic), stamp_at_end_(stamp_at_end) {}
+    : stream_(openRos1Topic(bag_path, topic, threads, type_)),
+      where_(bag_path + " " + topic),
+      stamp_at_end_(stamp_at_end) {}
 
 bool Ros1ScanSource::next(Scan& scan) {
   Ros1MessageRef m;
   Ros1Bag::Bytes bytes;
   if (!stream_->next(m, bytes)) return false;
-  counts_ = decodeRos1PointCloud2(bytes.data, bytes.size, stamp_at_end_, where_, scan, layout_);
+  counts_ = decodeRos1Cloud(type_, bytes.data, bytes.size, stamp_at_end_, where_, scan, layout_);
   layout_.stamp = scan.stamp;
   return true;
 }
 
 sequence::TrialSpan readRos1TrialSpan(const std::string& bag_path, const std::string& topic, char robot) {
-  const std::unique_ptr<Ros1MessageStream> stream = openRos1Topic(bag_path, topic, 0);
+  Ros1CloudType type{};
+  const std::unique_ptr<Ros1MessageStream> stream = openRos1Topic(bag_path, topic, 0, type);
   const std::string where = bag_path + " " + topic;
   Ros1MessageRef m;
   Ros1Bag::Bytes bytes;
-  auto stampOf = [&]() { return parseRos1PointCloud2(bytes.data, bytes.size, where).layout.stamp; };
+  auto stampOf = [&]() { return parseRos1Cloud(type, bytes.data, bytes.size, where).layout.stamp; };
   sequence::TrialSpan span;
   span.robot = robot;
   stream->next(m, bytes);

@@ -3,7 +3,8 @@
 // time and bytes — for the bags of ../shared/data/conformance (embag's and rosbag.js's fixtures, see its README) and
 // the bags Python's rosbag wrote in test/trials/data/conformance (scripts/conformance_bags.py: every compression with
 // tiny chunks, writes out of time order, an empty `latching=` value, connection records repeated per chunk, a
-// definition that does not match its md5sum, messages at time 0).
+// definition that does not match its md5sum, messages at time 0, Livox's CustomMsg and its older definition). The
+// CustomMsg bag also decodes to the sweeps it holds; the older definition is refused, named.
 #include <gtest/gtest.h>
 #include <ros/serialization.h>
 #include <rosbag/bag.h>
@@ -17,6 +18,7 @@
 
 #include "cosmo/common/shared_data.hpp"
 #include "cosmo/trials/ros1_bag.hpp"
+#include "cosmo/trials/trial_scans.hpp"
 
 using namespace cosmo;
 namespace fs = std::filesystem;
@@ -121,7 +123,7 @@ TEST(TrialsConformance, BagsOtherToolsWroteReadAsLibrosbagReadsThem) {
 
 TEST(TrialsConformance, BagsPythonsRosbagWroteReadAsLibrosbagReadsThem) {
   const auto bags = bagsIn(std::string(COSMO_SOURCE_DIR) + "/test/trials/data/conformance");
-  ASSERT_GE(bags.size(), 9u);
+  ASSERT_GE(bags.size(), 11u);
   for (const auto& bag : bags) {
     const std::size_t n = expectSameMessages(bag);
     std::printf("[conformance] %s: %zu messages, same in both readers\n", fs::path(bag).filename().c_str(), n);
@@ -136,4 +138,34 @@ TEST(TrialsConformance, ARecordingOfNothingIsReadAsOne) {
   EXPECT_TRUE(ours.connections().empty());
   EXPECT_TRUE(ours.chunks().empty());
   EXPECT_TRUE(readByLibrosbag(*bag).empty());
+}
+
+TEST(TrialsConformance, ALivoxCustomMsgBagDecodesToItsSweeps) {
+  const std::string dir = std::string(COSMO_SOURCE_DIR) + "/test/trials/data/conformance/";
+  trials::Ros1ScanSource source(dir + "py_livox_custom.bag", "livox/lidar", false);
+  ASSERT_EQ(source.size(), 5u);
+  Scan scan;
+  for (int k = 0; k < 5; ++k) {
+    ASSERT_TRUE(source.next(scan));
+    // stamped at timebase (the sweep start), kept: point i at +25 ms * i
+    EXPECT_EQ(scan.stamp, 1700000000'000000000ULL + 100000000ULL * k);
+    ASSERT_EQ(scan.size(), 4u);
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_EQ(scan.points[i], Eigen::Vector3f(1.0f + k + i, -i, 0.5f * i));
+      EXPECT_NEAR(scan.time[i], 0.025 * i, 1e-7);
+      EXPECT_EQ(scan.ring[i], i % 4);
+    }
+    EXPECT_EQ(trials::pointConventions(source.lastLayout()).layout, "Livox CustomMsg");
+  }
+  EXPECT_FALSE(source.next(scan));
+  try {
+    trials::Ros1ScanSource old(dir + "py_livox_custom_old.bag", "/livox/lidar");
+    ADD_FAILURE() << "the older definition was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("py_livox_custom_old.bag /livox/lidar: message type "
+                                         "livox_ros_driver/CustomMsg with md5sum a3e5532e86bb82ac2085ba9c8e7e4e45 is "
+                                         "another definition"),
+              std::string::npos)
+        << e.what();
+  }
 }

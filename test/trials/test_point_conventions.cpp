@@ -1,13 +1,18 @@
 // Per-point time and ring of the LiDARs robots carry, decoded to the same Scan: the same sweep of points with
 // known times written in Ouster's layout (`t` ns from the sweep start, `ring`), a split-time automotive layout
 // (`time_sec` + `time_nsec` uint32, `laser_id`, point_step 32), Livox's PointCloud2 (`timestamp` float64 absolute
-// ns, `line` uint8) and Hesai's (`timestamp` float64 absolute s), and a cloud with no time (named, not dewarped).
+// ns, `line` uint8) and Hesai's (`timestamp` float64 absolute s), Livox's CustomMsg (`timebase` + `offset_time` ns,
+// `line`; its definition told by its md5sum), and a cloud with no time (named, not dewarped); the simulator's
+// writer of each layout (trials/point_layouts.hpp) decodes to the scan it was given.
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <vector>
 
 #include "cosmo/trials/point_cloud_decode.hpp"
+#include "cosmo/trials/point_layouts.hpp"
+#include "cosmo/trials/ros1_bag.hpp"
+#include "cosmo/trials/ros1_point_cloud.hpp"
 
 using namespace cosmo;
 using namespace cosmo::trials;
@@ -67,7 +72,7 @@ TEST(PointConventions, OusterNanosecondsFromTheSweepStart) {
     w.put(i, 16, static_cast<std::uint16_t>(i % 4));
   }
   expectKnownTimesAndRings(w.decode());
-  EXPECT_EQ(pointConventions(w.layout).describe(), "time t (ns from the sweep start), ring ring");
+  EXPECT_EQ(pointConventions(w.layout).describe(), "Ouster layout: time t (ns from the sweep start), ring ring");
 }
 
 TEST(PointConventions, SplitSecondsAndNanosecondsOfAnAutomotiveLidar) {
@@ -80,8 +85,9 @@ TEST(PointConventions, SplitSecondsAndNanosecondsOfAnAutomotiveLidar) {
   }
   const PointConventions c = pointConventions(w.layout);
   EXPECT_EQ(c.time_kind, PointConventions::Time::SplitAbsolute);
-  EXPECT_EQ(c.describe(), "time time_sec + time_nsec (absolute), no ring");
-  expectKnownTimesAndRings(w.decode(), false);
+  EXPECT_EQ(c.describe(), "split-time layout: time time_sec + time_nsec (absolute), ring laser_id");
+  for (int i = 0; i < kPoints; ++i) w.put(i, 28, static_cast<std::uint16_t>(i % 4));
+  expectKnownTimesAndRings(w.decode());
 }
 
 TEST(PointConventions, LivoxAbsoluteNanosecondsInAFloat64AndItsLine) {
@@ -92,7 +98,8 @@ TEST(PointConventions, LivoxAbsoluteNanosecondsInAFloat64AndItsLine) {
     w.put(i, 17, static_cast<std::uint8_t>(i % 4));
     w.put(i, 18, static_cast<double>(pointStamp(i)));
   }
-  EXPECT_EQ(pointConventions(w.layout).describe(), "time timestamp (s; absolute ns above 1e15), ring line");
+  EXPECT_EQ(pointConventions(w.layout).describe(),
+            "Livox PointCloud2 layout: time timestamp (s; absolute ns above 1e15), ring line");
   expectKnownTimesAndRings(w.decode());
 }
 
@@ -103,6 +110,7 @@ TEST(PointConventions, HesaiAbsoluteSecondsInAFloat64) {
     w.put(i, 12, static_cast<double>(pointStamp(i) / 1000000000ULL) + (pointStamp(i) % 1000000000ULL) * 1e-9);
     w.put(i, 20, static_cast<std::uint16_t>(i % 4));
   }
+  EXPECT_EQ(pointConventions(w.layout).layout, "Hesai / Robosense");
   expectKnownTimesAndRings(w.decode());
 }
 
@@ -113,4 +121,108 @@ TEST(PointConventions, ACloudWithoutTimesIsNamedAsNotDewarped) {
   // Half of a split time is no time.
   w.field("time_sec", 8, PointType::UInt32);
   EXPECT_EQ(pointConventions(w.layout).time_kind, PointConventions::Time::None);
+}
+
+namespace {
+
+/// The sweep of the tests above as a Scan: stamped at its end, point i at -(kPoints - 1 - i) * 10 ms on ring i % 4.
+Scan knownScan() {
+  Scan s;
+  s.stamp = kStamp;
+  for (int i = 0; i < kPoints; ++i) {
+    s.points.emplace_back(1.0f + i, 2.0f, 0.5f);
+    s.intensity.push_back(10.0f * i);
+    s.time.push_back(static_cast<float>(-(kPoints - 1 - i) * 0.01));
+    s.ring.push_back(static_cast<std::uint16_t>(i % 4));
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST(PointConventions, LivoxCustomMsgTimebasePlusOffsetTime) {
+  const std::vector<std::uint8_t> msg = serializeLivoxCustomMsg(knownScan(), "livox_frame");
+  // header (4 + 8 + 4 + 11), timebase 8, point_num 4, lidar_id 1, rsvd 3, count 4, 8 points of 19 bytes
+  EXPECT_EQ(msg.size(), 27u + 8 + 4 + 1 + 3 + 4 + 8 * 19);
+  const CloudView view = parseLivoxCustomMsg(msg.data(), msg.size(), "test");
+  EXPECT_EQ(view.layout.time_base, pointStamp(0));  // the first point's time
+  EXPECT_EQ(view.layout.frame_id, "livox_frame");
+  const PointConventions c = pointConventions(view.layout);
+  EXPECT_EQ(c.time_kind, PointConventions::Time::BaseOffset);
+  EXPECT_EQ(c.describe(), "Livox CustomMsg layout: time timebase + offset_time (ns, absolute), ring line");
+  Scan scan;
+  CloudLayout layout;
+  decodeRos1Cloud(Ros1CloudType::LivoxCustomMsg, msg.data(), msg.size(), true, "test", scan, layout);
+  expectKnownTimesAndRings(scan);
+  EXPECT_EQ(scan.points[3], Eigen::Vector3f(4.0f, 2.0f, 0.5f));
+  // Real drivers stamp the header at timebase (the sweep start): the stamp is kept, the times follow it.
+  std::vector<std::uint8_t> start_stamped = msg;
+  const auto sec = static_cast<std::uint32_t>(pointStamp(0) / 1000000000ULL);
+  const auto nsec = static_cast<std::uint32_t>(pointStamp(0) % 1000000000ULL);
+  std::memcpy(&start_stamped[4], &sec, 4);
+  std::memcpy(&start_stamped[8], &nsec, 4);
+  decodeRos1Cloud(Ros1CloudType::LivoxCustomMsg, start_stamped.data(), start_stamped.size(), false, "test", scan,
+                  layout);
+  EXPECT_EQ(scan.stamp, pointStamp(0));
+  for (int i = 0; i < kPoints; ++i) EXPECT_NEAR(scan.time[i], i * 0.01, 1e-6) << i;
+}
+
+TEST(PointConventions, AMalformedLivoxCustomMsgIsNamed) {
+  std::vector<std::uint8_t> msg = serializeLivoxCustomMsg(knownScan(), "f");
+  const std::size_t count_at = 4 + 8 + 4 + 1 + 8 + 4 + 1 + 3;
+  auto fails = [](const std::vector<std::uint8_t>& m) -> std::string {
+    try {
+      parseLivoxCustomMsg(m.data(), m.size(), "bag.bag /livox/lidar");
+    } catch (const std::runtime_error& e) { return e.what(); }
+    return "";
+  };
+  std::vector<std::uint8_t> cut(msg.begin(), msg.end() - 5);
+  EXPECT_NE(fails(cut).find("bag.bag /livox/lidar: malformed livox_ros_driver/CustomMsg at points"), std::string::npos)
+      << fails(cut);
+  msg[count_at - 8] = 7;  // point_num says 7
+  EXPECT_NE(fails(msg).find("holds 8 points, point_num says 7"), std::string::npos) << fails(msg);
+}
+
+TEST(PointConventions, LivoxCustomMsgIsToldByItsTypeAndMd5sum) {
+  Ros1Connection c;
+  c.type = "sensor_msgs/PointCloud2";
+  EXPECT_EQ(ros1CloudType(c, "b /t"), Ros1CloudType::PointCloud2);
+  for (const char* type : {"livox_ros_driver/CustomMsg", "livox_ros_driver2/CustomMsg"}) {
+    c.type = type;
+    c.md5sum = kLivoxCustomMsgMd5;
+    EXPECT_EQ(ros1CloudType(c, "b /t"), Ros1CloudType::LivoxCustomMsg);
+  }
+  // The first driver's definition (timestep, points without offset_time and tag): refused, named.
+  c.type = "livox_ros_driver/CustomMsg";
+  c.md5sum = "a3e5532e86bb82ac2085ba9c8e7e4e45";
+  try {
+    ros1CloudType(c, "old.bag /livox/lidar");
+    ADD_FAILURE() << "an older definition was accepted";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("old.bag /livox/lidar: message type livox_ros_driver/CustomMsg with md5sum "
+                        "a3e5532e86bb82ac2085ba9c8e7e4e45 is another definition"),
+              std::string::npos)
+        << what;
+  }
+  c.type = "sensor_msgs/Image";
+  EXPECT_THROW(ros1CloudType(c, "b /t"), std::runtime_error);
+}
+
+// Each layout the simulator writes decodes to the scan it was given: the same points, rings and times (to the
+// rounding of each layout's time type).
+TEST(PointConventions, EachSimulatedLayoutDecodesToTheScanWritten) {
+  const Scan truth = knownScan();
+  for (PointLayout layout : {PointLayout::Velodyne, PointLayout::Hesai, PointLayout::Livox, PointLayout::SplitTime}) {
+    SCOPED_TRACE(pointLayoutName(layout));
+    EXPECT_EQ(parsePointLayout(pointLayoutName(layout)), layout);
+    const RawCloud cloud = pointLayoutCloud(truth, layout, "lidar");
+    Scan scan;
+    decodeCloud(cloud.layout, cloud.data.data(), cloud.data.size(), true, "test", scan);
+    expectKnownTimesAndRings(scan);
+    EXPECT_EQ(scan.points, truth.points);
+  }
+  EXPECT_EQ(pointLayoutNames(), "ouster|velodyne|hesai|livox|livox-custom|split-time");
+  EXPECT_FALSE(parsePointLayout("pandar"));
+  EXPECT_THROW(pointLayoutCloud(truth, PointLayout::Ouster, "lidar"), std::invalid_argument);
 }

@@ -2,9 +2,11 @@
 // Scans in ROS 1 bags (no roscore needed). Errors throw std::runtime_error naming the bag and topic.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cosmo/common/scan.hpp"
 #include "cosmo/trials/point_cloud_decode.hpp"
+#include "cosmo/trials/point_layouts.hpp"
 #include "cosmo/trials/trial_scans.hpp"
 
 namespace rosbag {
@@ -42,6 +44,12 @@ class ScanBagWriter {
   void write(const std::string& topic, const Scan& scan, const std::string& frame_id);
   /// A cloud exactly as given (fields, organisation), received time = its header stamp.
   void write(const std::string& topic, const trials::RawCloud& cloud);
+  /// A scan in one of the point layouts LiDAR drivers publish (trials/point_layouts.hpp), received time = its
+  /// stamp: a sensor_msgs/PointCloud2, or for livox-custom a livox_ros_driver/CustomMsg.
+  void write(const std::string& topic, const Scan& scan, const std::string& frame_id, trials::PointLayout layout);
+  /// A serialized message of any type (its name, md5sum and full definition as a connection record carries them).
+  void writeSerialized(const std::string& topic, StampNs received, const std::string& type, const std::string& md5sum,
+                       const std::string& definition, const std::vector<std::uint8_t>& bytes);
   void close();
 
  private:

@@ -32,6 +32,11 @@ sequence::TrialSpan readSweepEndSpan(const sequence::TrialConfig& trial);
 /// clipped to its reference's span (sequence/trial_coverage.hpp) and its reference as read.
 sequence::TrialBasis readTrialBasis(const sequence::TrialConfig& trial);
 
+/// Whether the trial's sweeps are dewarped: "" when its clouds carry per-point times (the decoder's conventions,
+/// trials::pointConventions, decide which do), else why not, e.g. "its clouds carry no per-point time (fields
+/// x:float32@0 y:float32@4 z:float32@8): its sweeps are not dewarped". Reads the trial's first message.
+std::string trialDewarpOff(const sequence::TrialConfig& trial);
+
 /// The synchronized timing of a sequence config (reads every trial's basis).
 sequence::SequenceTiming synchronizeSequence(const sequence::SequenceConfig& config);
 

@@ -5,9 +5,11 @@
 // Fields x y z (float32 or float64) are required; intensity, a ring (any numeric type) and a per-point time are
 // used when present (pointConventions() names which field is which, the one place that decides it). The time is
 // `t` (ns from the sweep start, Ouster), `time` / `timestamp` (seconds, relative (Velodyne) or absolute (Hesai,
-// Robosense); absolute nanoseconds when its values exceed 1e15 (Livox's PointCloud2)), or `time_sec` + `time_nsec`
-// (absolute, split); the ring is `ring`, else Livox's `line`. Every scan comes out stamped at its sweep end, times
-// <= 0 relative to it:
+// Robosense); absolute nanoseconds when its values exceed 1e15 (Livox's PointCloud2)), `time_sec` + `time_nsec`
+// (absolute, split), or `offset_time` (ns after the layout's `time_base`: Livox's CustomMsg, read by
+// ros1_point_cloud.hpp; ns from the sweep start when there is no time base); the ring is `ring`, else Livox's
+// `line`, else `laser_id`. docs/data.md tables them per LiDAR. Every scan comes out stamped at its sweep end,
+// times <= 0 relative to it:
 //  - the sweep lasts t_max * width / (width - 1) in an organised Ouster cloud (height > 1, `t` in ns: the
 //    columns are evenly spaced), else up to the latest point (t_max); time = t - that duration;
 //  - stamp at the sweep end (`stamp_at_end`, MCD): the stamp is kept, i.e. a point's time is stamp - period + t;
@@ -59,6 +61,8 @@ struct CloudLayout {
   std::uint32_t point_step = 0;
   std::uint32_t row_step = 0;
   bool is_dense = false;
+  /// Livox CustomMsg's `timebase` (ns; 0 for a PointCloud2): a point's absolute time is time_base + offset_time.
+  StampNs time_base = 0;
 
   const PointField* field(const std::string& name) const;
   std::size_t points() const { return static_cast<std::size_t>(width) * height; }
@@ -81,13 +85,17 @@ struct PointConventions {
     Nanoseconds,    ///< `t`: ns from the sweep start (Ouster)
     Seconds,        ///< `time` / `timestamp`: s, relative or absolute; absolute ns above 1e15 (Livox)
     SplitAbsolute,  ///< `time_sec` + `time_nsec`: absolute, split in two integers
+    BaseOffset,     ///< `offset_time`: ns after the layout's time_base (Livox CustomMsg), absolute
   };
   Time time_kind = Time::None;
-  const PointField* time = nullptr;       ///< t, time, timestamp or time_sec
+  const PointField* time = nullptr;       ///< t, time, timestamp, time_sec or offset_time
   const PointField* time_nsec = nullptr;  ///< with SplitAbsolute
-  const PointField* ring = nullptr;       ///< ring, else line (Livox)
+  const PointField* ring = nullptr;       ///< ring, else line (Livox), else laser_id
+  /// The layout recognised by its fields (docs/data.md): "Ouster", "Velodyne", "Hesai / Robosense", "Livox
+  /// PointCloud2", "Livox CustomMsg", "split-time", "offset-time" (`offset_time` without a time base), "" (none).
+  std::string layout;
 
-  /// "time t (ns from the sweep start), ring ring", "no per-point time (not dewarped), no ring", ...
+  /// "Ouster layout: time t (ns from the sweep start), ring ring", "no per-point time (not dewarped), no ring", ...
   std::string describe() const;
 };
 PointConventions pointConventions(const CloudLayout& layout);

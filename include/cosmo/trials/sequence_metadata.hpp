@@ -1,8 +1,9 @@
 #pragma once
 // The sequence's own lines of a dataset's metadata (`<name>_<comm>.recorder.yaml`, DatasetRecorder::setMetadata):
 // the sequence's name and source, the one reference offset subtracted from every trial's reference positions,
-// the sequence's own `registration:` keys when it has any, and each robot's trial with its stamp convention. The
-// offline driver and the recorder node write the same lines.
+// the sequence's own `registration:` keys when it has any, each robot's trial with its stamp convention, and
+// `dewarp_<robot>: off` for a trial whose clouds carry no per-point time (trialDewarpOff; no line where its bag
+// cannot be read, e.g. on another host). The offline driver and the recorder node write the same lines.
 #include <string>
 #include <utility>
 #include <vector>

@@ -60,9 +60,9 @@ std::map<char, sequence::TrialBasis> readTrialBases(const sequence::SequenceConf
 
 struct ResolvedSequence {
   sequence::SequenceConfig config;
-  std::string noise_source;           ///< noiseModelsSource()
-  std::optional<dataset::NoiseModels> noise;   ///< none while they are to be estimated (SequenceChoice::estimate_trial)
-  std::string check_report;           ///< the pre-flight check's lines (empty when it was not run)
+  std::string noise_source;                   ///< noiseModelsSource()
+  std::optional<dataset::NoiseModels> noise;  ///< none while they are to be estimated (SequenceChoice::estimate_trial)
+  std::string check_report;                   ///< the pre-flight check's lines (empty when it was not run)
   sequence::SequenceTiming timing;
   std::map<char, Trajectory> references;  ///< robot -> sensor trajectory in the world frame, sequence time
   StampNs end = 0;                        ///< the sequence end, or max_seconds after its start
@@ -73,6 +73,8 @@ struct ResolvedSequence {
 
 /// Loads the config, its noise models (throws sequence::NoiseModelsMissing with the how-to), runs the pre-flight
 /// check (throws PreflightFailed), then takes the trials' bases from `bases` and resolves the rest from them.
+/// `say` receives the built-in sequence's command and, once per trial, that its sweeps are not dewarped
+/// (trialDewarpOff).
 ResolvedSequence resolveSequence(const SequenceChoice& choice, const TrialBases& bases = readTrialBases,
                                  const Say& say = {});
 

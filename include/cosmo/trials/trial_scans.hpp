@@ -11,6 +11,7 @@
 #include "cosmo/sequence/sequence_timing.hpp"
 #include "cosmo/trials/point_cloud_decode.hpp"
 #include "cosmo/trials/ros1_message_stream.hpp"
+#include "cosmo/trials/ros1_point_cloud.hpp"
 #include "cosmo/trials/ros2_bag.hpp"
 
 namespace cosmo::trials {
@@ -41,9 +42,10 @@ class Ros2ScanSource : public TrialScanSource {
   DecodeCounts counts_;
 };
 
-/// sensor_msgs/PointCloud2 messages of a ROS 1 bag (trials/ros1_bag.hpp), read without ROS; the chunks are
-/// decompressed ahead on `threads` workers (negative: defaultChunkThreads). Throws naming the bag and the topic
-/// when the topic is missing (listing the bag's topics), empty or not of that type.
+/// sensor_msgs/PointCloud2 or Livox CustomMsg messages of a ROS 1 bag (trials/ros1_bag.hpp, ros1_point_cloud.hpp),
+/// read without ROS; the chunks are decompressed ahead on `threads` workers (negative: defaultChunkThreads).
+/// Throws naming the bag and the topic when the topic is missing (listing the bag's topics), empty or not of a
+/// cloud type (trials::ros1CloudType).
 class Ros1ScanSource : public TrialScanSource {
  public:
   Ros1ScanSource(const std::string& bag_path, const std::string& topic, bool stamp_at_end = true, int threads = -1);
@@ -53,6 +55,7 @@ class Ros1ScanSource : public TrialScanSource {
   DecodeCounts lastCounts() const override { return counts_; }
 
  private:
+  Ros1CloudType type_{};
   std::unique_ptr<Ros1MessageStream> stream_;
   std::string where_;
   bool stamp_at_end_;
@@ -60,8 +63,9 @@ class Ros1ScanSource : public TrialScanSource {
   DecodeCounts counts_;
 };
 
-/// Header stamps of the first and the last PointCloud2 of `topic` in a ROS 1 bag (reads the first message and
-/// the messages received in the bag's last 5 s; header stamps may lag the receive times).
+/// Header stamps of the first and the last cloud (PointCloud2 or Livox CustomMsg) of `topic` in a ROS 1 bag
+/// (reads the first message and the messages received in the bag's last 5 s; header stamps may lag the receive
+/// times).
 sequence::TrialSpan readRos1TrialSpan(const std::string& bag_path, const std::string& topic, char robot);
 
 /// Header stamps of the first and the last PointCloud2 of `topic` in a ROS 2 bag (reads the first message and

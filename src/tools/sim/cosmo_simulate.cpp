@@ -1,9 +1,11 @@
 // cosmo_simulate: writes a synthetic multi-trial sequence (bags, ground truth and a sequence config) from a
 // generation config, cached by a hash of all parameters, the layout and the code version. The layout is cosmo's
 // own (one ROS 1 bag and one pose CSV per trial) or a real dataset's exactly (--layout mcd | cu-multi, see
-// cosmo/ros/trial_layout_writer.hpp), so that the readers of those datasets can be checked against the truth.
+// cosmo/ros/trial_layout_writer.hpp), so that the readers of those datasets can be checked against the truth. In
+// cosmo's layout the clouds are Ouster's, or with --points another LiDAR's point layout (trials/point_layouts.hpp).
 //
-//   cosmo_simulate [--config config/sim/default.yaml | --small] [--layout cosmo|mcd|cu-multi] [--out DIR]
+//   cosmo_simulate [--config config/sim/default.yaml | --small] [--layout cosmo|mcd|cu-multi]
+//                  [--points ouster|velodyne|hesai|livox|livox-custom|split-time] [--out DIR]
 //                  [--cache-dir DIR] [--no-cache] [--force] [--plan-only]
 //
 // The last line printed is the path of the sequence config.
@@ -29,6 +31,7 @@
 #include "cosmo/ros/trial_layout_writer.hpp"
 #include "cosmo/sim/scan_simulator.hpp"
 #include "cosmo/sim/sequence_planner.hpp"
+#include "cosmo/trials/point_layouts.hpp"
 
 namespace fs = std::filesystem;
 using namespace cosmo;
@@ -84,7 +87,8 @@ void writeLayoutSequenceConfig(const std::string& path, const sim::SimulationPar
   if (!out) throw std::runtime_error(path + ": write failed");
 }
 
-void generate(const sim::SimulationParams& params, const fs::path& dir, bool plan_only, ros_glue::TrialLayout layout) {
+void generate(const sim::SimulationParams& params, const fs::path& dir, bool plan_only, ros_glue::TrialLayout layout,
+              trials::PointLayout point_layout) {
   const bool own_layout = layout == ros_glue::TrialLayout::Cosmo;
   bench::Stopwatch total;
   std::cout << "planning world and routes (seed " << params.seed << ")..." << std::endl;
@@ -134,12 +138,13 @@ void generate(const sim::SimulationParams& params, const fs::path& dir, bool pla
       Scan scan = simulator.simulate(t.body, extrinsic, t.scan_stamps[k], t.noise_seed);
       points += scan.size();
       if (pending.valid()) pending.get();  // the previous scan is written while this one is cast
-      pending = std::async(std::launch::async, [&own_bag, &layout_writer, &params, s = std::move(scan)]() {
-        if (own_bag)
-          own_bag->write(params.topic, s, params.frame_id);
-        else
-          layout_writer->write(s);
-      });
+      pending =
+          std::async(std::launch::async, [&own_bag, &layout_writer, &params, point_layout, s = std::move(scan)]() {
+            if (own_bag)
+              own_bag->write(params.topic, s, params.frame_id, point_layout);
+            else
+              layout_writer->write(s);
+          });
       if ((k + 1) % std::max<std::size_t>(1, n / 10) == 0 || k + 1 == n) {
         const double sec = sw.elapsedMs() * 1e-3;
         std::printf("  %s: %zu/%zu scans, %.0f points/scan, %.2f M rays/s, %.1f s\n", tp.name.c_str(), k + 1, n,
@@ -162,7 +167,7 @@ void generate(const sim::SimulationParams& params, const fs::path& dir, bool pla
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string config, out, cache_dir, layout_name = "cosmo";
+  std::string config, out, cache_dir, layout_name = "cosmo", points_name = "ouster";
   bool small = false, no_cache = false, force = false, plan_only = false;
   cosmo::CommandLine app(
       "cosmo_simulate",
@@ -177,6 +182,11 @@ int main(int argc, char** argv) {
                  "Ouster clouds stamped at the sweep end), <trial>/pose_inW.csv (body, 10 Hz, from 1 s after the "
                  "first scan), calibration.yaml; cu-multi: robotN_<trial>_lidar/ (ROS 2 sqlite3 bag, clouds stamped "
                  "at the sweep start; the LiDAR runs at 20 Hz), <trial>_robotN_ref.csv (UTM-offset body poses)")
+      ->capture_default_str();
+  app.add_option("--points", points_name,
+                 "the clouds' point layout in the cosmo layout (" + trials::pointLayoutNames() +
+                     "; docs/data.md): each LiDAR's per-point time and ring fields, livox-custom a "
+                     "livox_ros_driver/CustomMsg")
       ->capture_default_str();
   app.add_option("--out", out, "put the sequence here (symlinks into the cache, or real files with --no-cache)")
       ->type_name("DIR");
@@ -198,10 +208,17 @@ int main(int argc, char** argv) {
     const ros_glue::TrialLayout layout = ros_glue::parseTrialLayout(layout_name);
     if (plan_only && layout != ros_glue::TrialLayout::Cosmo)
       throw std::runtime_error("--plan-only writes the cosmo layout only");
+    const std::optional<trials::PointLayout> points = trials::parsePointLayout(points_name);
+    if (!points) throw std::runtime_error("--points " + points_name + ": not one of " + trials::pointLayoutNames());
+    const bool ouster = *points == trials::PointLayout::Ouster;
+    if (!ouster && layout != ros_glue::TrialLayout::Cosmo)
+      throw std::runtime_error("--points " + points_name + ": the " + layout_name +
+                               " layout holds Ouster clouds; other point layouts go in the cosmo layout");
     auto params = sim::SimulationParams::load(config);
     if (layout == ros_glue::TrialLayout::CuMulti) params.lidar.rate_hz = 20.0;  // CU-Multi's Ouster runs at 20 Hz
-    const std::string key =
-        params.name + "-" + params.hash() + (layout == ros_glue::TrialLayout::Cosmo ? "" : "-" + layout_name);
+    const std::string key = params.name + "-" + params.hash() +
+                            (layout == ros_glue::TrialLayout::Cosmo ? "" : "-" + layout_name) +
+                            (ouster ? "" : "-" + points_name);
     const fs::path cache = cache_dir.empty() ? defaultCacheDir() : fs::path(cache_dir);
     if (plan_only) no_cache = true;
     const fs::path final_dir = no_cache ? fs::path(out) : cache / key;
@@ -212,7 +229,7 @@ int main(int argc, char** argv) {
       fs::path tmp = no_cache ? final_dir : fs::path(final_dir.string() + ".tmp-" + std::to_string(::getpid()));
       fs::create_directories(tmp);
       std::cout << "generating " << params.name << " (" << config << ") into " << final_dir.string() << std::endl;
-      generate(params, tmp, plan_only, layout);
+      generate(params, tmp, plan_only, layout, *points);
       if (!plan_only) std::ofstream(tmp / "COMPLETE") << key << "\n";
       if (!no_cache) {
         if (fs::exists(final_dir / "COMPLETE")) {
@@ -229,7 +246,8 @@ int main(int argc, char** argv) {
       for (const auto& e : fs::directory_iterator(final_dir)) {
         // made beside and renamed over the old one: several processes may link the same sequence at once
         const fs::path link = fs::path(out) / e.path().filename();
-        const fs::path tmp_link = fs::path(out) / (e.path().filename().string() + ".link-" + std::to_string(::getpid()));
+        const fs::path tmp_link =
+            fs::path(out) / (e.path().filename().string() + ".link-" + std::to_string(::getpid()));
         std::error_code ec;
         fs::remove(tmp_link, ec);
         fs::create_symlink(fs::absolute(e.path()), tmp_link);
