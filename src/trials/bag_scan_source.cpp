@@ -14,14 +14,19 @@ namespace cosmo::trials {
 
 std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const sequence::TrialConfig& trial) {
   if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1) {
-    auto decode = [&]() -> std::unique_ptr<trials::TrialScanSource> {
-      return std::make_unique<trials::Ros1ScanSource>(trial.bag, trial.topic, trial.stamp_at_end);
+    // By value: a cached source that finds its cache damaged decodes the bag later.
+    auto decode = [bag = trial.bag, topic = trial.topic,
+                   at_end = trial.stamp_at_end]() -> std::unique_ptr<trials::TrialScanSource> {
+      return std::make_unique<trials::Ros1ScanSource>(bag, topic, at_end);
     };
     // Compressed chunks (MCD: bz2) are decompressed once: later runs read the decoded scans.
     const std::string cache_dir = trials::scanCacheDir();
-    if (!cache_dir.empty() && trials::ros1ChunksCompressed(trial.bag))
+    if (!cache_dir.empty() && trials::ros1ChunksCompressed(trial.bag)) {
+      const std::string info = "trial " + trial.name + ": " + std::filesystem::absolute(trial.bag).string() + " " +
+                               trial.topic + (trial.stamp_at_end ? "" : " (stamps at sweep start)");
       return trials::openCachedScans(trials::scanCachePath(cache_dir, trial.bag, trial.topic, trial.stamp_at_end),
-                                     decode);
+                                     decode, info);
+    }
     return decode();
   }
   return std::make_unique<trials::Ros2ScanSource>(trial.bag, trial.topic, trial.stamp_at_end);
@@ -45,7 +50,7 @@ sequence::TrialSpan readTrialSpan(const sequence::TrialConfig& trial) {
   if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1) {
     const std::string cache_dir = trials::scanCacheDir();
     const bool cached = !cache_dir.empty() && trials::ros1ChunksCompressed(trial.bag);
-    const std::string path = cached ? trials::scanSpanPath(cache_dir, trial.bag, trial.topic) : "";
+    const std::string path = cached ? trials::scanSpanPath(cache_dir, trial.bag, trial.topic, trial.stamp_at_end) : "";
     span.robot = trial.robot;
     if (!cached || !trials::readCachedSpan(path, span.first, span.last)) {
       span = trials::readRos1TrialSpan(trial.bag, trial.topic, trial.robot);
