@@ -87,7 +87,8 @@ std::string formatSize(std::uint64_t bytes) {
   int u = 0;
   while (v >= 1024 && u < 4) v /= 1024, ++u;
   char out[32];
-  std::snprintf(out, sizeof out, u == 0 || v >= 100 ? "%.0f%s" : "%.1f%s", v, units[u]);
+  const bool whole = u == 0 || v >= 100 || v == static_cast<double>(static_cast<std::uint64_t>(v));
+  std::snprintf(out, sizeof out, whole ? "%.0f%s" : "%.1f%s", v, units[u]);
   return out;
 }
 

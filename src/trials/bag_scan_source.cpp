@@ -5,12 +5,23 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "cosmo/cache/cache.hpp"
 #include "cosmo/sequence/trial_coverage.hpp"
 #include "cosmo/trials/bag_format.hpp"
 #include "cosmo/trials/scan_cache.hpp"
 #include "cosmo/trials/trial_reference.hpp"
 
 namespace cosmo::trials {
+
+namespace {
+
+/// What a scan-cache entry holds, as `cosmo_cache` lists it.
+std::string cacheInfo(const sequence::TrialConfig& trial) {
+  return "trial " + trial.name + ": " + std::filesystem::absolute(trial.bag).string() + " " + trial.topic +
+         (trial.stamp_at_end ? "" : " (stamps at sweep start)");
+}
+
+}  // namespace
 
 std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const sequence::TrialConfig& trial) {
   if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1) {
@@ -22,10 +33,8 @@ std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const sequence::Tri
     // Compressed chunks (MCD: bz2) are decompressed once: later runs read the decoded scans.
     const std::string cache_dir = trials::scanCacheDir();
     if (!cache_dir.empty() && trials::ros1ChunksCompressed(trial.bag)) {
-      const std::string info = "trial " + trial.name + ": " + std::filesystem::absolute(trial.bag).string() + " " +
-                               trial.topic + (trial.stamp_at_end ? "" : " (stamps at sweep start)");
       return trials::openCachedScans(trials::scanCachePath(cache_dir, trial.bag, trial.topic, trial.stamp_at_end),
-                                     decode, info);
+                                     decode, cacheInfo(trial));
     }
     return decode();
   }
@@ -54,7 +63,10 @@ sequence::TrialSpan readTrialSpan(const sequence::TrialConfig& trial) {
     span.robot = trial.robot;
     if (!cached || !trials::readCachedSpan(path, span.first, span.last)) {
       span = trials::readRos1TrialSpan(trial.bag, trial.topic, trial.robot);
-      if (cached) trials::writeCachedSpan(path, span.first, span.last);
+      if (cached) {
+        trials::writeCachedSpan(path, span.first, span.last);
+        cache::writeInfo(cache::infoPathOf(path), cacheInfo(trial));
+      }
     }
   } else {
     span = trials::readRos2TrialSpan(trial.bag, trial.topic, trial.robot);

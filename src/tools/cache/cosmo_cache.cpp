@@ -42,8 +42,9 @@ void list(cache::Kind kind) {
   for (auto it = entries.rbegin(); it != entries.rend(); ++it)  // most recently used first
     std::printf("  %-32s %8s %10s  %s\n", it->id.c_str(), cache::formatSize(it->bytes).c_str(),
                 (cache::formatAge(it->last_used) + " ago").c_str(),
-                it->info.empty() ? "(no description: written by an earlier cosmo)" : it->info.c_str());
-  std::printf("  total: %zu entries, %s", entries.size(), cache::formatSize(total).c_str());
+                it->info.empty() ? "(no description: being written, or from an earlier cosmo)" : it->info.c_str());
+  std::printf("  total: %zu %s, %s", entries.size(), entries.size() == 1 ? "entry" : "entries",
+              cache::formatSize(total).c_str());
   if (pending) std::printf(" (%s being written or removed)", cache::formatSize(pending).c_str());
   std::printf("\n\n");
 }
