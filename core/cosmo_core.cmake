@@ -55,7 +55,8 @@ cosmo_module(dataset DEPS common jrl PRIVATE ZLIB::ZLIB)  # zlib: the journal's 
 cosmo_module(backend DEPS common jrl PRIVATE Ceres::ceres nlohmann_json::nlohmann_json)  # Ceres only here
 cosmo_module(report DEPS common jrl)
 cosmo_module(sequence DEPS common registration dataset sim)   # what a sequence is (below the trials)
-cosmo_module(trials DEPS common sequence PRIVATE SQLite::SQLite3 BZip2::BZip2 PkgConfig::LZ4)
+cosmo_module(cache)  # the on-disk caches: roots, entries, size limits (cache/cache.hpp)
+cosmo_module(trials DEPS common cache sequence PRIVATE SQLite::SQLite3 BZip2::BZip2 PkgConfig::LZ4)
 cosmo_module(frontend DEPS common odometry place_recognition registration dataset sequence)  # one robot
 cosmo_module(live DEPS common)  # the policies of a distributed run
 cosmo_module(pipeline DEPS common jrl sim odometry place_recognition registration comm dataset sequence trials frontend)
@@ -101,6 +102,7 @@ function(cosmo_program KIND PATH)
   set(COSMO_PROGRAM_TARGET ${_name} PARENT_SCOPE)
 endfunction()
 
+cosmo_program(tools cache/cosmo_cache LIBS cosmo_cache cosmo_common)
 cosmo_program(tools comm/comm_simulate LIBS cosmo_comm)
 cosmo_program(tools dataset/cosmo_noise_models LIBS cosmo_dataset)
 cosmo_program(tools jrl/cosmo_jrl LIBS cosmo_jrl cosmo_backend cosmo_report cosmo_dataset)
@@ -124,6 +126,7 @@ cosmo_program(bench place_recognition/bench_scancontext LIBS cosmo_place_recogni
 cosmo_program(bench place_recognition/bench_scancontext_sim LIBS cosmo_place_recognition cosmo_odometry cosmo_trials)
 cosmo_program(bench registration/bench_features LIBS cosmo_registration)
 cosmo_program(bench registration/bench_registration LIBS cosmo_registration)
+cosmo_program(bench trials/bench_scan_cache LIBS cosmo_trials)
 cosmo_program(bench registration/bench_registration_sim LIBS cosmo_registration cosmo_odometry cosmo_trials)
 cosmo_program(bench sim/bench_sim LIBS cosmo_sim TBB::tbb)
 

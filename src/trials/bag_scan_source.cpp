@@ -5,6 +5,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "cosmo/cache/cache.hpp"
 #include "cosmo/sequence/trial_coverage.hpp"
 #include "cosmo/trials/bag_format.hpp"
 #include "cosmo/trials/scan_cache.hpp"
@@ -12,16 +13,29 @@
 
 namespace cosmo::trials {
 
+namespace {
+
+/// What a scan-cache entry holds, as `cosmo_cache` lists it.
+std::string cacheInfo(const sequence::TrialConfig& trial) {
+  return "trial " + trial.name + ": " + std::filesystem::absolute(trial.bag).string() + " " + trial.topic +
+         (trial.stamp_at_end ? "" : " (stamps at sweep start)");
+}
+
+}  // namespace
+
 std::unique_ptr<trials::TrialScanSource> openTrialScanSource(const sequence::TrialConfig& trial) {
   if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1) {
-    auto decode = [&]() -> std::unique_ptr<trials::TrialScanSource> {
-      return std::make_unique<trials::Ros1ScanSource>(trial.bag, trial.topic, trial.stamp_at_end);
+    // By value: a cached source that finds its cache damaged decodes the bag later.
+    auto decode = [bag = trial.bag, topic = trial.topic,
+                   at_end = trial.stamp_at_end]() -> std::unique_ptr<trials::TrialScanSource> {
+      return std::make_unique<trials::Ros1ScanSource>(bag, topic, at_end);
     };
     // Compressed chunks (MCD: bz2) are decompressed once: later runs read the decoded scans.
     const std::string cache_dir = trials::scanCacheDir();
-    if (!cache_dir.empty() && trials::ros1ChunksCompressed(trial.bag))
+    if (!cache_dir.empty() && trials::ros1ChunksCompressed(trial.bag)) {
       return trials::openCachedScans(trials::scanCachePath(cache_dir, trial.bag, trial.topic, trial.stamp_at_end),
-                                     decode);
+                                     decode, cacheInfo(trial));
+    }
     return decode();
   }
   return std::make_unique<trials::Ros2ScanSource>(trial.bag, trial.topic, trial.stamp_at_end);
@@ -45,11 +59,14 @@ sequence::TrialSpan readTrialSpan(const sequence::TrialConfig& trial) {
   if (trials::detectBagFormat(trial.bag) == trials::BagFormat::Ros1) {
     const std::string cache_dir = trials::scanCacheDir();
     const bool cached = !cache_dir.empty() && trials::ros1ChunksCompressed(trial.bag);
-    const std::string path = cached ? trials::scanSpanPath(cache_dir, trial.bag, trial.topic) : "";
+    const std::string path = cached ? trials::scanSpanPath(cache_dir, trial.bag, trial.topic, trial.stamp_at_end) : "";
     span.robot = trial.robot;
     if (!cached || !trials::readCachedSpan(path, span.first, span.last)) {
       span = trials::readRos1TrialSpan(trial.bag, trial.topic, trial.robot);
-      if (cached) trials::writeCachedSpan(path, span.first, span.last);
+      if (cached) {
+        trials::writeCachedSpan(path, span.first, span.last);
+        cache::writeInfo(cache::infoPathOf(path), cacheInfo(trial));
+      }
     }
   } else {
     span = trials::readRos2TrialSpan(trial.bag, trial.topic, trial.robot);

@@ -1,12 +1,19 @@
 #include "cosmo/trials/scan_cache.hpp"
 
+#include <lz4.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <iostream>
+#include <map>
+#include <mutex>
 #include <stdexcept>
+#include <tuple>
+
+#include "cosmo/common/byte_cursor.hpp"
 
 namespace fs = std::filesystem;
 
@@ -16,23 +23,20 @@ namespace {
 
 constexpr char kMagic[10] = {'C', 'O', 'S', 'M', 'O', 'S', 'C', 'A', 'N', 'S'};
 constexpr std::streamoff kCountOffset = sizeof(kMagic) + sizeof(std::uint32_t);
-
-std::uint64_t fnv1a(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ULL;
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ULL;
-  }
-  return h;
-}
+constexpr std::size_t kRecordHead = sizeof(std::uint32_t) + sizeof(std::uint64_t);  ///< body length, its hash
 
 template <typename T>
 void put(std::ofstream& out, const T& v) {
   out.write(reinterpret_cast<const char*>(&v), sizeof v);
 }
 template <typename T>
-void putArray(std::ofstream& out, const std::vector<T>& v) {
-  out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
+void append(std::vector<char>& buf, const T& v) {
+  const auto* p = reinterpret_cast<const char*>(&v);
+  buf.insert(buf.end(), p, p + sizeof v);
+}
+void appendBytes(std::vector<char>& buf, const void* data, std::size_t n) {
+  const auto* p = static_cast<const char*>(data);
+  buf.insert(buf.end(), p, p + n);
 }
 
 /// Unique per process and per writer (two trials of one run may share a bag).
@@ -41,43 +45,72 @@ std::string temporaryName(const std::string& path) {
   return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(writers++);
 }
 
-}  // namespace
-
-std::string scanCacheDir() {
-  if (const char* c = std::getenv("COSMO_SCAN_CACHE")) return std::string(c) == "off" ? "" : c;
-  if (const char* x = std::getenv("XDG_CACHE_HOME")) return (fs::path(x) / "cosmo" / "scans").string();
-  if (const char* h = std::getenv("HOME")) return (fs::path(h) / ".cache" / "cosmo" / "scans").string();
-  return (fs::temp_directory_path() / "cosmo_scan_cache").string();
+/// Byte planes: byte k of every element together (W: the element's width; xyz points are one 12-byte element, so
+/// their planes are also split by axis). Floats of neighbouring points share sign, exponent and high mantissa
+/// bytes, which LZ4 then finds as runs.
+template <std::size_t W>
+void toPlanes(const char* src, std::size_t n, char* dst) {
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = 0; k < W; ++k) dst[k * n + i] = src[i * W + k];
+}
+template <std::size_t W>
+void fromPlanes(const char* src, std::size_t n, char* dst) {
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = 0; k < W; ++k) dst[i * W + k] = src[k * n + i];
 }
 
-namespace {
-
-/// The identity of a bag's topic: absolute path, size, modification time and the topic without its slash.
-std::string bagKey(const std::string& bag_path, const std::string& topic) {
-  const fs::path bag = fs::absolute(bag_path);
-  const auto mtime = fs::last_write_time(bag).time_since_epoch().count();
-  const std::string bare_topic = !topic.empty() && topic[0] == '/' ? topic.substr(1) : topic;
-  return bag.string() + "\n" + std::to_string(fs::file_size(bag)) + "\n" + std::to_string(mtime) + "\n" + bare_topic;
+std::size_t arrayBytes(std::size_t n, std::uint8_t flags) {
+  return n * (12 + ((flags & 1) ? 4 : 0) + ((flags & 2) ? 4 : 0) + ((flags & 4) ? 2 : 0));
 }
 
-std::string keyedPath(const std::string& dir, const std::string& bag_path, const std::string& key,
+/// The bag's content identity, once per process per (file, size, modification time).
+std::uint64_t bagIdentity(const std::string& bag_path) {
+  static std::mutex mutex;
+  static std::map<std::tuple<std::string, std::uint64_t, long long>, std::uint64_t> known;
+  const fs::path bag = fs::weakly_canonical(fs::absolute(bag_path));
+  const auto key = std::make_tuple(bag.string(), static_cast<std::uint64_t>(fs::file_size(bag)),
+                                   static_cast<long long>(fs::last_write_time(bag).time_since_epoch().count()));
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (auto it = known.find(key); it != known.end()) return it->second;
+  }
+  const std::uint64_t id = cache::fileIdentity(bag);
+  std::lock_guard<std::mutex> lock(mutex);
+  known[key] = id;
+  return id;
+}
+
+std::string keyedPath(const std::string& dir, const std::string& bag_path, const std::string& topic, bool stamp_at_end,
                       const char* extension) {
+  const std::string bare_topic = !topic.empty() && topic[0] == '/' ? topic.substr(1) : topic;
+  char id[17];
+  std::snprintf(id, sizeof id, "%016llx", static_cast<unsigned long long>(bagIdentity(bag_path)));
+  const std::string key = std::string(id) + "\n" + bare_topic + "\n" + (stamp_at_end ? "end" : "start") + "\n" +
+                          std::to_string(kScanCacheVersion);
   char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a(key)));
-  return (fs::path(dir) / (fs::path(bag_path).filename().string() + "-" + hex + extension)).string();
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(cache::hashBytes(key.data(), key.size())));
+  return (fs::path(dir) / (std::string(hex) + extension)).string();
 }
 
 }  // namespace
+
+ScanCompression scanCacheCompression() {
+  const char* v = std::getenv("COSMO_SCAN_CACHE_COMPRESSION");
+  if (!v || std::string(v) == "lz4") return ScanCompression::Lz4;
+  if (std::string(v) == "none") return ScanCompression::None;
+  throw std::invalid_argument(std::string("COSMO_SCAN_CACHE_COMPRESSION: expected lz4 or none, got '") + v + "'");
+}
+
+std::string scanCacheDir() { return cache::cacheRoot(cache::Kind::Scan).string(); }
 
 std::string scanCachePath(const std::string& dir, const std::string& bag_path, const std::string& topic,
                           bool stamp_at_end) {
-  const std::string key =
-      bagKey(bag_path, topic) + "\n" + (stamp_at_end ? "end" : "start") + "\n" + std::to_string(kScanCacheVersion);
-  return keyedPath(dir, bag_path, key, ".scans");
+  return keyedPath(dir, bag_path, topic, stamp_at_end, ".scans");
 }
 
-std::string scanSpanPath(const std::string& dir, const std::string& bag_path, const std::string& topic) {
-  return keyedPath(dir, bag_path, bagKey(bag_path, topic) + "\nspan", ".span");
+std::string scanSpanPath(const std::string& dir, const std::string& bag_path, const std::string& topic,
+                         bool stamp_at_end) {
+  return keyedPath(dir, bag_path, topic, stamp_at_end, ".span");
 }
 
 bool readCachedSpan(const std::string& path, StampNs& first, StampNs& last) {
@@ -112,76 +145,114 @@ std::uint64_t CachedScanSource::bytesLeft() {
   return at < 0 || static_cast<std::uint64_t>(at) > file_size_ ? 0 : file_size_ - static_cast<std::uint64_t>(at);
 }
 
-CachedScanSource::CachedScanSource(const std::string& path) : path_(path), in_(path, std::ios::binary) {
+void CachedScanSource::damaged(const std::string& why) const {
+  throw std::runtime_error(path_ + ": scan cache damaged at scan " + std::to_string(read_) + " (" + why + ")");
+}
+
+CachedScanSource::CachedScanSource(const std::string& path)
+    : path_(path), in_(path, std::ios::binary), hold_(std::make_unique<cache::EntryUse>(path)) {
   std::error_code ec;
   file_size_ = fs::file_size(path, ec);
   if (ec) file_size_ = 0;
   char magic[sizeof kMagic] = {};
   std::uint32_t version = 0;
   std::uint64_t count = 0;
+  std::uint8_t compression = 0;
   in_.read(magic, sizeof magic);
   in_.read(reinterpret_cast<char*>(&version), sizeof version);
   in_.read(reinterpret_cast<char*>(&count), sizeof count);
-  if (!in_ || std::memcmp(magic, kMagic, sizeof kMagic) != 0 || version != kScanCacheVersion)
-    throw std::runtime_error(path + ": not a scan cache of version " + std::to_string(kScanCacheVersion) +
-                             " (delete it to rebuild it)");
+  in_.read(reinterpret_cast<char*>(&compression), sizeof compression);
+  if (!in_ || std::memcmp(magic, kMagic, sizeof kMagic) != 0 || version != kScanCacheVersion ||
+      compression > static_cast<std::uint8_t>(ScanCompression::Lz4))
+    throw std::runtime_error(path + ": not a scan cache of version " + std::to_string(kScanCacheVersion));
+  // Every scan's record holds at least its head: a count the file cannot hold is damage.
+  if (count > bytesLeft() / kRecordHead) damaged(std::to_string(count) + " scans announced in a shorter file");
   size_ = static_cast<std::size_t>(count);
+  compression_ = static_cast<ScanCompression>(compression);
 }
+
+CachedScanSource::~CachedScanSource() = default;
 
 bool CachedScanSource::next(Scan& scan) {
   if (read_ >= size_) return false;
-  std::uint64_t stamp = 0, points = 0, invalid = 0;
-  std::uint32_t n = 0, height = 0, width = 0;
-  std::uint8_t flags = 0;
-  auto get = [&](auto& v) { in_.read(reinterpret_cast<char*>(&v), sizeof v); };
-  std::uint32_t point_step = 0, nfields = 0;
-  get(stamp), get(n), get(flags), get(points), get(invalid), get(height), get(width), get(point_step), get(nfields);
-  if (!in_ || nfields > 1024)
-    throw std::runtime_error(path_ + ": scan cache damaged at scan " + std::to_string(read_) +
-                             " (delete it to rebuild it)");
-  // Every point holds at least its 12 bytes of xyz: a count the rest of the file cannot hold is damage, not an
-  // allocation to attempt.
-  if (static_cast<std::uint64_t>(n) * 12 > bytesLeft())
-    throw std::runtime_error(path_ + ": scan cache damaged at scan " + std::to_string(read_) + " (" +
-                             std::to_string(n) + " points; delete it to rebuild it)");
+  std::uint32_t length = 0;
+  std::uint64_t hash = 0;
+  in_.read(reinterpret_cast<char*>(&length), sizeof length);
+  in_.read(reinterpret_cast<char*>(&hash), sizeof hash);
+  if (!in_) damaged("truncated");
+  if (length > bytesLeft()) damaged("a record of " + std::to_string(length) + " bytes past the end of the file");
+  record_.resize(length);
+  in_.read(record_.data(), length);
+  if (!in_) damaged("truncated");
+  if (cache::hashBytes(record_.data(), length) != hash) damaged("its bytes do not match their hash");
+
+  auto fail = [this](const char* what, const std::string& why, std::size_t) {
+    damaged(std::string(what) + ": " + why);
+  };
+  ByteCursor<decltype(fail)> c(reinterpret_cast<const std::uint8_t*>(record_.data()), length, fail);
+  const auto stamp = c.value<std::uint64_t>("stamp");
+  const auto n = c.value<std::uint32_t>("point count");
+  const auto flags = c.value<std::uint8_t>("fields present");
+  const auto points = c.value<std::uint64_t>("decoded points");
+  const auto invalid = c.value<std::uint64_t>("invalid points");
+  layout_.height = c.value<std::uint32_t>("height");
+  layout_.width = c.value<std::uint32_t>("width");
+  layout_.point_step = c.value<std::uint32_t>("point step");
+  const auto nfields = c.value<std::uint32_t>("field count");
+  if (nfields > c.left() / 13) damaged("field count " + std::to_string(nfields));
   layout_.fields.resize(nfields);
   for (auto& f : layout_.fields) {
-    std::uint32_t len = 0;
-    get(len);
-    if (!in_ || len > 4096) throw std::runtime_error(path_ + ": scan cache damaged (delete it to rebuild it)");
-    f.name.resize(len);
-    in_.read(f.name.data(), len);
-    get(f.offset), get(f.datatype), get(f.count);
+    f.name = c.string("field name");
+    f.offset = c.value<std::uint32_t>("field offset");
+    f.datatype = c.value<std::uint8_t>("field type");
+    f.count = c.value<std::uint32_t>("field count");
   }
-  auto getArray = [&](auto& v, bool present) {
+  const std::size_t raw = arrayBytes(n, flags);
+  const char* payload = reinterpret_cast<const char*>(record_.data()) + c.offset();
+  const char* arrays = payload;
+  if (compression_ == ScanCompression::None) {
+    if (c.left() != raw)
+      damaged(std::to_string(c.left()) + " bytes of points where " + std::to_string(n) + " need " +
+              std::to_string(raw));
+  } else {
+    if (raw > static_cast<std::size_t>(LZ4_MAX_INPUT_SIZE)) damaged(std::to_string(n) + " points");
+    raw_.resize(raw);
+    const int got = LZ4_decompress_safe(payload, raw_.data(), static_cast<int>(c.left()), static_cast<int>(raw));
+    if (got != static_cast<int>(raw)) damaged("the compressed points do not decompress");
+    arrays = raw_.data();
+  }
+  auto take = [&](auto& v, bool present, auto planes) {
     v.resize(present ? n : 0);
-    in_.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(v[0])));
+    if (!present) return;
+    const std::size_t bytes = static_cast<std::size_t>(n) * sizeof(v[0]);
+    if (compression_ == ScanCompression::None)
+      std::memcpy(v.data(), arrays, bytes);
+    else
+      planes(arrays, n, reinterpret_cast<char*>(v.data()));
+    arrays += bytes;
   };
-  getArray(scan.points, true);
-  getArray(scan.intensity, flags & 1);
-  getArray(scan.time, flags & 2);
-  getArray(scan.ring, flags & 4);
-  if (!in_)
-    throw std::runtime_error(path_ + ": scan cache truncated at scan " + std::to_string(read_) +
-                             " (delete it to rebuild it)");
+  take(scan.points, true, fromPlanes<12>);
+  take(scan.intensity, flags & 1, fromPlanes<4>);
+  take(scan.time, flags & 2, fromPlanes<4>);
+  take(scan.ring, flags & 4, fromPlanes<2>);
   scan.stamp = stamp;
   counts_ = {static_cast<std::size_t>(points), static_cast<std::size_t>(invalid)};
   layout_.stamp = stamp;
-  layout_.height = height;
-  layout_.width = width;
-  layout_.point_step = point_step;
   ++read_;
   return true;
 }
 
-CachingScanSource::CachingScanSource(std::unique_ptr<TrialScanSource> source, const std::string& path)
-    : source_(std::move(source)), path_(path), tmp_(temporaryName(path)) {
+CachingScanSource::CachingScanSource(std::unique_ptr<TrialScanSource> source, const std::string& path,
+                                     const std::string& info, ScanCompression compression)
+    : source_(std::move(source)), path_(path), tmp_(temporaryName(path)), info_(info), compression_(compression) {
+  cache::maxSize(cache::Kind::Scan);  // a bad limit is an error now, not after the whole trial
   fs::create_directories(fs::path(path).parent_path());
   out_.open(tmp_, std::ios::binary | std::ios::trunc);
   if (!out_) throw std::runtime_error(tmp_ + ": cannot write the scan cache");
   out_.write(kMagic, sizeof kMagic);
   put(out_, kScanCacheVersion);
   put(out_, std::uint64_t{0});  // the count, written when complete
+  put(out_, static_cast<std::uint8_t>(compression_));
 }
 
 CachingScanSource::~CachingScanSource() {
@@ -191,52 +262,138 @@ CachingScanSource::~CachingScanSource() {
   fs::remove(tmp_, ec);  // not read to its end: no cache
 }
 
+void CachingScanSource::finish() {
+  done_ = true;
+  out_.seekp(kCountOffset);
+  put(out_, static_cast<std::uint64_t>(written_));
+  const bool ok = static_cast<bool>(out_);
+  out_.close();
+  std::error_code ec;
+  if (ok && !out_.fail()) fs::rename(tmp_, path_, ec);
+  if (!ok || out_.fail() || ec) {
+    fs::remove(tmp_, ec);  // a failed write (disk full) leaves no cache
+    return;
+  }
+  if (!info_.empty()) cache::writeInfo(cache::infoPathOf(path_), info_);
+  try {
+    cache::applyLimit(cache::Kind::Scan, fs::path(path_).parent_path(), fs::path(path_).stem().string());
+  } catch (const std::exception& e) {
+    std::cerr << "cosmo cache (scan): " << e.what() << "\n";  // the scans are read; only the limit was not applied
+  }
+}
+
 bool CachingScanSource::next(Scan& scan) {
   if (!source_->next(scan)) {
-    if (!done_) {
-      out_.seekp(kCountOffset);
-      put(out_, static_cast<std::uint64_t>(written_));
-      const bool ok = static_cast<bool>(out_);
-      out_.close();
-      std::error_code ec;
-      if (ok && !out_.fail()) fs::rename(tmp_, path_, ec);
-      if (!ok || out_.fail() || ec) fs::remove(tmp_, ec);  // a failed write (disk full) leaves no cache
-      done_ = true;
-    }
+    if (!done_) finish();
     return false;
   }
   const DecodeCounts c = source_->lastCounts();
   const CloudLayout& L = source_->lastLayout();
   const auto flags =
       static_cast<std::uint8_t>((scan.hasIntensity() ? 1 : 0) | (scan.hasTime() ? 2 : 0) | (scan.hasRing() ? 4 : 0));
-  put(out_, static_cast<std::uint64_t>(scan.stamp));
-  put(out_, static_cast<std::uint32_t>(scan.size()));
-  put(out_, flags);
-  put(out_, static_cast<std::uint64_t>(c.points));
-  put(out_, static_cast<std::uint64_t>(c.invalid));
-  put(out_, L.height);
-  put(out_, L.width);
-  put(out_, L.point_step);
-  put(out_, static_cast<std::uint32_t>(L.fields.size()));
+  const std::size_t n = scan.size();
+  record_.clear();
+  append(record_, static_cast<std::uint64_t>(scan.stamp));
+  append(record_, static_cast<std::uint32_t>(n));
+  append(record_, flags);
+  append(record_, static_cast<std::uint64_t>(c.points));
+  append(record_, static_cast<std::uint64_t>(c.invalid));
+  append(record_, L.height);
+  append(record_, L.width);
+  append(record_, L.point_step);
+  append(record_, static_cast<std::uint32_t>(L.fields.size()));
   for (const auto& f : L.fields) {
-    put(out_, static_cast<std::uint32_t>(f.name.size()));
-    out_.write(f.name.data(), static_cast<std::streamsize>(f.name.size()));
-    put(out_, f.offset);
-    put(out_, f.datatype);
-    put(out_, f.count);
+    append(record_, static_cast<std::uint32_t>(f.name.size()));
+    appendBytes(record_, f.name.data(), f.name.size());
+    append(record_, f.offset);
+    append(record_, f.datatype);
+    append(record_, f.count);
   }
-  putArray(out_, scan.points);
-  if (flags & 1) putArray(out_, scan.intensity);
-  if (flags & 2) putArray(out_, scan.time);
-  if (flags & 4) putArray(out_, scan.ring);
+  const std::size_t raw = arrayBytes(n, flags);
+  if (compression_ == ScanCompression::None) {
+    appendBytes(record_, scan.points.data(), n * 12);
+    if (flags & 1) appendBytes(record_, scan.intensity.data(), n * 4);
+    if (flags & 2) appendBytes(record_, scan.time.data(), n * 4);
+    if (flags & 4) appendBytes(record_, scan.ring.data(), n * 2);
+  } else {
+    raw_.resize(raw);
+    char* at = raw_.data();
+    toPlanes<12>(reinterpret_cast<const char*>(scan.points.data()), n, at), at += n * 12;
+    if (flags & 1) toPlanes<4>(reinterpret_cast<const char*>(scan.intensity.data()), n, at), at += n * 4;
+    if (flags & 2) toPlanes<4>(reinterpret_cast<const char*>(scan.time.data()), n, at), at += n * 4;
+    if (flags & 4) toPlanes<2>(reinterpret_cast<const char*>(scan.ring.data()), n, at), at += n * 2;
+    const std::size_t head = record_.size();
+    record_.resize(head + static_cast<std::size_t>(LZ4_compressBound(static_cast<int>(raw))));
+    const int packed = LZ4_compress_default(raw_.data(), record_.data() + head, static_cast<int>(raw),
+                                            static_cast<int>(record_.size() - head));
+    if (packed <= 0) throw std::runtime_error(tmp_ + ": LZ4 failed on scan " + std::to_string(written_));
+    record_.resize(head + static_cast<std::size_t>(packed));
+  }
+  if (record_.size() > 0xffffffffULL) throw std::runtime_error(tmp_ + ": a scan too large for the scan cache");
+  put(out_, static_cast<std::uint32_t>(record_.size()));
+  put(out_, cache::hashBytes(record_.data(), record_.size()));
+  out_.write(record_.data(), static_cast<std::streamsize>(record_.size()));
   ++written_;
   return true;
 }
 
+namespace {
+
+void removeDamaged(const std::string& path, const std::string& why) {
+  std::cerr << "cosmo: warning: " << why << "; removed it, the bag is decoded again (and the cache rebuilt when the "
+            << "trial is read to its end)\n";
+  std::error_code ec;
+  fs::remove(path, ec);
+}
+
+/// A cached source that, when the cache turns out damaged, goes on with the decode from the same scan.
+class RecoveringScanSource : public TrialScanSource {
+ public:
+  RecoveringScanSource(std::unique_ptr<CachedScanSource> cached, std::string path,
+                       std::function<std::unique_ptr<TrialScanSource>()> decode, std::string info)
+      : cached_(std::move(cached)), path_(std::move(path)), decode_(std::move(decode)), info_(std::move(info)) {}
+  bool next(Scan& scan) override {
+    if (cached_) {
+      try {
+        if (!cached_->next(scan)) return false;
+        ++read_;
+        return true;
+      } catch (const std::runtime_error& e) {
+        cached_.reset();
+        removeDamaged(path_, e.what());
+        decoded_ = std::make_unique<CachingScanSource>(decode_(), path_, info_);
+        for (std::size_t k = 0; k < read_; ++k)
+          if (!decoded_->next(scan)) return false;
+      }
+    }
+    return decoded_->next(scan);
+  }
+  std::size_t size() const override { return cached_ ? cached_->size() : decoded_->size(); }
+  const CloudLayout& lastLayout() const override { return cached_ ? cached_->lastLayout() : decoded_->lastLayout(); }
+  DecodeCounts lastCounts() const override { return cached_ ? cached_->lastCounts() : decoded_->lastCounts(); }
+
+ private:
+  std::unique_ptr<CachedScanSource> cached_;
+  std::unique_ptr<TrialScanSource> decoded_;
+  std::string path_;
+  std::function<std::unique_ptr<TrialScanSource>()> decode_;
+  std::string info_;
+  std::size_t read_ = 0;
+};
+
+}  // namespace
+
 std::unique_ptr<TrialScanSource> openCachedScans(const std::string& path,
-                                                 const std::function<std::unique_ptr<TrialScanSource>()>& decode) {
-  if (fs::exists(path)) return std::make_unique<CachedScanSource>(path);
-  return std::make_unique<CachingScanSource>(decode(), path);
+                                                 const std::function<std::unique_ptr<TrialScanSource>()>& decode,
+                                                 const std::string& info) {
+  if (fs::exists(path)) {
+    try {
+      auto cached = std::make_unique<CachedScanSource>(path);
+      cache::touch(path);  // used now: evicted last
+      return std::make_unique<RecoveringScanSource>(std::move(cached), path, decode, info);
+    } catch (const std::runtime_error& e) { removeDamaged(path, e.what()); }
+  }
+  return std::make_unique<CachingScanSource>(decode(), path, info);
 }
 
 }  // namespace cosmo::trials

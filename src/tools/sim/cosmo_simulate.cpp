@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "cosmo/bench/stopwatch.hpp"
+#include "cosmo/cache/cache.hpp"
 #include "cosmo/common/command_line.hpp"
 #include "cosmo/common/pose_io.hpp"
 #include "cosmo/ros/bag_io.hpp"
@@ -37,13 +38,6 @@ namespace fs = std::filesystem;
 using namespace cosmo;
 
 namespace {
-
-fs::path defaultCacheDir() {
-  if (const char* c = std::getenv("COSMO_SIM_CACHE")) return c;
-  if (const char* x = std::getenv("XDG_CACHE_HOME")) return fs::path(x) / "cosmo" / "sim";
-  if (const char* h = std::getenv("HOME")) return fs::path(h) / ".cache" / "cosmo" / "sim";
-  return fs::temp_directory_path() / "cosmo_sim_cache";
-}
 
 // Junctions and paths of the world, for choosing start nodes and waypoints:
 // "junction,<index>,<x>,<y>" and "path,<junction a>,<junction b>,street|footpath,<length m>".
@@ -190,7 +184,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--out", out, "put the sequence here (symlinks into the cache, or real files with --no-cache)")
       ->type_name("DIR");
-  app.add_option("--cache-dir", cache_dir, "cache root (default: $COSMO_SIM_CACHE, else ~/.cache/cosmo/sim)")
+  app.add_option("--cache-dir", cache_dir,
+                 "cache root (default: $COSMO_SIM_CACHE, else ~/.cache/cosmo/sim; at most "
+                 "$COSMO_SIM_CACHE_MAX_SIZE, default 20G: least recently used sequences go first; `cosmo_cache`)")
       ->type_name("DIR");
   app.add_flag("--no-cache", no_cache, "generate straight into --out, do not read or fill the cache");
   app.add_flag("--force", force, "regenerate even when the cache holds this sequence");
@@ -219,11 +215,18 @@ int main(int argc, char** argv) {
     const std::string key = params.name + "-" + params.hash() +
                             (layout == ros_glue::TrialLayout::Cosmo ? "" : "-" + layout_name) +
                             (ouster ? "" : "-" + points_name);
-    const fs::path cache = cache_dir.empty() ? defaultCacheDir() : fs::path(cache_dir);
+    const fs::path cache = cache_dir.empty() ? cache::cacheRoot(cache::Kind::Sim) : fs::path(cache_dir);
     if (plan_only) no_cache = true;
+    if (!no_cache) cache::maxSize(cache::Kind::Sim);  // a bad limit is an error before the generation
     const fs::path final_dir = no_cache ? fs::path(out) : cache / key;
     const std::string seq_name = params.name + ".yaml";
+    std::optional<cache::EntryUse> in_use;  // not removed by another process's limit while linked into --out
     if (!no_cache && !force && fs::exists(final_dir / "COMPLETE")) {
+      in_use.emplace(final_dir);
+      if (!fs::exists(final_dir / cache::kFolderInfoName))  // written before entries were described
+        cache::writeInfo(final_dir / cache::kFolderInfoName,
+                         "sequence " + params.name + " (" + layout_name + " layout) from " + config);
+      cache::touch(final_dir);  // used now: evicted last
       std::cout << "cache hit: " << final_dir.string() << std::endl;
     } else {
       fs::path tmp = no_cache ? final_dir : fs::path(final_dir.string() + ".tmp-" + std::to_string(::getpid()));
@@ -232,18 +235,24 @@ int main(int argc, char** argv) {
       generate(params, tmp, plan_only, layout, *points);
       if (!plan_only) std::ofstream(tmp / "COMPLETE") << key << "\n";
       if (!no_cache) {
+        cache::writeInfo(tmp / cache::kFolderInfoName,
+                         "sequence " + params.name + " (" + layout_name + " layout) from " + config);
         if (fs::exists(final_dir / "COMPLETE")) {
           fs::remove_all(tmp);  // another run finished the same sequence meanwhile: keep its files
         } else {
           fs::remove_all(final_dir);
           fs::rename(tmp, final_dir);
         }
+        in_use.emplace(final_dir);
+        cache::touch(final_dir);
+        cache::applyLimit(cache::Kind::Sim, cache, key);
       }
     }
     fs::path seq_path = final_dir / seq_name;
     if (!no_cache && !out.empty()) {  // link the cached files into --out
       fs::create_directories(out);
       for (const auto& e : fs::directory_iterator(final_dir)) {
+        if (e.path().filename() == cache::kFolderInfoName) continue;  // the cache's, not the sequence's
         // made beside and renamed over the old one: several processes may link the same sequence at once
         const fs::path link = fs::path(out) / e.path().filename();
         const fs::path tmp_link =
