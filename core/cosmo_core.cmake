@@ -53,7 +53,7 @@ cosmo_module(registration DEPS common PRIVATE ${PCL_LIBRARIES})
 cosmo_module(comm DEPS common USES nlohmann_json::nlohmann_json PRIVATE LibLZMA::LibLZMA)
 cosmo_module(dataset DEPS common jrl PRIVATE ZLIB::ZLIB)  # zlib: the journal's CRC-32
 cosmo_module(backend DEPS common jrl PRIVATE Ceres::ceres nlohmann_json::nlohmann_json)  # Ceres only here
-cosmo_module(report DEPS common jrl)
+cosmo_module(report DEPS common jrl comm)  # comm: the connectivity figure
 cosmo_module(sequence DEPS common registration dataset sim)   # what a sequence is (below the trials)
 cosmo_module(cache)  # the on-disk caches: roots, entries, size limits (cache/cache.hpp)
 cosmo_module(trials DEPS common cache sequence PRIVATE SQLite::SQLite3 BZip2::BZip2 PkgConfig::LZ4)

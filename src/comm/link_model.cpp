@@ -12,6 +12,12 @@ bool LinkModel::inRange(char a, char b, double t, double distance) const {
   return window(a, b, t) != nullptr || distance <= params_.d_init;
 }
 
+bool LinkModel::connected(char a, char b, double t, double distance, bool both_on) const {
+  if (!both_on) return false;
+  if (const TraceWindow* w = window(a, b, t)) return w->connected;
+  return distance <= params_.d_init;
+}
+
 LinkSample LinkModel::sample(char a, char b, double t, double distance, double u) {
   LinkSample s;
   if (const TraceWindow* w = window(a, b, t)) {

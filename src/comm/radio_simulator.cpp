@@ -11,6 +11,11 @@ namespace cosmo::comm {
 
 namespace {
 std::string robotName(char id) { return std::string("'") + id + "'"; }
+
+const RadioParams& validated(const RadioParams& p) {
+  p.validate();
+  return p;
+}
 }  // namespace
 
 std::string toString(Transfer::Outcome outcome) {
@@ -22,8 +27,7 @@ std::string toString(Transfer::Link link) {
 }
 
 RadioSimulator::RadioSimulator(const RadioParams& p, std::vector<char> robots, std::uint64_t seed)
-    : params_(p), seed_(seed), rng_(seed), link_(p) {
-  params_.validate();
+    : params_(validated(p)), seed_(seed), rng_(seed), link_(p), connectivity_(robots, p.step) {
   std::sort(robots.begin(), robots.end());
   robots.erase(std::unique(robots.begin(), robots.end()), robots.end());
   if (robots.empty()) throw std::invalid_argument("RadioSimulator: the team has no robots");
@@ -124,7 +128,25 @@ std::vector<Transfer> RadioSimulator::step(double t) {
   initializeNewCommunications(t);
   updateActiveCommunications(t);
   last_step_ = active_;
-  return terminateCommunications(t);
+  std::vector<Transfer> ended = terminateCommunications(t);
+  for (const Transfer& x : ended) connectivity_.addTransfer(x);
+  connectivity_.endStep(
+      t,
+      [&](char a, char b) {
+        const Robot& ra = robots_.at(a);
+        const Robot& rb = robots_.at(b);
+        return link_.connected(a, b, t, (ra.position - rb.position).norm(), ra.on && rb.on);
+      },
+      [&](char r) { return robots_.at(r).on; });
+  return ended;
+}
+
+Connectivity RadioSimulator::connectivity() const {
+  Connectivity c = connectivity_.result();
+  c.time_origin_ns = time_origin_;
+  c.d_init = params_.d_init;
+  if (params_.trace) c.trace = params_.trace->source();
+  return c;
 }
 
 LinkSample RadioSimulator::sampleLink(char a, char b, double t, double distance) {
@@ -222,6 +244,7 @@ void RadioSimulator::updateActiveCommunications(double t) {
     const double before = c.bytes_delivered;
     c.bytes_delivered = std::min(static_cast<double>(c.bytes), c.bytes_delivered + rate * params_.step);
     stats_.bytes_transmitted += c.bytes_delivered - before;
+    connectivity_.addBytes(c.sender, c.receiver, c.bytes_delivered - before);
     c.throughput_Bps = rate;
     if (rate > 0.0) c.last_progress = t;
     new_this_step_[i] = false;
@@ -257,13 +280,16 @@ std::vector<Transfer> RadioSimulator::terminateCommunications(double t) {
     x.end = t;
     x.bytes = c.bytes;
     x.bytes_delivered = c.bytes_delivered;
-    x.link = c.used_trace ? (c.used_distance ? Transfer::Link::Mixed : Transfer::Link::Trace) : Transfer::Link::Distance;
+    x.link =
+        c.used_trace ? (c.used_distance ? Transfer::Link::Mixed : Transfer::Link::Trace) : Transfer::Link::Distance;
     if (c.bytes_delivered >= static_cast<double>(c.bytes)) {
       x.outcome = Transfer::Outcome::Delivered;
       robots_.at(c.sender).delivered_to[c.receiver].insert(c.keyframe);
       x.received = t + c.latency;
-      if (c.latency > 0.0) in_flight_.push_back(x);  // reaches the receiver in a later step
-      else received(x);
+      if (c.latency > 0.0)
+        in_flight_.push_back(x);  // reaches the receiver in a later step
+      else
+        received(x);
     } else {
       const double since = params_.timeout_mode == RadioParams::TimeoutMode::NoProgress ? c.last_progress : c.start;
       if (t - since < params_.timeout - eps) {

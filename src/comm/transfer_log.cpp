@@ -96,6 +96,7 @@ void writeTransferLog(const std::string& csv_path, const std::vector<Transfer>& 
 
 void writeTransferLog(const std::string& csv_path, const RadioSimulator& radio) {
   writeLogFiles(csv_path, radio.transferLog(), transferSummary(radio));
+  writeAtomically(connectivityPath(csv_path), radio.connectivity().toJson().dump() + "\n");
 }
 
 }  // namespace cosmo::comm

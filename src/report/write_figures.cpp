@@ -45,8 +45,12 @@ std::vector<std::string> writeDatasetFigures(const jrl::Dataset& dataset, const 
   const std::string stem = (dir / jrl.stem()).string();
   FigureOptions options;
   options.source = jrl.filename().string();
-  const std::vector<std::pair<std::string, std::string>> figures{
+  std::vector<std::pair<std::string, std::string>> figures{
       {stem + ".trajectories.svg", trajectoriesSvg(dataset, options)}, {stem + ".frontend.svg", frontendSvg(dataset)}};
+  const std::string connectivity = comm::datasetConnectivityPath(jrl_path);
+  if (fs::exists(connectivity))
+    figures.emplace_back(stem + ".connectivity.svg",
+                         connectivitySvg(comm::Connectivity::read(connectivity), jrl.stem().string()));
   std::vector<std::string> written;
   const bool with_png = png && converterInstalled();
   for (const auto& [path, text] : figures) {

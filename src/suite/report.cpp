@@ -1,9 +1,11 @@
 #include "cosmo/suite/report.hpp"
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "cosmo/comm/connectivity.hpp"
 #include "cosmo/dataset/atomic_file.hpp"
 #include "cosmo/common/whole_file.hpp"
 #include "report_rows.hpp"
@@ -68,6 +70,90 @@ std::string variantsSection(const std::vector<Row>& rows, bool html) {
   return "## Variants of one sequence\n\n" + intro + "\n\n" + report_table::markdown(t) + "\n";
 }
 
+/// A dataset's radio connectivity (`<dataset>_connectivity.json` in its job's folder) and its timeline figure.
+struct DatasetConnectivity {
+  std::string name;
+  comm::Connectivity connectivity;
+  std::string svg, png;  ///< relative to the output folder; "" when absent
+};
+
+std::vector<DatasetConnectivity> connectivities(const ReportInput& input, const std::vector<Row>& rows) {
+  std::vector<DatasetConnectivity> out;
+  for (const Row& r : rows) {
+    if (!r.summary || r.summary->jrl.empty()) continue;
+    const fs::path folder = fs::path(r.job->job->id);
+    const std::string jrl = (fs::path(input.out_dir) / folder / r.summary->jrl).string();
+    const std::string json = comm::datasetConnectivityPath(jrl);
+    if (!fs::exists(json)) continue;
+    DatasetConnectivity d;
+    d.name = r.name;
+    try {
+      d.connectivity = comm::Connectivity::read(json);
+    } catch (const std::exception&) { continue; }  // unreadable: the dataset shows no connectivity
+    const std::string stem = fs::path(r.summary->jrl).stem().string();
+    const auto figure = [&](const std::string& ext) {
+      const fs::path rel = folder / (stem + ".connectivity" + ext);
+      return fs::exists(fs::path(input.out_dir) / rel) ? rel.string() : std::string();
+    };
+    d.svg = figure(".svg");
+    d.png = figure(".png");
+    out.push_back(d);
+  }
+  return out;
+}
+
+/// One row per robot pair of a dataset.
+Table connectivityTable(const comm::Connectivity& c) {
+  Table t{{"pair", "connected", "disconnections", "delivered / dropped", "throughput while connected", "bytes"}, {}};
+  char buf[64];
+  for (const comm::PairConnectivity& p : c.pairs) {
+    std::snprintf(buf, sizeof buf, "%.1f %% (%.1f s)", 100.0 * c.connectedFraction(p), p.connected_s);
+    std::string connected = buf;
+    std::snprintf(buf, sizeof buf, "%.0f kB/s", p.throughputConnectedBps() / 1000.0);
+    std::string throughput = buf;
+    std::snprintf(buf, sizeof buf, "%.1f MB", p.bytes / 1e6);
+    const std::string bytes = buf;
+    const std::string ab = std::string(1, p.a) + "→" + p.b, ba = std::string(1, p.b) + "→" + p.a;
+    t.rows.push_back({std::string(1, p.a) + "–" + p.b, connected, std::to_string(p.disconnections),
+                      ab + " " + std::to_string(p.delivered_ab) + " / " + std::to_string(p.dropped_ab) + ", " + ba +
+                          " " + std::to_string(p.delivered_ba) + " / " + std::to_string(p.dropped_ba),
+                      throughput, bytes});
+  }
+  return t;
+}
+
+const char* kConnectivityIntro =
+    "Per robot pair of each dataset's radio run (docs/design.md \"Connectivity\"): connected = both robots on and "
+    "within d_init (inside a radio trace's window: the window's `connected`); the percentage is of the run; a "
+    "disconnection is a connected step followed by one that is not; dropped = timed out.";
+
+std::string connectivitySectionMarkdown(const std::vector<DatasetConnectivity>& cs) {
+  if (cs.empty()) return "";
+  std::string out = std::string("## Connectivity\n\n") + kConnectivityIntro + "\n\n";
+  for (const auto& d : cs) {
+    out += "### " + d.name + "\n\n";
+    const std::string fig = d.png.empty() ? d.svg : d.png;
+    if (!fig.empty()) out += "![" + d.name + " connectivity](" + fig + ")\n\n";
+    out += report_table::markdown(connectivityTable(d.connectivity)) + "\n";
+  }
+  return out;
+}
+
+std::string base64(const std::string& data);
+
+std::string connectivitySectionHtml(const ReportInput& input, const std::vector<DatasetConnectivity>& cs) {
+  if (cs.empty()) return "";
+  std::string out = "<h2>Connectivity</h2>\n<p>" + escapeHtml(kConnectivityIntro) + "</p>\n";
+  for (const auto& d : cs) {
+    out += "<div class=\"wide\"><h3>" + escapeHtml(d.name) + "</h3>";
+    if (!d.svg.empty())
+      out += "<img alt=\"" + escapeHtml(d.name) + " connectivity\" src=\"data:image/svg+xml;base64," +
+             base64(readWholeFileOrEmpty((fs::path(input.out_dir) / d.svg).string())) + "\">";
+    out += report_table::html(connectivityTable(d.connectivity)) + "</div>\n";
+  }
+  return out;
+}
+
 std::string base64(const std::string& data) {
   static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
@@ -122,7 +208,7 @@ std::string reportMarkdown(const ReportInput& input) {
   out << "\n## Per dataset\n\n";
   for (const auto& r : rows)
     if (!r.comm.empty()) out << "### " << r.name << "\n\n" << report_table::markdown(datasetTable(r)) << "\n";
-  out << variantsSection(rows, false);
+  out << variantsSection(rows, false) << connectivitySectionMarkdown(connectivities(input, rows));
   return out.str();
 }
 
@@ -133,14 +219,16 @@ std::string reportHtml(const ReportInput& input) {
       << "</title>\n<style>body{font-family:sans-serif;margin:1.5em}table{border-collapse:collapse;font-size:"
          "0.85em}td,th{border:1px solid #ccc;padding:2px 6px;text-align:left}.grid{display:grid;grid-template-"
          "columns:repeat(auto-fill,minmax(420px,1fr));gap:1em}.card img{width:100%;background:#fff}.card h3{"
-         "margin:0.2em 0}</style></head><body>\n<h1>Suite "
+         "margin:0.2em 0}.wide img{width:100%;max-width:1500px;background:#fff}</style></head><body>\n<h1>Suite "
       << escapeHtml(input.suite_name) << "</h1>\n<p><code>" << escapeHtml(input.suite_path) << "</code> → <code>"
       << escapeHtml(input.out_dir) << "</code>. " << escapeHtml(input.note)
       << " Paper values: the COSMO-Bench paper's Fig. 1 (config/paper/fig1.yaml).</p>\n<h2>Datasets</h2>\n";
   out << report_table::html(datasetsTable(rows, rows.size())) << "<h2>Figures</h2>\n<div class=\"grid\">\n";
   for (const auto& r : rows)
     if (!r.comm.empty()) out << figureCard(input, r);
-  out << "</div>\n" << variantsSection(rows, true) << "</body></html>\n";
+  out << "</div>\n"
+      << variantsSection(rows, true) << connectivitySectionHtml(input, connectivities(input, rows))
+      << "</body></html>\n";
   return out.str();
 }
 

@@ -1,15 +1,18 @@
 // The dataset figures (issue 25): content of the SVGs (robots, closures solid / dashed, table, scale bar),
-// determinism, and the files written next to a JRL (with PNGs when ImageMagick is installed).
+// determinism, and the files written next to a JRL (with PNGs when ImageMagick is installed); the connectivity
+// timeline when the radio run's connectivity is beside the JRL.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <random>
 #include <regex>
 #include <set>
 #include <unistd.h>
 
 #include "cosmo/common/shared_data.hpp"
+#include "cosmo/common/whole_file.hpp"
 #include "cosmo/jrl/io.hpp"
 #include "cosmo/jrl/stats.hpp"
 #include "cosmo/jrl/synthetic.hpp"
@@ -92,6 +95,33 @@ TEST(ReportFigures, WritesBothFiguresBesideTheJrl) {
     std::cout << "ImageMagick convert not installed: no PNG checked\n";
   }
   EXPECT_THROW(report::writeDatasetFigures(d, "/proc/no/such/dir/x.jrl", "", false), std::exception);
+  fs::remove_all(dir);
+}
+
+// With the radio run's connectivity beside the JRL, a third figure: the timeline of each pair (its up intervals as
+// bands, its throughput as a line) and the robots in range, the same bytes each time.
+TEST(ReportFigures, ConnectivityTimelineWhenTheRunsConnectivityIsBesideTheJrl) {
+  const fs::path dir = fs::temp_directory_path() / ("cosmo_test_conn_figure_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  comm::ConnectivityTracker tracker({'a', 'b', 'c'}, 0.1, 1.0);
+  for (int i = 1; i <= 300; ++i) {
+    if (i < 100) tracker.addBytes('a', 'b', 80000.0);
+    tracker.endStep(
+        0.1 * i, [&](char a, char b) { return a == 'a' ? (i < 120 || i > 200) : i > 50; }, [](char) { return true; });
+  }
+  std::ofstream(dir / "tiny_example_connectivity.json") << tracker.result().toJson().dump();
+  const jrl::Dataset d = jrl::readJrl(kTiny);
+  const std::string jrl_path = (dir / "tiny_example.jrl").string();
+  const auto written = report::writeDatasetFigures(d, jrl_path, "", false);
+  ASSERT_EQ(written.size(), 3u);
+  EXPECT_EQ(written[2], (dir / "tiny_example.connectivity.svg").string());
+  const std::string svg = cosmo::readWholeFileOrEmpty(written[2]);
+  EXPECT_NE(svg.find("tiny_example: connectivity over time"), std::string::npos);
+  EXPECT_NE(svg.find("a–b: 73.0 % connected, 1 disconnection"), std::string::npos);
+  EXPECT_NE(svg.find("b–c: 83.3 % connected, 0 disconnections"), std::string::npos);
+  EXPECT_EQ(count(svg, "fill=\"#7fcf7f\""), 5u);  // ab and ac up twice each, bc once
+  EXPECT_EQ(cosmo::readWholeFileOrEmpty(report::writeDatasetFigures(d, jrl_path, "", false)[2]), svg);
   fs::remove_all(dir);
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cosmo/comm/connectivity.hpp"
 #include "cosmo/suite/paper_table.hpp"
 #include "cosmo/suite/report.hpp"
 #include "suite_fixture.hpp"
@@ -234,5 +235,56 @@ TEST(ReportHtml, TheMarkdownTablesKeepTheirWidthToo) {
   EXPECT_NE(md.find("| status | failed: cosmo_generate failed (exit code 1)<br>last lines: <stderr> & \"quoted\" \\| "
                     "piped | | |"),
             std::string::npos)
+      << md;
+}
+
+// A dataset whose folder holds its radio run's connectivity (and its figure) gets a Connectivity section: the
+// figure, then a table with a row per robot pair, in both forms.
+TEST(ReportHtml, TheConnectivitySectionShowsEachPairUnderItsFigure) {
+  Fixture fx;
+  JobRecord r1 = *fx.in.jobs[0].record;
+  r1.datasets[0].jrl = "s1_wifi.jrl";
+  fx.in.jobs[0].record = r1;
+  cosmo::comm::Connectivity c;
+  c.step_s = 0.1;
+  c.steps = 1000;
+  c.robots = "abc";
+  c.end_s = 100.0;
+  for (const char* ab : {"ab", "ac", "bc"}) {
+    cosmo::comm::PairConnectivity p;
+    p.a = ab[0];
+    p.b = ab[1];
+    p.connected_s = ab[1] == 'b' ? 31.24 : 70.0;
+    p.bytes_connected = 800000.0 * p.connected_s;
+    p.bytes = p.bytes_connected;
+    p.disconnections = 1;
+    p.delivered_ab = 12;
+    p.dropped_ba = 2;
+    c.pairs.push_back(p);
+  }
+  fx.f.write("s1/s1_wifi_connectivity.json", c.toJson().dump());
+  fx.f.write("s1/s1_wifi.connectivity.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\"></svg>");
+
+  const std::string html = reportHtml(fx.in);
+  const ParsedHtml p = parseHtml(html);
+  ASSERT_EQ(p.tables.size(), 9u);  // the eight above and the connectivity table
+  const HtmlTable& t = p.tables.back();
+  ASSERT_EQ(t.size(), 4u);
+  EXPECT_EQ(t[0][1].text, "connected");
+  EXPECT_EQ(t[1][0].text, "a–b");
+  EXPECT_EQ(t[1][1].text, "31.2 % (31.2 s)");
+  EXPECT_EQ(t[1][2].text, "1");
+  EXPECT_EQ(t[1][3].text, "a→b 12 / 0, b→a 0 / 2");
+  EXPECT_EQ(t[1][4].text, "800 kB/s");
+  EXPECT_EQ(t[2][1].text, "70.0 % (70.0 s)");
+  ASSERT_GE(p.figures_and_tables.size(), 2u);
+  EXPECT_EQ(p.figures_and_tables[p.figures_and_tables.size() - 2], "img");
+  EXPECT_EQ(p.figures_and_tables.back(), "table");
+  EXPECT_NE(html.find("<h2>Connectivity</h2>"), std::string::npos);
+
+  const std::string md = reportMarkdown(fx.in);
+  EXPECT_NE(md.find("## Connectivity"), std::string::npos);
+  EXPECT_NE(md.find("![s1_wifi connectivity](s1/s1_wifi.connectivity.svg)"), std::string::npos) << md;
+  EXPECT_NE(md.find("| a–b | 31.2 % (31.2 s) | 1 | a→b 12 / 0, b→a 0 / 2 | 800 kB/s | 25.0 MB |"), std::string::npos)
       << md;
 }

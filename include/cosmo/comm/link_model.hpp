@@ -7,6 +7,9 @@
 //           throughput B, latency 0. Either way the sample consumes one uniform draw `u` of the radio's stream, so
 //           the radio's other random choices (pair order, sender ties, scan choice) are the same draws whichever
 //           model answered: a trace recorded from a run replays that run exactly.
+//   connected: whether the pair is connected in the step (docs/design.md "Connectivity"): both robots on and, inside
+//           a trace window of the pair, the window's `connected`; elsewhere within d_init (where the model starts a
+//           communication). Deterministic (no draw): the Bernoulli sample above is the link's quality inside it.
 #include <vector>
 
 #include "cosmo/comm/radio_params.hpp"
@@ -29,6 +32,8 @@ class LinkModel {
   void setTraceOrigin(double radio_time) { trace_origin_ = radio_time; }
   /// Whether a and b, `distance` apart, try to start a communication in the step at radio time t.
   bool inRange(char a, char b, double t, double distance) const;
+  /// Whether a and b, `distance` apart, are connected in the step at radio time t (see the file comment).
+  bool connected(char a, char b, double t, double distance, bool both_on) const;
   /// The link of a and b in the step at radio time t; `u` uniform in [0, 1) from the radio's stream.
   LinkSample sample(char a, char b, double t, double distance, double u);
 

@@ -35,6 +35,7 @@
 #include <set>
 #include <vector>
 
+#include "cosmo/comm/connectivity.hpp"
 #include "cosmo/comm/link_model.hpp"
 #include "cosmo/comm/radio_params.hpp"
 #include "cosmo/comm/transfer.hpp"
@@ -109,6 +110,9 @@ class RadioSimulator {
   const RadioParams& params() const { return params_; }
   const std::vector<char>& robots() const { return robot_ids_; }
   const RadioStats& stats() const { return stats_; }
+  /// Connectivity per pair over the steps so far (comm/connectivity.hpp; LinkModel::connected), with the radio's
+  /// time origin, d_init and trace.
+  Connectivity connectivity() const;
   /// Every finished transfer so far, in the order they ended.
   const std::vector<Transfer>& transferLog() const { return log_; }
   const std::vector<ActiveCommunication>& activeCommunications() const { return active_; }
@@ -151,6 +155,7 @@ class RadioSimulator {
   std::uint64_t seed_;
   std::mt19937_64 rng_;
   LinkModel link_;
+  ConnectivityTracker connectivity_;
   std::vector<Transfer> in_flight_;  ///< sent in full; `received` holds the time they arrive
   StampNs time_origin_ = 0;
   std::vector<ActiveCommunication> active_;

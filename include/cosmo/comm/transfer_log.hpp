@@ -28,7 +28,8 @@ std::string transferSummaryJson(const RadioStats& stats, const RadioParams& para
 /// Throws std::runtime_error naming the file on failure.
 void writeTransferLog(const std::string& csv_path, const std::vector<Transfer>& transfers, const RadioStats& stats,
                       const RadioParams& params);
-/// The radio's whole log (transferSummary(radio) as the summary).
+/// The radio's whole log (transferSummary(radio) as the summary), and its connectivity (comm/connectivity.hpp) as
+/// connectivityPath(csv_path), e.g. `<dataset>_transfers.csv` -> `<dataset>_connectivity.json`.
 void writeTransferLog(const std::string& csv_path, const RadioSimulator& radio);
 
 }  // namespace cosmo::comm

@@ -3,7 +3,8 @@
 // (generate_request.hpp) -> the sequence resolved (trials::resolveSequence) -> its noise models
 // (the sequence's, or estimated first from one trial run alone) -> per comm model a TeamRun fed (feed.hpp) and its
 // dataset written: <out>/<name>_<comm>.jrl (+ .recorder.yaml, .stats.txt) and <out>/<name>_<comm>_transfers.csv
-// (+ .summary.json). Deterministic: the same request gives the same bytes, whatever the threads.
+// (+ .summary.json) and <out>/<name>_<comm>_connectivity.json. Deterministic: the same request gives the same bytes,
+// whatever the threads.
 #include <functional>
 #include <optional>
 #include <string>
@@ -18,7 +19,7 @@ namespace cosmo::pipeline {
 
 /// One comm model's dataset.
 struct GeneratedDataset {
-  std::string label;          ///< the comm model's (comm/comm_model.hpp)
+  std::string label;           ///< the comm model's (comm/comm_model.hpp)
   std::string jrl, transfers;  ///< the files written
   dataset::BuildReport report;
   FeedFigures feed;
@@ -26,10 +27,10 @@ struct GeneratedDataset {
 
 /// What a person sees of a run, told as it happens (all optional).
 struct GenerateLog {
-  std::function<void(const std::string&)> preflight;  ///< the pre-flight check's report (it passed)
+  std::function<void(const std::string&)> preflight;              ///< the pre-flight check's report (it passed)
   std::function<void(const trials::ResolvedSequence&)> resolved;  ///< the sequence, resolved
   std::function<void(const std::string&)> line;  ///< the sequence's summary, the estimate (lines end with '\n')
-  std::function<void(const std::string& label)> run_starts;  ///< a comm model's run starts
+  std::function<void(const std::string& label)> run_starts;     ///< a comm model's run starts
   std::function<void(const TeamRun&, StampNs stamp)> progress;  ///< after each scan fed (progress lines)
   /// A dataset was written; `run` holds its team (summaries, figures).
   std::function<void(const TeamRun& run, const GeneratedDataset& dataset)> written;

@@ -14,7 +14,8 @@
 // --trace replays a radio trace (comm/radio_trace.hpp) inside its windows, --comm's phi(d) outside them;
 // --write-trace writes the run's own connectivity samples as a trace, which replayed with the same seed and
 // trajectories gives the same transfers.
-// Writes the CSV (comm/transfer_log.hpp) and <out>.summary.json; prints the summary.
+// Writes the CSV (comm/transfer_log.hpp), <out>.summary.json and the run's connectivity per robot pair
+// (<out without .csv>_connectivity.json, comm/connectivity.hpp); prints the summary.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -62,9 +63,10 @@ Trajectory readRobotTrajectory(const std::string& arg) {
 
 /// The command line; an exit code when the program ends here (help, a usage error).
 std::optional<int> parseArgs(int argc, char** argv, Options& o) {
-  CommandLine app("comm_simulate",
-                  "Runs the radio model offline on reference trajectories and writes the per-transfer log (CSV and "
-                  "<out>.summary.json); prints the summary.");
+  CommandLine app(
+      "comm_simulate",
+      "Runs the radio model offline on reference trajectories and writes the per-transfer log (CSV and "
+      "<out>.summary.json) and the connectivity per robot pair (<out>_connectivity.json); prints the summary.");
   app.add_option("--comm", o.comm, "wifi, proradio or a comm config (YAML)")->capture_default_str();
   app.add_option("--seed", o.seed, "the radio's seed")->capture_default_str();
   app.add_option("--kf-distance", o.kf_distance,

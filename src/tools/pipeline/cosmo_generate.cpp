@@ -22,6 +22,7 @@
 #include "cosmo/bench/stopwatch.hpp"
 #include "cosmo/common/allocator_tuning.hpp"
 #include "cosmo/common/command_line.hpp"
+#include "cosmo/comm/connectivity.hpp"
 #include "cosmo/comm/radio_trace.hpp"
 #include "cosmo/jrl/stats.hpp"
 #include "cosmo/jrl/validate.hpp"
@@ -120,6 +121,8 @@ class Console {
     const jrl::Dataset dataset = run.recorder().build();
     const auto violations = jrl::validate(dataset);
     std::printf("wrote %s (%zu entries; transfer log %s)\n", d.jrl.c_str(), d.report.entries, d.transfers.c_str());
+    std::printf("  connectivity (%s):\n", comm::connectivityPath(d.transfers).c_str());
+    for (const std::string& line : run.radio().connectivity().describe()) std::printf("    %s\n", line.c_str());
     const comm::RadioStats& radio = run.radio().stats();
     if (const auto& trace = run.radio().params().trace)
       std::printf("  radio trace %s: %llu connectivity samples from its windows, %llu from phi(d) outside them\n",
