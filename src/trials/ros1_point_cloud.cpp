@@ -99,15 +99,25 @@ Ros1CloudType ros1CloudType(const Ros1Connection& c, const std::string& where) {
                            kRos1PointCloud2 + " or livox_ros_driver/CustomMsg");
 }
 
-CloudView parseLivoxCustomMsg(const std::uint8_t* message, std::size_t size, const std::string& source) {
-  ByteCursor in(message, size, LivoxFail{source, size});
-  CloudView view;
-  CloudLayout& L = view.layout;
+namespace {
+
+/// A std_msgs/Header: its stamp and frame into `L` (seq is not used).
+template <typename Fail>
+void readHeader(ByteCursor<Fail>& in, CloudLayout& L) {
   in.value<std::uint32_t>("header.seq");
   const auto sec = in.value<std::uint32_t>("header.stamp.sec");
   const auto nsec = in.value<std::uint32_t>("header.stamp.nsec");
   L.stamp = static_cast<StampNs>(sec) * 1000000000ULL + nsec;
   L.frame_id = in.string("header.frame_id");
+}
+
+}  // namespace
+
+CloudView parseLivoxCustomMsg(const std::uint8_t* message, std::size_t size, const std::string& source) {
+  ByteCursor in(message, size, LivoxFail{source, size});
+  CloudView view;
+  CloudLayout& L = view.layout;
+  readHeader(in, L);
   L.time_base = in.value<std::uint64_t>("timebase");
   const auto point_num = in.value<std::uint32_t>("point_num");
   in.value<std::uint8_t>("lidar_id");
@@ -176,11 +186,7 @@ CloudView parseRos1PointCloud2(const std::uint8_t* message, std::size_t size, co
   ByteCursor in(message, size, Ros1CloudFail{source, size});
   CloudView view;
   CloudLayout& L = view.layout;
-  in.value<std::uint32_t>("header.seq");
-  const auto sec = in.value<std::uint32_t>("header.stamp.sec");
-  const auto nsec = in.value<std::uint32_t>("header.stamp.nsec");
-  L.stamp = static_cast<StampNs>(sec) * 1000000000ULL + nsec;
-  L.frame_id = in.string("header.frame_id");
+  readHeader(in, L);
   readCloudMembers(in, view, [&](std::uint32_t nfields) {
     if (nfields > in.left() / kFieldMinBytes)
       in.fail("fields", std::to_string(nfields) + " fields cannot fit in " + std::to_string(in.left()) + " bytes");
