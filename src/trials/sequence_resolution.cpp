@@ -65,9 +65,13 @@ ResolvedSequence resolveSequence(const SequenceChoice& choice, const TrialBases&
   s.timing = sequence::synchronizeTrials(s.config, basis);
   s.references = sequence::sensorReferences(s.config, basis, s.timing);
   if (say)
-    for (const auto& t : s.config.trials)
-      if (const std::string off = trialDewarpOff(t); !off.empty())
-        say(std::string("robot ") + t.robot + " (trial " + t.name + "): " + off);
+    for (const auto& t : s.config.trials) {
+      std::string off;
+      try {
+        off = trialDewarpOff(t);
+      } catch (const std::exception&) {}  // its bag is not here (robot-side playback): the robot's side reads it
+      if (!off.empty()) say(std::string("robot ") + t.robot + " (trial " + t.name + "): " + off);
+    }
   s.end = choice.max_seconds > 0 ? std::min(s.timing.end(), s.timing.start() + toStampNs(choice.max_seconds))
                                  : s.timing.end();
   return s;

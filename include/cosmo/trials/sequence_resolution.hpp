@@ -74,7 +74,7 @@ struct ResolvedSequence {
 /// Loads the config, its noise models (throws sequence::NoiseModelsMissing with the how-to), runs the pre-flight
 /// check (throws PreflightFailed), then takes the trials' bases from `bases` and resolves the rest from them.
 /// `say` receives the built-in sequence's command and, once per trial, that its sweeps are not dewarped
-/// (trialDewarpOff).
+/// (trialDewarpOff; not said of a trial whose bag is not on this machine, as at a base whose robots play).
 ResolvedSequence resolveSequence(const SequenceChoice& choice, const TrialBases& bases = readTrialBases,
                                  const Say& say = {});
 
