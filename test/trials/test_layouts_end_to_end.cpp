@@ -41,7 +41,6 @@ struct TempDir {
   ~TempDir() { fs::remove_all(path); }
 };
 
-sim::LidarModel smallLidar(double rate_hz) { return test::smallLidar(kBeams, kColumns, rate_hz); }
 using test::tinyPlan;
 
 /// One simulated trial written in `layout` into `dir`, its sequence config beside it.
