@@ -104,9 +104,9 @@ namespace {
 /// A std_msgs/Header: its stamp and frame into `L` (seq is not used).
 template <typename Fail>
 void readHeader(ByteCursor<Fail>& in, CloudLayout& L) {
-  in.value<std::uint32_t>("header.seq");
-  const auto sec = in.value<std::uint32_t>("header.stamp.sec");
-  const auto nsec = in.value<std::uint32_t>("header.stamp.nsec");
+  in.template value<std::uint32_t>("header.seq");
+  const auto sec = in.template value<std::uint32_t>("header.stamp.sec");
+  const auto nsec = in.template value<std::uint32_t>("header.stamp.nsec");
   L.stamp = static_cast<StampNs>(sec) * 1000000000ULL + nsec;
   L.frame_id = in.string("header.frame_id");
 }
